@@ -1,0 +1,165 @@
+"""Ground motions: one-sine pulse, the amplitude-modulated harmonic of Eq. (23), and
+sampled records (noise-contaminated versions, see :mod:`rockstudy.noise`).
+
+A :class:`GroundMotion` is what the integrators consume. Analytic kinds are evaluated
+exactly; a ``record`` is linearly interpolated between its samples at ``i·record_dt``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+EXCITATIONS = ("one-sine", "modulated")
+KIND_CODE = {"one-sine": 0, "modulated": 1, "record": 2, "rectangular": 3}
+MODULATED_CYCLES = 5
+"""T_d = 5 · 2π/ω_p for Eq. (23)."""
+ENVELOPE_PEAK = 90.0 * 0.25**2 * 0.75**6
+"""Peak of Eq. (23)'s envelope 90 t²(t−T_d)⁶/T_d⁸, reached at t = T_d/4 (≈ 1.00113). [-]"""
+
+
+def modulated_duration(omega: float) -> float:
+    """T_d = 5·2π/ω_p, the duration of Eq. (23). [s]"""
+    return MODULATED_CYCLES * 2.0 * math.pi / omega
+
+
+def excitation_duration(kind: str, omega: float) -> float:
+    """Duration after which the analytic excitation is zero. [s]"""
+    if kind == "one-sine":
+        return 2.0 * math.pi / omega
+    if kind == "modulated":
+        return modulated_duration(omega)
+    raise ValueError(f"excitation must be one of {', '.join(EXCITATIONS)}, got {kind!r}")
+
+
+def modulation_envelope(t, duration):
+    """Envelope of Eq. (23), 90 t²(t − T_d)⁶ / T_d⁸, zero outside [0, T_d]. [-]"""
+    t = np.asarray(t, dtype=float)
+    s = t / duration
+    env = 90.0 * s**2 * (s - 1.0) ** 6
+    return np.where((t >= 0) & (t <= duration), env, 0.0)
+
+
+def one_sine(t, amplitude, omega):
+    """One-sine pulse a_p·sin(ω_p t) on [0, 2π/ω_p], zero elsewhere. [m/s^2]"""
+    t = np.asarray(t, dtype=float)
+    end = 2.0 * math.pi / omega
+    return np.where((t >= 0) & (t <= end), amplitude * np.sin(omega * t), 0.0)
+
+
+def modulated(t, amplitude, omega):
+    """Amplitude-modulated harmonic, Eq. (23), zero outside [0, T_d]. [m/s^2]"""
+    t = np.asarray(t, dtype=float)
+    td = modulated_duration(omega)
+    return modulation_envelope(t, td) * amplitude * np.sin(omega * (t - td))
+
+
+def analytic(kind: str, t, amplitude, omega):
+    """Evaluate an analytic excitation by name. [m/s^2]"""
+    if kind == "one-sine":
+        return one_sine(t, amplitude, omega)
+    if kind == "modulated":
+        return modulated(t, amplitude, omega)
+    raise ValueError(f"excitation must be one of {', '.join(EXCITATIONS)}, got {kind!r}")
+
+
+@dataclass(frozen=True)
+class GroundMotion:
+    """A horizontal (and optional vertical) ground acceleration history.
+
+    Parameters
+    ----------
+    kind : {"one-sine", "modulated", "record", "rectangular"}
+        Analytic pulse, Eq. (23), a sampled record, or a rectangular pulse (tests).
+    amplitude : float
+        a_p; for a record, the factor multiplying ``record``. [m/s^2]
+    omega : float
+        ω_p (unused for "rectangular"). [rad/s]
+    duration : float
+        Time after which the horizontal excitation is zero. [s]
+    record_dt : float
+        Sampling step of ``record``. [s]
+    record : ndarray
+        Samples at i·record_dt (dimensionless; times ``amplitude`` gives m/s^2).
+    vertical_dt : float
+        Sampling step of ``vertical``. [s]
+    vertical : ndarray
+        Vertical ground acceleration samples at i·vertical_dt, zero after. [m/s^2]
+    """
+
+    kind: str
+    amplitude: float
+    omega: float
+    duration: float
+    record_dt: float = 0.0
+    record: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    vertical_dt: float = 0.0
+    vertical: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    def __post_init__(self):
+        if self.kind not in KIND_CODE:
+            raise ValueError(f"GroundMotion.kind must be one of {', '.join(KIND_CODE)}, got {self.kind!r}")
+        if not (math.isfinite(self.amplitude)):
+            raise ValueError(f"GroundMotion.amplitude must be finite, got {self.amplitude!r}")
+        if self.kind != "rectangular" and not (self.omega > 0):
+            raise ValueError(f"GroundMotion.omega must be > 0 rad/s, got {self.omega!r}")
+        if not (self.duration > 0):
+            raise ValueError(f"GroundMotion.duration must be > 0 s, got {self.duration!r}")
+        if self.kind == "record" and (self.record_dt <= 0 or len(self.record) < 2):
+            raise ValueError("GroundMotion of kind 'record' needs record_dt > 0 and at least 2 samples")
+        if len(self.vertical) and self.vertical_dt <= 0:
+            raise ValueError("GroundMotion.vertical needs vertical_dt > 0")
+        object.__setattr__(self, "record", np.ascontiguousarray(self.record, dtype=float))
+        object.__setattr__(self, "vertical", np.ascontiguousarray(self.vertical, dtype=float))
+
+    @property
+    def code(self) -> int:
+        return KIND_CODE[self.kind]
+
+    def horizontal(self, t):
+        """Horizontal ground acceleration Ẍ_g(t). [m/s^2]"""
+        t = np.asarray(t, dtype=float)
+        if self.kind in EXCITATIONS:
+            return analytic(self.kind, t, self.amplitude, self.omega)
+        if self.kind == "rectangular":
+            return np.where((t >= 0) & (t < self.duration), self.amplitude, 0.0)
+        grid = np.arange(len(self.record)) * self.record_dt
+        return self.amplitude * np.interp(t, grid, self.record, left=0.0, right=0.0)
+
+    def vertical_acceleration(self, t):
+        """Vertical ground acceleration Ÿ_g(t) (zero when not given). [m/s^2]"""
+        t = np.asarray(t, dtype=float)
+        if len(self.vertical) == 0:
+            return np.zeros_like(t)
+        grid = np.arange(len(self.vertical)) * self.vertical_dt
+        return np.interp(t, grid, self.vertical, left=0.0, right=0.0)
+
+    def scaled(self, amplitude: float) -> "GroundMotion":
+        """The same motion with a different amplitude a_p. [m/s^2]"""
+        return GroundMotion(self.kind, amplitude, self.omega, self.duration, self.record_dt, self.record,
+                            self.vertical_dt, self.vertical)
+
+    @property
+    def end_time(self) -> float:
+        """Time after which both components are zero. [s]"""
+        end = self.duration
+        if len(self.vertical):
+            end = max(end, (len(self.vertical) - 1) * self.vertical_dt)
+        return end
+
+    def peak(self) -> float:
+        """Peak |Ẍ_g| (PGA). [m/s^2]"""
+        if self.kind == "record":
+            return abs(self.amplitude) * float(np.max(np.abs(self.record)))
+        if self.kind == "modulated":
+            return abs(self.amplitude) * modulated_peak()
+        return abs(self.amplitude)
+
+
+def modulated_peak() -> float:
+    """max_t |Eq. 23| for a_p = 1 (slightly below the envelope peak). [-]"""
+    # Independent of ω_p: in s = t/T_d the carrier is sin(10π(s−1)). Sample densely and polish.
+    s = np.linspace(0.0, 1.0, 200001)
+    f = np.abs(90 * s**2 * (s - 1) ** 6 * np.sin(10 * np.pi * (s - 1)))
+    return float(f.max())
