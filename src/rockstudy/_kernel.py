@@ -135,6 +135,52 @@ def _dense(sig, h, y0, y1, K):
 
 
 @njit(cache=True)
+def _event_value(sig, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec):
+    """g = a_th·θ + a_thd·θ̇ + a_x·Ẍg + c at t + sig·hh (Ẍg only when a_x != 0)."""
+    a, b = _dense(sig, hh, y0, y1, K)
+    g = a_th * a + a_thd * b + c
+    if a_x != 0.0:
+        g += a_x * ground_acceleration(t + sig * hh, P, rec)
+    return g
+
+
+@njit(cache=True)
+def _locate(hi, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec):
+    """Earliest sig in (0, hi] where g (positive at 0) reaches <= 0, by the Illinois method.
+
+    Returns -1 when g(hi) > 0 (no crossing before ``hi``). The returned point always has g <= 0.
+    """
+    fhi = _event_value(hi, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec)
+    if fhi > 0.0:
+        return -1.0
+    lo = 0.0
+    flo = _event_value(0.0, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec)
+    if flo <= 0.0:
+        return hi  # degenerate start on the surface: take the step end
+    last = 0
+    for _ in range(200):
+        if hi - lo <= 1e-13:
+            break
+        s = hi - fhi * (hi - lo) / (fhi - flo)
+        if not (lo < s < hi):
+            s = 0.5 * (lo + hi)
+        f = _event_value(s, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec)
+        if f <= 0.0:
+            hi = s
+            fhi = f
+            if last == -1:
+                flo *= 0.5
+            last = -1
+        else:
+            lo = s
+            flo = f
+            if last == 1:
+                fhi *= 0.5
+            last = 1
+    return hi
+
+
+@njit(cache=True)
 def _sign(x):
     return 1.0 if x > 0 else (-1.0 if x < 0 else 0.0)
 
@@ -499,75 +545,32 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
             # impact: side·θ crosses to <= 0
             if side * n0 <= 0.0:
                 if side * y0 > 0.0:
-                    lo = 0.0
-                    hi = 1.0
-                    for _ in range(60):
-                        mid = 0.5 * (lo + hi)
-                        a, b = _dense(mid, hh, y0, y1, K)
-                        if side * a <= 0.0:
-                            hi = mid
-                        else:
-                            lo = mid
-                    best = hi
+                    best = _locate(1.0, hh, y0, y1, K, side, 0.0, 0.0, 0.0, t, P, rec)
                 else:
                     negligible = True  # left θ = 0 and came back within one step
                     best = 0.0
             g_ov0 = side * y0 - th_over
             if not negligible and side * n0 - th_over >= 0.0 and g_ov0 < 0.0:
-                lo = 0.0
-                hi = min(best, 1.0)
-                a, b = _dense(hi, hh, y0, y1, K)
-                if side * a - th_over >= 0.0:
-                    for _ in range(60):
-                        mid = 0.5 * (lo + hi)
-                        a, b = _dense(mid, hh, y0, y1, K)
-                        if side * a - th_over >= 0.0:
-                            hi = mid
-                        else:
-                            lo = mid
-                    best = hi
+                s = _locate(min(best, 1.0), hh, y0, y1, K, -side, 0.0, 0.0, th_over, t, P, rec)
+                if s >= 0.0:
+                    best = s
             if track_fracture:
                 for k in range(2):
                     thu = th_ku if k == 0 else th_du
                     intact = spring[sidx] if k == 0 else damper[sidx]
                     if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and side * n0 - thu >= 0.0:
-                        lo = 0.0
-                        hi = min(best, 1.0)
-                        a, b = _dense(hi, hh, y0, y1, K)
-                        if side * a - thu >= 0.0:
-                            for _ in range(60):
-                                mid = 0.5 * (lo + hi)
-                                a, b = _dense(mid, hh, y0, y1, K)
-                                if side * a - thu >= 0.0:
-                                    hi = mid
-                                else:
-                                    lo = mid
-                            best = hi
+                        s = _locate(min(best, 1.0), hh, y0, y1, K, -side, 0.0, 0.0, thu, t, P, rec)
+                        if s >= 0.0:
+                            best = s
             if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
-                lo = 0.0
-                hi = min(best, 1.0)
-                a, b = _dense(hi, hh, y0, y1, K)
-                if hint * b <= 0.0:
-                    for _ in range(60):
-                        mid = 0.5 * (lo + hi)
-                        a, b = _dense(mid, hh, y0, y1, K)
-                        if hint * b <= 0.0:
-                            hi = mid
-                        else:
-                            lo = mid
-                    best = hi
+                s = _locate(min(best, 1.0), hh, y0, y1, K, 0.0, hint, 0.0, 0.0, t, P, rec)
+                if s >= 0.0:
+                    best = s
             if not negligible and use_xg_event and x_hint != 0.0:
                 if x_hint * ground_acceleration(t + hh, P, rec) <= 0.0:
-                    lo = 0.0
-                    hi = min(best, 1.0)
-                    if x_hint * ground_acceleration(t + hi * hh, P, rec) <= 0.0:
-                        for _ in range(60):
-                            mid = 0.5 * (lo + hi)
-                            if x_hint * ground_acceleration(t + mid * hh, P, rec) <= 0.0:
-                                hi = mid
-                            else:
-                                lo = mid
-                        best = hi
+                    s = _locate(min(best, 1.0), hh, y0, y1, K, 0.0, 0.0, x_hint, 0.0, t, P, rec)
+                    if s >= 0.0:
+                        best = s
             if best <= 1.0:
                 # ---- move to the earliest event and apply every change that holds there ----
                 n_events += 1
