@@ -30,7 +30,8 @@ from numba import njit, prange
 I_P, I_ALPHA, I_G, I_E, I_KMAX, I_KMIN, I_CD, I_TKU, I_TDU, I_TOVER = range(10)
 I_STRAT, I_TS, I_DELAY, I_VREST, I_RTOL, I_ATOL, I_FREE = range(10, 17)
 I_KIND, I_AMP, I_OMEGA, I_DUR, I_RDT, I_VDT, I_TH0, I_THD0, I_HMAX = range(17, 26)
-NPAR = 26
+I_SINA, I_COSA = 26, 27
+NPAR = 28
 
 FS, PASSIVE, CS01, CS02 = 0, 1, 2, 3
 KIND_ONE_SINE, KIND_MODULATED, KIND_RECORD, KIND_RECTANGULAR = 0, 1, 2, 3
@@ -104,11 +105,15 @@ def vertical_acceleration(t, P, vert):
 def _acc(th, thd, side, kap, cd, xg, yg, P):
     """θ̈ of Eq. (1) in normalised form (see rockstudy.motion). [rad/s^2]"""
     p = P[I_P]
-    arg = side * P[I_ALPHA] - th
     g = P[I_G]
-    c = math.cos(0.5 * th)
-    return -p * p * ((1.0 + yg / g) * math.sin(arg) + (xg / g) * math.cos(arg) + kap * math.sin(th)) \
-        - cd * c * c * thd
+    s = math.sin(th)
+    c = math.cos(th)
+    sa = side * P[I_SINA]
+    ca = P[I_COSA]
+    sin_arg = sa * c - ca * s   # sin(side·α − θ)
+    cos_arg = ca * c + sa * s   # cos(side·α − θ)
+    # cos²(θ/2) = (1 + cos θ)/2
+    return -p * p * ((1.0 + yg / g) * sin_arg + (xg / g) * cos_arg + kap * s) - cd * 0.5 * (1.0 + c) * thd
 
 
 @njit(cache=True)
@@ -359,6 +364,8 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     h = min(1e-3, hmax)
     n_events = 0
     x_hint = 0.0
+    f0_ok = False       # FSAL derivative still valid across a known-time event that changed nothing
+    f0_saved = 0.0
 
     while True:
         if n_events > MAX_EVENTS:
@@ -438,6 +445,8 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
             if t >= t_stop:
                 status = ST_TLIM
                 break
+            kap_before = kap_on
+            h_before = h_on
             if h_on and t >= h_end:
                 h_on = False
                 if continuous_switching:
@@ -458,6 +467,8 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
                     kap_on = pend_v[p_head]
                     p_head = (p_head + 1) % nbuf
                     p_count -= 1
+            if kap_on != kap_before or h_on != h_before or need_apex_decision:
+                f0_ok = False
             continue  # a record knot changes nothing; other events were applied above
 
         # ---------------- ROCK: apex decision (CS01 switch at θ̇ = 0) ----------------
@@ -483,9 +494,13 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
         # ---------------- ROCK: integrate towards t_next ----------------
         use_thd_event = continuous_switching and (strategy == CS01 or not h_on)
         use_xg_event = continuous_switching and strategy == CS02 and h_on
-        f0 = _rhs(t, th, thd, side, kap_eff, cd_eff, h_on, P, rec, vert)
-        if want_history:
-            H, nh = _push_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
+        if f0_ok:
+            f0 = f0_saved
+        else:
+            f0 = _rhs(t, th, thd, side, kap_eff, cd_eff, h_on, P, rec, vert)
+            if want_history:
+                H, nh = _push_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
+        f0_ok = False
         if use_xg_event:
             xs = ground_acceleration(t, P, rec)
             if xs == 0.0:
@@ -595,6 +610,8 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
             t = t + hh
             if t_next - t < 1e-12 * (1.0 + t):
                 t = t_next
+                f0_ok = True
+                f0_saved = K[6, 1]
             th = n0
             thd = n1
             f0 = K[6, 1]

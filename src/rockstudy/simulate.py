@@ -45,6 +45,8 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
     P = np.zeros(kn.NPAR)
     P[kn.I_P] = block.p
     P[kn.I_ALPHA] = block.alpha
+    P[kn.I_SINA] = math.sin(block.alpha)
+    P[kn.I_COSA] = math.cos(block.alpha)
     P[kn.I_G] = block.gravity
     P[kn.I_E] = block.e
     P[kn.I_KMAX] = anchorage.kappa_max
