@@ -564,17 +564,29 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
                 else:
                     negligible = True  # left θ = 0 and came back within one step
                     best = 0.0
-            g_ov0 = side * y0 - th_over
-            if not negligible and side * n0 - th_over >= 0.0 and g_ov0 < 0.0:
-                s = _locate(min(best, 1.0), hh, y0, y1, K, -side, 0.0, 0.0, th_over, t, P, rec)
+            # an apex inside the step: the largest rotation may lie between the step ends, and a
+            # rotation threshold may be crossed and re-crossed within the step (grazing)
+            peak = side * n0
+            sig_peak = 1.0
+            if not negligible and side * y1 > 0.0 and side * n1 <= 0.0:
+                sa_ = _locate(1.0, hh, y0, y1, K, 0.0, side, 0.0, 0.0, t, P, rec)
+                if sa_ >= 0.0:
+                    a, b = _dense(sa_, hh, y0, y1, K)
+                    if side * a > peak:
+                        peak = side * a
+                        sig_peak = sa_
+                    if abs(a) > max_abs:
+                        max_abs = abs(a)
+            if not negligible and peak - th_over >= 0.0 and side * y0 - th_over < 0.0:
+                s = _locate(min(best, sig_peak), hh, y0, y1, K, -side, 0.0, 0.0, th_over, t, P, rec)
                 if s >= 0.0:
                     best = s
             if track_fracture:
                 for k in range(2):
                     thu = th_ku if k == 0 else th_du
                     intact = spring[sidx] if k == 0 else damper[sidx]
-                    if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and side * n0 - thu >= 0.0:
-                        s = _locate(min(best, 1.0), hh, y0, y1, K, -side, 0.0, 0.0, thu, t, P, rec)
+                    if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and peak - thu >= 0.0:
+                        s = _locate(min(best, sig_peak), hh, y0, y1, K, -side, 0.0, 0.0, thu, t, P, rec)
                         if s >= 0.0:
                             best = s
             if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
