@@ -1,0 +1,244 @@
+"""Figures of the paper from the workflow's netCDF outputs (the only module using matplotlib).
+
+Axis-level functions take an ``ax`` and return the artists they draw; ``figure_*`` functions
+compose the paper's multi-panel figures from those and return the :class:`Figure`.
+Frequencies are ω_p/p, amplitudes a_p/(g·tanα).
+"""
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.colors import BoundaryNorm, ListedColormap  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
+
+FREQUENCY_LABEL = r"$\omega_p/p$ [-]"
+AMPLITUDE_LABEL = r"$a_p/(g\,\tan\alpha)$ [-]"
+OUTCOME_COLOURS = {"no_uplift": "#f2f2f2", "safe": "#a6d96a", "overturned_without_impact": "#d7191c",
+                   "overturned_after_impact": "#fdae61", "undetermined": "#7f7f7f"}
+LEVEL_STYLE = {0.0: ("k", "-"), 0.01: ("tab:blue", "--"), 0.05: ("tab:orange", "-."), 0.1: ("tab:red", ":")}
+
+
+def _level_label(level: float) -> str:
+    return "no noise (R000)" if level == 0 else f"R{round(level * 100):03d} ({level:.0%} noise)"
+
+
+# --- axis-level ----------------------------------------------------------------------------------
+def spectrum_axes(ax, title: str | None = None):
+    """Label an overturning-spectrum axis: ω_p/p against a_p/(g·tanα)."""
+    ax.set_xlabel(FREQUENCY_LABEL)
+    ax.set_ylabel(AMPLITUDE_LABEL)
+    ax.grid(True, lw=0.3, alpha=0.5)
+    if title:
+        ax.set_title(title, fontsize=10)
+    return ax
+
+
+def plot_threshold(ax, threshold, **kwargs):
+    """Lower threshold of the overturning region a_min,OVER against ω_p/p (NaN: gap)."""
+    (line,) = ax.plot(threshold["frequency_ratio"].values, threshold.values, **kwargs)
+    return line
+
+
+def plot_a_max0(ax, value: float, label: str = r"$a_{max,0}$"):
+    """Horizontal line at the protection level a_max,0 (as an amplitude ratio)."""
+    return ax.axhline(value, color="0.3", lw=1.0, ls=(0, (6, 3)), label=label)
+
+
+def plot_outcome_map(ax, ds, realisation: int = 0):
+    """Outcome at every (ω_p/p, a_p/(g·tanα)) grid point, with the safe islands visible."""
+    meanings = ds["outcome"].attrs["flag_meanings"].split()
+    cmap = ListedColormap([OUTCOME_COLOURS[m] for m in meanings])
+    norm = BoundaryNorm(np.arange(len(meanings) + 1) - 0.5, cmap.N)
+    out = ds["outcome"].isel(realisation=realisation).transpose("amplitude_ratio", "frequency_ratio")
+    mesh = ax.pcolormesh(ds["frequency_ratio"].values, ds["amplitude_ratio"].values, out.values,
+                         cmap=cmap, norm=norm, shading="nearest", rasterized=True)
+    handles = [Patch(color=OUTCOME_COLOURS[m], label=m.replace("_", " ")) for m in meanings]
+    return mesh, handles
+
+
+def plot_history(ax, hist):
+    """Normalised ground motion Ẍ_g/(g·tanα), rotation θ/α and velocity θ̇/(p·α) against time."""
+    t = hist["time"].values
+    return [ax.plot(hist["ground_time"].values, hist["ground_ratio"], color="0.5", ls="--", lw=0.9, label=r"$\ddot X_g/(g\tan\alpha)$")[0],
+            ax.plot(t, hist["rotation_ratio"], color="tab:blue", lw=1.3, label=r"$\theta/\alpha$")[0],
+            ax.plot(t, hist["velocity_ratio"], color="tab:red", lw=0.9, label=r"$\dot\theta/(p\,\alpha)$")[0]]
+
+
+def plot_stiffness(ax, hist):
+    """Anchorage stiffness K/K_max set by the control law (piecewise constant)."""
+    (line,) = ax.step(hist["time"].values, hist["stiffness_ratio"].values, where="post", color="tab:green",
+                      lw=1.0, label=r"$K/K_{max}$")
+    ax.set_ylim(-0.15, 1.15)
+    ax.set_yticks([0, 1], [r"$K_{min}$", r"$K_{max}$"])
+    return line
+
+
+def plot_excitation(ax, time, values, **kwargs):
+    """A unit-amplitude excitation Ẍ_g/a_p against time."""
+    (line,) = ax.plot(time, values, **kwargs)
+    ax.set_xlabel("time $t$ [s]")
+    ax.set_ylabel(r"$\ddot X_g/a_p$ [-]")
+    return line
+
+
+# --- figures ---------------------------------------------------------------------------------------
+def figure_control_history(hist, paper_figure: str):
+    """Figs. 2–3: normalised time history of a controlled block and its stiffness K."""
+    fig, (ax, axk) = plt.subplots(2, 1, sharex=True, figsize=(7, 4.6), height_ratios=(3, 1))
+    plot_history(ax, hist)
+    ax.axhline(0, color="k", lw=0.4)
+    ax.set_ylabel("normalised response [-]")
+    ax.legend(loc="upper right", fontsize=8, ncol=3)
+    plot_stiffness(axk, hist)
+    axk.set_xlabel("time $t$ [s]")
+    end = min(float(hist["time"][-1]), 1.3 * hist.attrs["excitation_end_s"])
+    axk.set_xlim(0, end)
+    a = hist.attrs
+    ax.set_title(f"Fig. {paper_figure}: {a['control_strategy']}, $\\omega_p/p$ = {a['frequency_ratio']:g}, "
+                 f"$a_p/(g\\tan\\alpha)$ = {a['amplitude_ratio']:g} ({a['status']})", fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def figure_excitation(noise):
+    """Fig. 4: (a) baseline Eq. 23 excitation; (b) the same contaminated with noise."""
+    fig, (a, b) = plt.subplots(2, 1, sharex=True, sharey=True, figsize=(7, 4.8))
+    t = noise["time"].values
+    plot_excitation(a, t, noise["baseline"].values, color="k", lw=1.0, label="baseline, Eq. (23)")
+    env = np.abs(noise["baseline"].values).max()
+    a.axhline(env, color="0.5", lw=0.6, ls=":")
+    a.axhline(-env, color="0.5", lw=0.6, ls=":")
+    k = int(noise["record_realisation"][0])
+    plot_excitation(b, t, noise["record"].sel(record_realisation=k).values, color="tab:red", lw=0.6,
+                    label=f"noisy, realisation {k}")
+    plot_excitation(b, t, noise["baseline"].values, color="k", lw=1.0, label="baseline")
+    a.set_xlabel("")
+    lev = noise.attrs["noise_level"]
+    e, p = float(noise["energy_ratio"].sel(realisation=k).mean()), float(noise["pga_ratio"].sel(realisation=k).mean())
+    a.set_title(f"(a) baseline harmonic excitation with variable amplitude, "
+                f"$\\omega_p/p$ = {noise.attrs['reference_frequency_ratio']:g}", fontsize=10)
+    b.set_title(f"(b) contaminated with {lev:.0%} noise (energy ratio {e:.3f}, PGA ratio {p:.3f})", fontsize=10)
+    for ax in (a, b):
+        ax.legend(loc="upper right", fontsize=8)
+        ax.grid(True, lw=0.3, alpha=0.5)
+    fig.tight_layout()
+    return fig
+
+
+def figure_realisations(spectrum, histories, point: dict):
+    """Fig. 5: (a) thresholds for two noise realisations; (b) rotation histories at "Ex01"."""
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
+    colours = ("tab:blue", "tab:red", "tab:green", "tab:purple")
+    for i, hist in enumerate(histories):
+        k = hist.attrs["noise_realisation"]
+        plot_threshold(a, spectrum["threshold_realisation"].sel(realisation=k), color=colours[i], marker=".",
+                       label=f"noise realisation N°{i + 1} (k = {k})")
+        b.plot(hist["time"], hist["rotation_ratio"], color=colours[i], lw=1.0,
+               label=f"N°{i + 1} (k = {k}): {hist.attrs['status']}")
+    plot_a_max0(a, point["a_max0_ratio"])
+    a.plot(point["frequency_ratio"], point["amplitude_ratio"], "k*", ms=11, label=point["label"])
+    a.annotate(point["label"], (point["frequency_ratio"], point["amplitude_ratio"]), xytext=(6, 6),
+               textcoords="offset points")
+    spectrum_axes(a, f"(a) {spectrum['strategy'].item()}, {_level_label(float(spectrum['noise_level']))}")
+    a.legend(fontsize=8, loc="upper left")
+    b.axhline(0, color="k", lw=0.4)
+    for s in (-1, 1):
+        b.axhline(s, color="0.5", lw=0.6, ls=":")
+    b.set_xlabel("time $t$ [s]")
+    b.set_ylabel(r"$\theta/\alpha$ [-]")
+    b.set_xlim(0, 1.3 * histories[0].attrs["excitation_end_s"])
+    b.set_ylim(-7, 7)
+    b.set_title(f"(b) rotation at {point['label']}", fontsize=10)
+    b.legend(fontsize=8, loc="upper left")
+    b.grid(True, lw=0.3, alpha=0.5)
+    fig.tight_layout()
+    return fig
+
+
+def figure_noise_sensitivity(convergence, spectra, a_max0: float, panels=("FS", "CS01", "CS02"),
+                             shown=(1, 5, 10, 20, 40)):
+    """Fig. 6: (a) threshold against the number of realisations N; (b–d) thresholds per noise level."""
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8), sharex=True, sharey=True)
+    a = axes.flat[0]
+    n_all = convergence.sizes["n_realisations"]
+    for i, n in enumerate(sorted({min(n, n_all) for n in shown})):
+        plot_threshold(a, convergence["threshold_convergence"].sel(n_realisations=n),
+                       color=plt.cm.viridis(i / max(1, len(shown) - 1)), label=f"N = {n}")
+    plot_a_max0(a, a_max0)
+    spectrum_axes(a, f"(a) {convergence['strategy'].item()}, {_level_label(float(convergence['noise_level']))}: "
+                     "increasing number of realisations")
+    a.legend(fontsize=8, loc="upper left")
+    for ax, letter, strategy in zip(axes.flat[1:], "bcd", panels):
+        for ds in sorted((d for d in spectra if d["strategy"].item() == strategy), key=lambda d: float(d["noise_level"])):
+            level = float(ds["noise_level"])
+            colour, ls = LEVEL_STYLE.get(round(level, 4), ("0.3", "-"))
+            plot_threshold(ax, ds["threshold"], color=colour, ls=ls, lw=1.3, label=_level_label(level))
+        plot_a_max0(ax, a_max0)
+        spectrum_axes(ax, f"({letter}) {strategy}")
+        ax.legend(fontsize=8, loc="upper left")
+    for ax in axes.flat:
+        ax.label_outer()
+    fig.tight_layout()
+    return fig
+
+
+def figure_timing(sweeps, variable: str, a_max0: float, paper_figure: str):
+    """Figs. 7–8: overlapping thresholds for each sampling time T_s (or delay Δτ), per strategy."""
+    strategies = sorted({d["strategy"].item() for d in sweeps})
+    fig, axes = plt.subplots(1, len(strategies), figsize=(5.5 * len(strategies), 4.3), sharey=True, squeeze=False)
+    symbol = {"sampling_time": "T_s", "delay": r"\Delta\tau"}[variable]
+    for ax, letter, strategy in zip(axes.flat, "abcd", strategies):
+        runs = sorted((d for d in sweeps if d["strategy"].item() == strategy), key=lambda d: float(d[variable]))
+        for i, ds in enumerate(runs):
+            label = f"${symbol}$ = {float(ds[variable]) * 1000:g} ms"
+            plot_threshold(ax, ds["threshold"], color=plt.cm.plasma(i / max(1, len(runs))), lw=1.2, label=label)
+        plot_a_max0(ax, a_max0)
+        lev = float(runs[0]["noise_level"])
+        extra = f", $T_s$ = {float(runs[0]['sampling_time']) * 1000:g} ms" if variable == "delay" else ""
+        spectrum_axes(ax, f"({letter}) {strategy}, {lev:.0%} noise{extra}")
+        ax.legend(fontsize=8, loc="upper left")
+        ax.label_outer()
+    fig.suptitle(f"Fig. {paper_figure}", fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def figure_maps(maps, a_max0: float):
+    """Overturning maps (outcome per grid point) of the noise-free strategies, threshold on top."""
+    fig, axes = plt.subplots(1, len(maps), figsize=(4.2 * len(maps), 4.4), sharey=True, squeeze=False)
+    handles = []
+    for ax, ds in zip(axes.flat, maps):
+        _, handles = plot_outcome_map(ax, ds)
+        plot_threshold(ax, ds["threshold"], color="k", lw=1.0, label=r"$a_{min,OVER}$")
+        plot_a_max0(ax, a_max0)
+        spectrum_axes(ax, f"{ds['strategy'].item()}, no noise")
+        ax.label_outer()
+    fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    return fig
+
+
+def save_figure(fig, *paths) -> list[Path]:
+    """Save ``fig`` to each path atomically (format from the suffix) and close it."""
+    written = []
+    for path in map(Path, paths):
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(suffix=path.suffix, dir=path.parent)
+        os.close(fd)
+        try:
+            fig.savefig(tmp, dpi=150, format=path.suffix.lstrip("."))
+            os.replace(tmp, path)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.remove(tmp)
+            raise
+        written.append(path)
+    plt.close(fig)
+    return written

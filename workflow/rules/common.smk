@@ -1,0 +1,66 @@
+# Names, paths and parameter dictionaries shared by the rules.
+OUT = config["results_dir"]
+LEVELS = config["noise_levels"]
+FREE = study.noise_free_level(LEVELS)
+NOISY = [name for name in LEVELS if name != FREE]
+LIBRARY = study.source_fingerprint()  # rerun the simulations whenever the library changes
+SAMPLING = config["sampling_sweep"]
+DELAY = config["delay_sweep"]
+EX = config["example_point"]
+HIST = config["control_histories"]
+PAPER_FIGURE = {"CS01": "2", "CS02": "3", "FS": "0", "PASSIVE": "0"}  # 0: not in the paper
+
+
+wildcard_constraints:
+    strategy="FS|PASSIVE|CS01|CS02",
+    level="[A-Za-z0-9]+",
+    ts="[0-9.e-]+",
+    delay="[0-9.e-]+",
+    chunk="[0-9]+",
+
+
+def scenario(strategy, level, ts=0.0, delay=0.0):
+    return {
+        "block": config["block"],
+        "anchorage": config["anchorage"],
+        "control": {"strategy": strategy, "sampling_time": float(ts), "delay": float(delay)},
+        "excitation": config["excitation"],
+        "noise_level": LEVELS[level],
+        "seed": config["seed"],
+        "match": config["match"],
+        "overturn_criterion": config["overturn_criterion"],
+        "free_time": config["free_time"],
+    }
+
+
+def chunks(level):
+    return study.realisation_chunks(config["realisations"], config["realisations_per_job"], LEVELS[level] > 0)
+
+
+def chunk_files(wildcards, ts="0", delay="0"):
+    path = f"{OUT}/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.nc"
+    ts, delay = getattr(wildcards, "ts", ts), getattr(wildcards, "delay", delay)
+    return [path.format(strategy=wildcards.strategy, level=wildcards.level, ts=ts, delay=delay, chunk=c)
+            for c in range(len(chunks(wildcards.level)))]
+
+
+def spectrum_files(strategies, levels):
+    return [f"{OUT}/spectra/{s}_{l}.nc" for s in strategies for l in levels]
+
+
+def history_file(strategy, level, k, frequency_ratio, amplitude_ratio):
+    return f"{OUT}/histories/{strategy}_{level}_k{k}_w{frequency_ratio:g}_a{amplitude_ratio:g}.nc"
+
+
+SAMPLING_FILES = [f"{OUT}/timing/sampling/{s}_{SAMPLING['noise_level']}_Ts{ts:g}.nc"
+                  for s in SAMPLING["strategies"] for ts in SAMPLING["sampling_times"]]
+DELAY_FILES = [f"{OUT}/timing/delay/{s}_{DELAY['noise_level']}_Ts{DELAY['sampling_time']:g}_d{d:g}.nc"
+               for s in DELAY["strategies"] for d in DELAY["delays"]]
+EX_HISTORIES = [history_file(EX["strategy"], EX["noise_level"], k, EX["frequency_ratio"], EX["amplitude_ratio"])
+                for k in EX["realisations"]]
+FIG = f"{OUT}/figures/{{name}}.{{ext}}"
+FIGURE_NAMES = ([f"fig{PAPER_FIGURE[s]}_history_{s}" for s in HIST["strategies"]]
+                + ["fig4_excitation", "fig5_realisations", "fig6_noise_sensitivity", "fig7_sampling",
+                   "fig8_delay", "maps_overturning"])
+FIGURES = [FIG.format(name=n, ext=e) for n in FIGURE_NAMES for e in ("png", "pdf")]
+TABLES = [f"{OUT}/tables/{t}.{e}" for t in ("table1", "timing_sampling", "timing_delay") for e in ("nc", "csv", "md")]

@@ -1,0 +1,136 @@
+# Figures (PNG for the report, PDF for print), drawn only from the netCDF outputs.
+
+
+rule figure_history:
+    input:
+        lambda w: history_file(w.strategy, FREE, 0, HIST["frequency_ratio"], HIST["amplitude_ratio"]),
+    output:
+        png=report(f"{OUT}/figures/fig{{fignum}}_history_{{strategy}}.png", caption="../report/fig_history.rst",
+                   category="Figures", subcategory="Control strategies (Figs. 2-3)"),
+        pdf=f"{OUT}/figures/fig{{fignum}}_history_{{strategy}}.pdf",
+    log:
+        f"{OUT}/logs/figures/fig{{fignum}}_history_{{strategy}}.log",
+    params:
+        paper_figure=lambda w: w.fignum,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/figure_history.py"
+
+
+rule figure_excitation:
+    input:
+        f"{OUT}/noise/{max(NOISY, key=LEVELS.get)}.nc",
+    output:
+        png=report(f"{OUT}/figures/fig4_excitation.png", caption="../report/fig4.rst", category="Figures",
+                   subcategory="Noise (Figs. 4-6)"),
+        pdf=f"{OUT}/figures/fig4_excitation.pdf",
+    log:
+        f"{OUT}/logs/figures/fig4_excitation.log",
+    params:
+        noise_level=max(NOISY, key=LEVELS.get),
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/figure_excitation.py"
+
+
+rule figure_realisations:
+    input:
+        spectrum=spectrum_files([EX["strategy"]], [EX["noise_level"]]),
+        histories=EX_HISTORIES,
+    output:
+        png=report(f"{OUT}/figures/fig5_realisations.png", caption="../report/fig5.rst", category="Figures",
+                   subcategory="Noise (Figs. 4-6)"),
+        pdf=f"{OUT}/figures/fig5_realisations.pdf",
+    log:
+        f"{OUT}/logs/figures/fig5_realisations.log",
+    params:
+        point=EX,
+        a_max0=config["a_max0"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/figure_realisations.py"
+
+
+rule figure_noise_sensitivity:
+    input:
+        convergence=f"{OUT}/convergence/{config['convergence']['strategy']}_{config['convergence']['noise_level']}.nc",
+        spectra=spectrum_files([s for s in ("FS", "CS01", "CS02") if s in config["strategies"]], LEVELS),
+    output:
+        png=report(f"{OUT}/figures/fig6_noise_sensitivity.png", caption="../report/fig6.rst", category="Figures",
+                   subcategory="Noise (Figs. 4-6)"),
+        pdf=f"{OUT}/figures/fig6_noise_sensitivity.pdf",
+    log:
+        f"{OUT}/logs/figures/fig6_noise_sensitivity.log",
+    params:
+        panels=[s for s in ("FS", "CS01", "CS02") if s in config["strategies"]],
+        a_max0=config["a_max0"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/figure_noise_sensitivity.py"
+
+
+rule figure_sampling:
+    input:
+        SAMPLING_FILES,
+    output:
+        png=report(f"{OUT}/figures/fig7_sampling.png", caption="../report/fig7.rst", category="Figures",
+                   subcategory="Timing (Figs. 7-8)"),
+        pdf=f"{OUT}/figures/fig7_sampling.pdf",
+    log:
+        f"{OUT}/logs/figures/fig7_sampling.log",
+    params:
+        variable="sampling_time",
+        paper_figure="7",
+        a_max0=config["a_max0"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/figure_timing.py"
+
+
+rule figure_delay:
+    input:
+        DELAY_FILES,
+    output:
+        png=report(f"{OUT}/figures/fig8_delay.png", caption="../report/fig8.rst", category="Figures",
+                   subcategory="Timing (Figs. 7-8)"),
+        pdf=f"{OUT}/figures/fig8_delay.pdf",
+    log:
+        f"{OUT}/logs/figures/fig8_delay.log",
+    params:
+        variable="delay",
+        paper_figure="8",
+        a_max0=config["a_max0"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/figure_timing.py"
+
+
+rule figure_maps:
+    input:
+        [f"{OUT}/maps/{s}.nc" for s in config["maps"]["strategies"]],
+    output:
+        png=report(f"{OUT}/figures/maps_overturning.png", caption="../report/maps.rst", category="Figures",
+                   subcategory="Overturning maps"),
+        pdf=f"{OUT}/figures/maps_overturning.pdf",
+    log:
+        f"{OUT}/logs/figures/maps_overturning.log",
+    params:
+        strategies=config["maps"]["strategies"],
+        a_max0=config["a_max0"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/figure_maps.py"

@@ -1,0 +1,216 @@
+# Simulations: noise realisations, overturning spectra in realisation chunks, maps, histories.
+
+
+rule noise:
+    output:
+        f"{OUT}/noise/{{level}}.nc",
+    log:
+        f"{OUT}/logs/noise/{{level}}.log",
+    params:
+        scenario=lambda w: scenario("FS", w.level),
+        frequency_grid=config["frequency_grid"],
+        realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
+        reference_frequency_ratio=config["noise_reference_frequency_ratio"],
+        n_records=config["noise_records_stored"],
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    script:
+        "../scripts/noise.py"
+
+
+rule spectrum_chunk:
+    input:
+        noise=f"{OUT}/noise/{{level}}.nc",
+    output:
+        f"{OUT}/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.nc",
+    log:
+        f"{OUT}/logs/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.log",
+    params:
+        scenario=lambda w: scenario(w.strategy, w.level, w.ts, w.delay),
+        realisations=lambda w: chunks(w.level)[int(w.chunk)],
+        frequency_grid=config["frequency_grid"],
+        amplitude_grid=config["amplitude_grid"],
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=1500,
+        runtime=60,
+    script:
+        "../scripts/spectrum_chunk.py"
+
+
+rule gather_spectrum:
+    input:
+        chunk_files,
+    output:
+        f"{OUT}/spectra/{{strategy}}_{{level}}.nc",
+    log:
+        f"{OUT}/logs/spectra/{{strategy}}_{{level}}.log",
+    params:
+        realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/gather_spectra.py"
+
+
+rule gather_sampling:
+    input:
+        chunk_files,
+    output:
+        f"{OUT}/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.nc",
+    log:
+        f"{OUT}/logs/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.log",
+    params:
+        realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/gather_spectra.py"
+
+
+rule gather_delay:
+    input:
+        chunk_files,
+    output:
+        f"{OUT}/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.nc",
+    log:
+        f"{OUT}/logs/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.log",
+    params:
+        realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/gather_spectra.py"
+
+
+rule convergence:
+    input:
+        f"{OUT}/spectra/{{strategy}}_{{level}}.nc",
+    output:
+        f"{OUT}/convergence/{{strategy}}_{{level}}.nc",
+    log:
+        f"{OUT}/logs/convergence/{{strategy}}_{{level}}.log",
+    params:
+        realisations=config["realisations"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/convergence.py"
+
+
+rule overturning_map:
+    output:
+        f"{OUT}/maps/{{strategy}}.nc",
+    log:
+        f"{OUT}/logs/maps/{{strategy}}.log",
+    params:
+        scenario=lambda w: scenario(w.strategy, FREE),
+        frequency_grid=config["frequency_grid"],
+        amplitude_grid=config["amplitude_grid"],
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=1500,
+        runtime=60,
+    script:
+        "../scripts/overturning_map.py"
+
+
+rule time_history:
+    output:
+        f"{OUT}/histories/{{strategy}}_{{level}}_k{{k}}_w{{frequency}}_a{{amplitude}}.nc",
+    log:
+        f"{OUT}/logs/histories/{{strategy}}_{{level}}_k{{k}}_w{{frequency}}_a{{amplitude}}.log",
+    params:
+        scenario=lambda w: scenario(w.strategy, w.level),
+        realisation=lambda w: int(w.k),
+        frequency_ratio=lambda w: float(w.frequency),
+        amplitude_ratio=lambda w: float(w.amplitude),
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=10,
+    script:
+        "../scripts/time_history.py"
+
+
+rule table1:
+    input:
+        spectrum_files(config["table1"]["strategies"], LEVELS),
+    output:
+        nc=f"{OUT}/tables/table1.nc",
+        csv=report(f"{OUT}/tables/table1.csv", caption="../report/table1.rst", category="Tables"),
+        md=f"{OUT}/tables/table1.md",
+    log:
+        f"{OUT}/logs/tables/table1.log",
+    params:
+        strategies=config["table1"]["strategies"],
+        noise_levels=LEVELS,
+        a_max0=config["a_max0"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/table1.py"
+
+
+rule timing_table_sampling:
+    input:
+        sweep=SAMPLING_FILES,
+        same_strategy=spectrum_files(SAMPLING["strategies"], [SAMPLING["noise_level"]]),
+        free_standing=spectrum_files(["FS"], [SAMPLING["noise_level"]]),
+    output:
+        nc=f"{OUT}/tables/timing_sampling.nc",
+        csv=report(f"{OUT}/tables/timing_sampling.csv", caption="../report/timing_sampling.rst", category="Tables"),
+        md=f"{OUT}/tables/timing_sampling.md",
+    log:
+        f"{OUT}/logs/tables/timing_sampling.log",
+    params:
+        variable="sampling_time",
+        reference="continuous_same_noise",
+        a_max0=config["a_max0"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/timing_table.py"
+
+
+rule timing_table_delay:
+    input:
+        sweep=DELAY_FILES,
+        same_strategy=[f"{OUT}/timing/sampling/{s}_{DELAY['noise_level']}_Ts{DELAY['sampling_time']:g}.nc"
+                       for s in DELAY["strategies"]],
+        free_standing=spectrum_files(["FS"], [DELAY["noise_level"]]),
+    output:
+        nc=f"{OUT}/tables/timing_delay.nc",
+        csv=report(f"{OUT}/tables/timing_delay.csv", caption="../report/timing_delay.rst", category="Tables"),
+        md=f"{OUT}/tables/timing_delay.md",
+    log:
+        f"{OUT}/logs/tables/timing_delay.log",
+    params:
+        variable="delay",
+        reference="sampled_without_delay_same_noise",
+        a_max0=config["a_max0"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/timing_table.py"

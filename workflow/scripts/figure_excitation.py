@@ -1,0 +1,6 @@
+"""Fig. 4: baseline Eq. 23 excitation and the same contaminated with noise."""
+from rockstudy import io, plotting, study
+
+study.log_to(snakemake.log[0])
+fig = plotting.figure_excitation(io.read_netcdf(snakemake.input[0]))
+plotting.save_figure(fig, snakemake.output.png, snakemake.output.pdf)

@@ -1,0 +1,6 @@
+"""Figs. 2-3: normalised time history of the controlled block and the stiffness K."""
+from rockstudy import io, plotting, study
+
+study.log_to(snakemake.log[0])
+fig = plotting.figure_control_history(io.read_netcdf(snakemake.input[0]), snakemake.params.paper_figure)
+plotting.save_figure(fig, snakemake.output.png, snakemake.output.pdf)

@@ -1,0 +1,7 @@
+"""Overturning maps of the noise-free strategies: unsafe regions, safe islands, threshold."""
+from rockstudy import io, plotting, study
+
+study.log_to(snakemake.log[0])
+maps = [io.read_netcdf(path) for path in snakemake.input]
+fig = plotting.figure_maps(maps, study.a_max0_ratio(maps[0], snakemake.params.a_max0))
+plotting.save_figure(fig, snakemake.output.png, snakemake.output.pdf)
