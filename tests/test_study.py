@@ -177,3 +177,16 @@ def test_history_overturning_reaches_flat():
     assert ds.attrs["overturned"] == 1
     assert float(abs(ds["theta"]).max()) >= math.pi / 2 - 1e-6
     assert set(np.unique(ds["stiffness_ratio"])) <= {0.0}  # FS: no anchorage
+
+
+def test_chunked_spectrum_equals_one_job():
+    """Results do not depend on how realisations are split into jobs (-j1 vs -j2, chunk size)."""
+    from rockstudy.spectra import spectrum
+    sc = Scenario(BLC06, control=Control("CS01"), noise_level=0.05, seed=11)
+    grid = AmplitudeGrid(0.9, 3.0, 0.3, 0.05)
+    freqs = [1.0, 2.5]
+    whole = spectrum(sc, freqs, realisations=[0, 1, 2], grid=grid)
+    parts = [spectrum(sc, freqs, realisations=[2], grid=grid), spectrum(sc, freqs, realisations=[0, 1], grid=grid)]
+    gathered = study.gather_spectra(parts)
+    for name in ("threshold", "threshold_realisation", "energy_ratio", "n_simulations"):
+        np.testing.assert_array_equal(gathered[name].values, whole[name].values)
