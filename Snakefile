@@ -2,7 +2,7 @@
 # performance evaluation of on-off control strategies for rocking objects" (§4-5).
 #
 #   snakemake -j2                                   # the paper's study (config.yaml)
-#   snakemake -j2 --configfile .test/config.yaml    # tiny study, about a minute
+#   snakemake -j2 --configfile .test/config.yaml --replace-workflow-config   # tiny study
 #   snakemake --report report.html                  # figures and tables with captions
 #
 # DAG: noise -> spectrum_chunk -> gather_{spectrum,sampling,delay} -> convergence, tables,
