@@ -189,13 +189,18 @@ def figure_noise_sensitivity(convergence, spectra, a_max0: float, panels=("FS", 
     return fig
 
 
-def figure_timing(sweeps, variable: str, a_max0: float, paper_figure: str):
-    """Figs. 7–8: overlapping thresholds for each sampling time T_s (or delay Δτ), per strategy."""
+def figure_timing(sweeps, variable: str, a_max0: float, paper_figure: str, references=()):
+    """Figs. 7–8: overlapping thresholds for each sampling time T_s (or delay Δτ), per strategy,
+    with the same strategy without it (``references``: continuous control, or no delay) in black."""
     strategies = sorted({d["strategy"].item() for d in sweeps})
-    fig, axes = plt.subplots(1, len(strategies), figsize=(5.5 * len(strategies), 4.3), sharey=True, squeeze=False)
+    fig, axes = plt.subplots(1, len(strategies), figsize=(5.5 * len(strategies), 4.3), sharex=True, sharey=True,
+                             squeeze=False)
     symbol = {"sampling_time": "T_s", "delay": r"\Delta\tau"}[variable]
     for ax, letter, strategy in zip(axes.flat, "abcd", strategies):
         runs = sorted((d for d in sweeps if d["strategy"].item() == strategy), key=lambda d: float(d[variable]))
+        for ref in (d for d in references if d["strategy"].item() == strategy):
+            plot_threshold(ax, ref["threshold"], color="k", lw=1.6, label=f"${symbol}$ = 0"
+                           + (" (continuous)" if variable == "sampling_time" else ""))
         for i, ds in enumerate(runs):
             label = f"${symbol}$ = {float(ds[variable]) * 1000:g} ms"
             plot_threshold(ax, ds["threshold"], color=plt.cm.plasma(i / max(1, len(runs))), lw=1.2, label=label)
