@@ -1,0 +1,35 @@
+"""The fast engine against the scipy reference engine (issue: agree within 0.5 %)."""
+import pytest
+
+from rockstudy import Anchorage, Control
+from rockstudy.spectra import AmplitudeGrid, Scenario, threshold
+
+# strategy, excitation, omega_p/p, noise level, T_s: a spread over the model's branches
+CASES = [
+    ("FS", "modulated", 2.0, 0.0, 0.0),
+    ("PASSIVE", "modulated", 1.5, 0.0, 0.0),
+    pytest.param("PASSIVE", "one-sine", 3.0, 0.0, 0.0, marks=pytest.mark.xfail(strict=True, reason=(
+        "grazing case: the block's apex just passes theta_u = alpha inside one solver step; the fast "
+        "engine locates the apex and breaks the spring, the solve_ivp reference steps over the double "
+        "crossing and reports a threshold 1 % higher"))),
+    ("CS01", "modulated", 2.0, 0.0, 0.0),
+    ("CS02", "modulated", 2.0, 0.0, 0.0),
+    ("CS01", "modulated", 2.0, 0.05, 0.1),
+    ("CS02", "one-sine", 2.5, 0.01, 0.0),
+]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("strategy,excitation,frequency_ratio,noise,ts", CASES)
+def test_minimum_overturning_amplitude_agrees(blc06, strategy, excitation, frequency_ratio, noise, ts):
+    sc = Scenario(blc06, Anchorage(), Control(strategy, sampling_time=ts), excitation=excitation,
+                  noise_level=noise, seed=5)
+    fast = threshold(sc, frequency_ratio, grid=AmplitudeGrid(0.9, 6.0, 0.1, 0.005))
+    assert fast["amplitude_ratio"] is not None
+    a = fast["amplitude_ratio"]
+    # the reference scans a narrow window around it (it is ~500x slower); the window's lower edge
+    # must be safe for the reference too, or the two disagree
+    grid = AmplitudeGrid(round(a - 0.05, 4), round(a + 0.2, 4), 0.025, 0.005)
+    ref = threshold(sc, frequency_ratio, grid=grid, engine="reference")
+    assert ref["amplitude_ratio"] is not None
+    assert ref["amplitude_ratio"] == pytest.approx(a, rel=0.005)
