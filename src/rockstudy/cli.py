@@ -170,15 +170,15 @@ def _cmd_simulate(args, parser):
                energy_ratio=1.0 if rec is None else rec.energy_ratio,
                pga_ratio=1.0 if rec is None else rec.pga_ratio)
     if args.output or args.plot:
-        from .history import history_dataset
-        ds = history_dataset(res, scenario, args.frequency_ratio, args.amplitude_ratio, args.realisation)
+        from .study import history_dataset
+        ds = history_dataset(res, scenario, motion, args.frequency_ratio, args.amplitude_ratio, args.realisation)
         if args.output:
             from .io import write_netcdf
             write_netcdf(ds, args.output)
             out["output"] = args.output
         if args.plot:
-            from .plotting import plot_history_file
-            plot_history_file(ds, args.plot)
+            from .plotting import figure_control_history, save_figure
+            save_figure(figure_control_history(ds, "2-3 style"), args.plot)
             out["plot"] = args.plot
     print(json.dumps(out, indent=2))
 
@@ -212,8 +212,14 @@ def _cmd_spectrum(args, parser):
     ds = spectrum(scenario, freqs, realisations=range(int(args.realisations)), grid=grid, with_map=args.map)
     write_netcdf(ds, args.output)
     if args.plot:
-        from .plotting import plot_spectrum_file
-        plot_spectrum_file(ds, args.plot)
+        import matplotlib.pyplot as plt
+        from .plotting import plot_a_max0, plot_threshold, save_figure, spectrum_axes
+        fig, ax = plt.subplots(figsize=(6, 4))
+        plot_threshold(ax, ds["threshold"], label=args.strategy)
+        plot_a_max0(ax, ds.attrs["a_max0_ratio"])
+        spectrum_axes(ax)
+        ax.legend()
+        save_figure(fig, args.plot)
     print(json.dumps({"output": args.output, "frequencies": len(freqs), "realisations": int(ds.sizes["realisation"]),
                       "simulations": int(ds.n_simulations.sum()), "compute_time_s": ds.attrs["compute_time_s"]}))
 
