@@ -79,7 +79,8 @@ rule figure_noise_sensitivity:
 
 rule figure_sampling:
     input:
-        SAMPLING_FILES,
+        sweep=SAMPLING_FILES,
+        references=spectrum_files(SAMPLING["strategies"], [SAMPLING["noise_level"]]),
     output:
         png=report(f"{OUT}/figures/fig7_sampling.png", caption="../report/fig7.rst", category="Figures",
                    subcategory="Timing (Figs. 7-8)"),
@@ -99,7 +100,9 @@ rule figure_sampling:
 
 rule figure_delay:
     input:
-        DELAY_FILES,
+        sweep=DELAY_FILES,
+        references=[f"{OUT}/timing/sampling/{s}_{DELAY['noise_level']}_Ts{DELAY['sampling_time']:g}.nc"
+                    for s in DELAY["strategies"]],
     output:
         png=report(f"{OUT}/figures/fig8_delay.png", caption="../report/fig8.rst", category="Figures",
                    subcategory="Timing (Figs. 7-8)"),

@@ -3,6 +3,8 @@ from rockstudy import io, plotting, study
 
 study.log_to(snakemake.log[0])
 p = snakemake.params
-sweeps = [io.read_netcdf(path) for path in snakemake.input]
-fig = plotting.figure_timing(sweeps, p.variable, study.a_max0_ratio(sweeps[0], p.a_max0), p.paper_figure)
+sweeps = [io.read_netcdf(path) for path in snakemake.input.sweep]
+references = [io.read_netcdf(path) for path in snakemake.input.references]
+fig = plotting.figure_timing(sweeps, p.variable, study.a_max0_ratio(sweeps[0], p.a_max0), p.paper_figure,
+                             references)
 plotting.save_figure(fig, snakemake.output.png, snakemake.output.pdf)
