@@ -737,7 +737,7 @@ def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
         o = outcome_kernel(P, rec, vert, a, unit_peak)
         if o != 0:
             n_sim += 1
-        if o >= 2:
+        if o == 2 or o == 3:  # 4 (event cap) is undetermined, not overturned
             hi = a
             lo = grid[j - 1] if j > 0 else lower
             if lo < lower:
@@ -747,7 +747,7 @@ def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
                 om = outcome_kernel(P, rec, vert, mid, unit_peak)
                 if om != 0:
                     n_sim += 1
-                if om >= 2:
+                if om == 2 or om == 3:
                     hi = mid
                 else:
                     lo = mid
