@@ -38,6 +38,7 @@ from collections import deque
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 from .anchorage import Anchorage
 from .block import Block
@@ -585,10 +586,6 @@ class _ReferenceRun:
                         events=events, dense_output=self.record_history)
         if sol.status < 0:
             raise RuntimeError(f"solve_ivp failed at t = {t0} s: {sol.message}")
-        self.max_abs_theta = max(self.max_abs_theta, float(np.max(np.abs(sol.y[0]))))
-        for te, ye in zip(sol.t_events, sol.y_events):
-            if len(te):
-                self.max_abs_theta = max(self.max_abs_theta, float(np.max(np.abs(ye[:, 0]))))
         t_end = float(sol.t[-1])
         theta_end, theta_dot_end = float(sol.y[0, -1]), float(sol.y[1, -1])
         fired = None
@@ -597,6 +594,24 @@ class _ReferenceRun:
                 if event.terminal and len(te) and te[-1] == t_end:
                     fired = name
                     break
+
+        # Turning points (θ̇ = 0) inside the piece: a crossing of θ = 0, θ_u or the overturning
+        # rotation that starts and ends within one solver step shows up only there.
+        turning = [(float(te), ye) for name, te_all, ye_all in zip(names, sol.t_events, sol.y_events)
+                   if name in ("turn", "apex") for te, ye in zip(te_all, ye_all)]
+        thresholds = [(self.theta_ultimate[name], name) for name in self._working_elements()]
+        thresholds.append((theta_overturn, "overturn"))
+        watched = [(name, event) for name, event in zip(names, events) if event.terminal and name != fired]
+        missed = self._missed_crossing(sol, rhs, s, sorted(turning, key=lambda item: item[0]), thresholds,
+                                       watched, fired)
+        if missed is not None:
+            t_end, (theta_end, theta_dot_end), fired = missed
+
+        keep = sol.t <= t_end
+        self.max_abs_theta = max(self.max_abs_theta, float(np.max(np.abs(sol.y[0, keep]))), abs(theta_end))
+        for te, ye in zip(sol.t_events, sol.y_events):
+            if len(te) and te[0] <= t_end:
+                self.max_abs_theta = max(self.max_abs_theta, float(np.max(np.abs(ye[te <= t_end, 0]))))
         # Put the state exactly on the surface of the event that stopped the piece.
         if fired == "impact":
             theta_end = 0.0
@@ -630,6 +645,78 @@ class _ReferenceRun:
             self._fracture(fired, t_end)
             self._refresh(t_end)
         self._record_state()
+
+    def _missed_crossing(self, sol, rhs, s, turning, thresholds, watched, fired):
+        """The earliest event crossing that ``solve_ivp`` stepped over in this piece, if any.
+
+        Event functions are only compared at step ends, so a surface crossed twice within one
+        step goes unnoticed. Two symptoms reveal it:
+
+        * a turning point (θ̇ = 0, itself an event) beyond a threshold: s·θ above an intact
+          θ_u or the overturning rotation, or below 0 (a grazing impact);
+        * a terminal event function that is past its surface at the end of the piece, when
+          another event cut the step after the first of the two crossings (e.g. the apex of a
+          small rock missed in the step that ends at the next impact).
+
+        The step is then re-integrated with dense output and the crossing located with a root
+        finder.
+
+        Parameters
+        ----------
+        turning : list of (t, y)
+            Turning points of the piece in time order. [s], ([rad], [rad/s])
+        thresholds : list of (float, str)
+            Rotations s·θ that end the piece when reached from below, with the event name. [rad]
+        watched : list of (str, callable)
+            Terminal events that did not stop the piece.
+        fired : str or None
+            Name of the event that stopped the piece.
+
+        Returns
+        -------
+        (t, (theta, theta_dot), name) or None
+        """
+        t_end, y_end = float(sol.t[-1]), sol.y[:, -1]
+        candidates = []  # (upper time bound, gap function of (t, y) crossing from < 0 to > 0, name)
+        for t_turn, y_turn in turning:
+            reached = [(u, name) for u, name in thresholds if s * y_turn[0] >= u]
+            if reached:
+                level, name = min(reached)
+                candidates.append((t_turn, lambda t, y, u=level: s * y[0] - u, name))
+                break
+            if s * y_turn[0] < -self.atol:  # deeper than the integration noise
+                candidates.append((t_turn, lambda t, y: -s * y[0], "impact"))
+                break
+        for name, event in watched:
+            if event.direction * event(t_end, y_end) > 0.0:
+                candidates.append((t_end, lambda t, y, ev=event: ev.direction * ev(t, y), name))
+        best = None
+        steps = {}
+        for t_hi, gap, name in candidates:
+            j = int(np.searchsorted(sol.t, t_hi, side="left")) - 1
+            if j < 0:
+                continue
+            t_lo = float(sol.t[j])
+            if (j, t_hi) not in steps:
+                steps[(j, t_hi)] = solve_ivp(rhs, (t_lo, t_hi), sol.y[:, j], method=METHOD, rtol=self.rtol,
+                                             atol=self.atol, dense_output=True).sol
+            dense = steps[(j, t_hi)]
+
+            def along(t, gap=gap, dense=dense):
+                return gap(t, dense(t))
+
+            if along(t_lo) >= 0.0:
+                t_cross = t_lo
+            elif along(t_hi) <= 0.0:  # the excess is below the integration tolerance
+                t_cross = t_hi
+            else:
+                t_cross = brentq(along, t_lo, t_hi, xtol=4 * np.finfo(float).eps, rtol=4 * np.finfo(float).eps)
+            if fired is not None and t_cross >= t_end:
+                continue  # simultaneous with the event that stopped the piece: that one wins
+            if best is None or t_cross < best[0]:
+                y_cross = dense(t_cross)
+                best = (t_cross, (float(y_cross[0]), float(y_cross[1])), name)
+        return best
 
     # ---------------------------------------------------------------- driver
     def run(self) -> SimulationResult:
