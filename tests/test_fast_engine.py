@@ -191,3 +191,48 @@ def test_bad_arguments_raise_clear_errors(blc06, anchorage):
         simulate(blc06, anchorage, Control("FS"), NO_MOTION, engine="turbo")
     with pytest.raises(ValueError, match="overturn_criterion"):
         simulate(blc06, anchorage, Control("FS"), NO_MOTION, overturn_criterion="tipped")
+
+
+
+@pytest.mark.parametrize("strategy", ["FS", "PASSIVE", "CS01"])
+@pytest.mark.parametrize("excess", [1e-6, 1e-8, 1e-10])
+def test_uplift_shorter_than_a_step_is_resolved_not_looped(blc06, anchorage, strategy, excess):
+    """A one-sine pulse whose peak exceeds g·tanα by a factor 1 + ε lifts the block for a
+    window shorter than the integrator's step. The engine must resolve that excursion and come
+    back to rest, not re-uplift at the same instant until the event cap (the Zeno loop found at
+    5 % noise, PASSIVE, omega_p/p = 3.15, realisation 22).
+
+    Oracle: near the peak the net outward acceleration is A·(w² − τ²), with w the half-width of
+    the window where |Ẍg| > g·tanα. From θ = θ̇ = 0 at τ = −w, θ(τ) ∝ w·u³/3 − u⁴/12 with
+    u = τ + w, so the block lands at u = 4w (FS, and PASSIVE whose spring moment is negligible
+    at these rotations)."""
+    w_p = blc06.p
+    motion = GroundMotion("one-sine", blc06.uplift_acceleration * (1.0 + excess), w_p, 2 * math.pi / w_p)
+    r = simulate(blc06, anchorage, Control(strategy), motion, free_time=1.0)
+    t_up = math.asin(1.0 / (1.0 + excess)) / w_p
+    w = 0.5 * math.pi / w_p - t_up
+    assert r.status == "rest"
+    assert len(r.uplift_times) == 1
+    assert r.uplift_times[0] == pytest.approx(t_up, abs=1e-3 * w)
+    if strategy == "CS01":  # its apex switch may end an excursion below atol earlier
+        assert t_up + 2 * w < r.rest_times[-1] <= t_up + 4.1 * w
+    else:
+        assert r.rest_times[-1] - t_up == pytest.approx(4 * w, rel=1e-2)
+
+
+def test_first_half_cycle_of_eq23_uplifts_only_above_4_337(blc06, anchorage):
+    """Eq. 23 spans five periods, so its first half-cycle peaks at a fixed fraction of the
+    largest peak (about 1/4.34, computed here from the formula). Above that amplitude ratio the block
+    uplifts in the first half-cycle at any frequency, which is the horizontal edge of the
+    overturning maps."""
+    s = np.linspace(0.0, 0.1, 200001)  # the first half-cycle, in units of T_d
+    env = 90 * s**2 * (s - 1) ** 6 * np.abs(np.sin(2 * np.pi * 5 * (s - 1)))
+    edge = 1.0 / env.max()  # a_p/(g·tanα) at which the first half-cycle reaches g·tanα
+    assert 4.3 < edge < 4.4
+    for ratio in (0.5, 1.7):
+        omega = ratio * blc06.p
+        half = np.pi / omega
+        for a, first_half in ((0.99 * edge, False), (1.01 * edge, True)):
+            motion = GroundMotion("modulated", a * blc06.uplift_acceleration, omega, modulated_duration(omega))
+            r = simulate(blc06, anchorage, Control("CS01"), motion)
+            assert (r.uplift_times[0] < half) == first_half

@@ -40,6 +40,9 @@ MODE_REST, MODE_ROCK, MODE_HOLD = 0, 1, 2
 
 MAX_EVENTS = 2_000_000
 """Safety cap on located events per run (a run hitting it returns status ST_ELIMIT)."""
+NEGLIGIBLE_STEP = 1e-9
+"""[s] An excursion from θ = 0 that returns within a step this short is not resolved further:
+the block is taken back on the ground at the step's end (θ = θ̇ = 0)."""
 
 # ---- Dormand–Prince 5(4) tableau ----------------------------------------------------
 C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
@@ -561,9 +564,15 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
             if side * n0 <= 0.0:
                 if side * y0 > 0.0:
                     best = _locate(1.0, hh, y0, y1, K, side, 0.0, 0.0, 0.0, t, P, rec)
+                elif hh > NEGLIGIBLE_STEP:
+                    # left θ = 0 and came back within one step: the excursion is shorter than
+                    # the step, so resolve it with a smaller one (a zero-length event here
+                    # would re-uplift at the same instant forever)
+                    h = 0.25 * hh
+                    continue
                 else:
-                    negligible = True  # left θ = 0 and came back within one step
-                    best = 0.0
+                    negligible = True  # an excursion shorter than NEGLIGIBLE_STEP: it ends at t + hh
+                    best = 1.0
             # an apex inside the step: the largest rotation may lie between the step ends, and a
             # rotation threshold may be crossed and re-crossed within the step (grazing)
             peak = side * n0
@@ -604,7 +613,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
                 if negligible:
                     a = 0.0
                     b = 0.0
-                    tev = t
+                    tev = t + hh
                 else:
                     a, b = _dense(best, hh, y0, y1, K)
                     tev = t + best * hh
@@ -725,10 +734,12 @@ def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
     """Lowest overturning amplitude ratio: scan ``grid`` upward, then bisect between the last
     safe and the first overturning grid point until the bracket is <= resolution.
 
-    Returns (threshold, lower_safe, n_simulations); threshold = NaN when nothing on the grid
-    overturns.
+    Returns (threshold, lower_safe, n_simulations, n_undetermined); threshold = NaN when nothing
+    on the grid overturns. An undetermined run (outcome 4, event cap) counts as not overturned
+    and is counted, so that callers can report it.
     """
     n_sim = 0
+    n_und = 0
     lower = 0.0
     if vert.shape[0] == 0 and unit_peak > 0:
         lower = 1.0 / unit_peak  # below this the record cannot uplift the block
@@ -737,6 +748,8 @@ def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
         o = outcome_kernel(P, rec, vert, a, unit_peak)
         if o != 0:
             n_sim += 1
+        if o == 4:
+            n_und += 1
         if o == 2 or o == 3:  # 4 (event cap) is undetermined, not overturned
             hi = a
             lo = grid[j - 1] if j > 0 else lower
@@ -747,12 +760,14 @@ def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
                 om = outcome_kernel(P, rec, vert, mid, unit_peak)
                 if om != 0:
                     n_sim += 1
+                if om == 4:
+                    n_und += 1
                 if om == 2 or om == 3:
                     hi = mid
                 else:
                     lo = mid
-            return hi, lo, n_sim
-    return np.nan, grid[grid.shape[0] - 1], n_sim
+            return hi, lo, n_sim, n_und
+    return np.nan, grid[grid.shape[0] - 1], n_sim, n_und
 
 
 @njit(cache=True, parallel=True)
@@ -762,13 +777,15 @@ def threshold_batch(Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks):
     out = np.empty(n)
     low = np.empty(n)
     nsim = np.zeros(n, dtype=np.int64)
+    nund = np.zeros(n, dtype=np.int64)
     for i in prange(n):
         rec = recs[rec_off[i]:rec_off[i] + rec_len[i]]
-        th, lo, ns = threshold_kernel(Pm[i], rec, vert, grid, resolution, peaks[i])
+        th, lo, ns, nu = threshold_kernel(Pm[i], rec, vert, grid, resolution, peaks[i])
         out[i] = th
         low[i] = lo
         nsim[i] = ns
-    return out, low, nsim
+        nund[i] = nu
+    return out, low, nsim, nund
 
 
 @njit(cache=True, parallel=True)

@@ -184,7 +184,8 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     if engine == "fast":
         P = pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
                             overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
-        thr, lo, n_sim = kn.threshold_kernel(P, motion.record, motion.vertical, values, grid.resolution, peak)
+        thr, lo, n_sim, n_und = kn.threshold_kernel(P, motion.record, motion.vertical, values, grid.resolution,
+                                                    peak)
     elif engine == "reference":
         def outcome(a):
             if a * peak <= 1.0:
@@ -194,6 +195,7 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
                          overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
             return (3 if r.n_impacts else 2) if r.overturned else 1, 1
         thr, lo, n_sim = _scan(outcome, values, grid.resolution, 1.0 / peak)
+        n_und = 0
     else:
         raise ValueError(f"engine must be 'fast' or 'reference', got {engine!r}")
     return {
@@ -203,6 +205,7 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
         "resolution": grid.resolution,
         "frequency_ratio": float(frequency_ratio),
         "n_simulations": int(n_sim),
+        "n_undetermined": int(n_und),
         "energy_ratio": 1.0 if rec is None else rec.energy_ratio,
         "pga_ratio": 1.0 if rec is None else rec.pga_ratio,
         "engine": engine,
@@ -287,9 +290,14 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     thr = np.concatenate([p[0] for p in parts])
     low = np.concatenate([p[1] for p in parts])
     nsim = np.concatenate([p[2] for p in parts])
+    nund = np.concatenate([p[3] for p in parts])
+    if nund.any():
+        log.warning("%s: %d run(s) hit the engine's event cap and were counted as not overturned "
+                    "(see the n_undetermined variable)", label, int(nund.sum()))
     shape = (len(realisations), len(freqs))
     ds = spectrum_dataset(scenario, freqs, realisations, thr.reshape(shape), low.reshape(shape),
-                          nsim.reshape(shape), e_ratio.reshape(shape), p_ratio.reshape(shape), grid)
+                          nsim.reshape(shape), e_ratio.reshape(shape), p_ratio.reshape(shape), grid,
+                          n_undetermined=nund.reshape(shape))
     if with_map:
         def run_map(sl):
             return kn.outcome_batch(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, peaks[sl])
@@ -304,9 +312,12 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     return ds
 
 
-def spectrum_dataset(scenario, freqs, realisations, thr, low, nsim, e_ratio, p_ratio, grid) -> xr.Dataset:
+def spectrum_dataset(scenario, freqs, realisations, thr, low, nsim, e_ratio, p_ratio, grid,
+                     n_undetermined=None) -> xr.Dataset:
     """Assemble the labelled spectrum Dataset (one strategy, noise level, T_s and Δτ)."""
     dims = ("realisation", "frequency_ratio")
+    if n_undetermined is None:
+        n_undetermined = np.zeros(np.shape(thr), dtype=np.int64)
     finite = np.isfinite(thr)
     count = finite.sum(axis=0)
     agg = np.where(count > 0, np.min(np.where(finite, thr, np.inf), axis=0), np.nan)
@@ -325,6 +336,9 @@ def spectrum_dataset(scenario, freqs, realisations, thr, low, nsim, e_ratio, p_r
             "threshold_realisation": (dims, thr, {**amp, "description": "threshold of each noise realisation"}),
             "last_safe": (dims, low, {"units": "1", "long_name": "highest amplitude ratio found safe below the threshold"}),
             "n_simulations": (dims, nsim, {"units": "1", "long_name": "simulations run for the threshold"}),
+            "n_undetermined": (dims, n_undetermined, {
+                "units": "1", "long_name": "runs that hit the fast engine's event cap",
+                "description": "counted as not overturned by the scan; 0 expected"}),
             "energy_ratio": (dims, e_ratio, {"units": "1", "long_name": "noisy record energy / baseline energy"}),
             "pga_ratio": (dims, p_ratio, {"units": "1", "long_name": "noisy record PGA / baseline PGA"}),
         },

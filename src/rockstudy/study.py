@@ -161,7 +161,8 @@ def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_
 
 
 # --- spectra -------------------------------------------------------------------------------------
-REALISATION_VARS = ("threshold_realisation", "last_safe", "n_simulations", "energy_ratio", "pga_ratio")
+REALISATION_VARS = ("threshold_realisation", "last_safe", "n_simulations", "n_undetermined", "energy_ratio",
+                    "pga_ratio")
 
 
 def gather_spectra(parts) -> xr.Dataset:
