@@ -339,6 +339,10 @@ def noisy_motion(kind: str, omega: float, amplitude: float, level: float, realis
         _check_positive("dt", dt, "s")
         return GroundMotion(kind=kind, amplitude=amplitude, omega=omega,
                             duration=excitation_duration(kind, omega))
-    rec = noisy_record(kind, omega, level, realisation, seed, match, dt)
+    return record_motion(noisy_record(kind, omega, level, realisation, seed, match, dt), amplitude, omega)
+
+
+def record_motion(rec: NoisyRecord, amplitude: float, omega: float) -> GroundMotion:
+    """The ground motion a_p·(unit record), linearly interpolated between samples. [m/s^2]"""
     return GroundMotion(kind="record", amplitude=amplitude, omega=omega, duration=rec.duration,
                         record_dt=rec.dt, record=rec.values)

@@ -22,7 +22,7 @@ from .anchorage import Anchorage
 from .block import Block
 from .control import Control
 from .excitation import EXCITATIONS, GroundMotion, excitation_duration, modulated_peak
-from .noise import MATCHES, noisy_record
+from .noise import MATCHES, noisy_record, record_motion
 from .simulate import DEFAULT_FREE_TIME, OVERTURN_CRITERIA, pack_parameters, simulate
 
 log = logging.getLogger("rockstudy")
@@ -127,9 +127,7 @@ class Scenario:
         if self.noise_level == 0:
             return GroundMotion(self.excitation, amplitude, omega, excitation_duration(self.excitation, omega)), None
         rec = noisy_record(self.excitation, omega, self.noise_level, realisation, self.seed, match=self.match)
-        motion = GroundMotion("record", amplitude, omega, (len(rec.values) - 1) * rec.dt, record_dt=rec.dt,
-                              record=rec.values)
-        return motion, rec
+        return record_motion(rec, amplitude, omega), rec
 
     def to_attrs(self) -> dict:
         attrs = {}

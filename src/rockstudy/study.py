@@ -93,11 +93,14 @@ NOT_IN_SIMULATIONS = ("cli.py", "plotting.py", "reference.py", "study.py")
 figures, and this bookkeeping module, whose outputs have their own tests)."""
 
 
-def source_fingerprint() -> str:
-    """SHA-256 of the package's simulation sources: changes whenever the physics code changes."""
+def source_fingerprint(only=None) -> str:
+    """SHA-256 of the package's simulation sources: changes whenever the physics code changes.
+
+    ``only``: a list of module file names to hash instead (e.g. ``["study.py"]``, the
+    bookkeeping that builds the gathered datasets and tables)."""
     digest = hashlib.sha256()
     for path in sorted(Path(__file__).parent.glob("*.py")):
-        if path.name in NOT_IN_SIMULATIONS:
+        if (path.name in NOT_IN_SIMULATIONS) if only is None else (path.name not in only):
             continue
         digest.update(path.name.encode())
         digest.update(path.read_bytes())

@@ -4,6 +4,8 @@ LEVELS = config["noise_levels"]
 FREE = study.noise_free_level(LEVELS)
 NOISY = [name for name in LEVELS if name != FREE]
 LIBRARY = study.source_fingerprint()  # rerun the simulations whenever the library changes
+BOOKKEEPING = study.source_fingerprint(["study.py"])  # rerun what study.py assembles when it changes
+PLOTTING = study.source_fingerprint(["plotting.py"])  # redraw the figures when plotting.py changes
 SAMPLING = config["sampling_sweep"]
 DELAY = config["delay_sweep"]
 EX = config["example_point"]

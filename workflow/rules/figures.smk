@@ -11,6 +11,7 @@ rule figure_history:
     log:
         f"{OUT}/logs/figures/fig{{fignum}}_history_{{strategy}}.log",
     params:
+        plotting=PLOTTING,
         paper_figure=lambda w: w.fignum,
     conda:
         "../envs/rockstudy.yaml"
@@ -29,6 +30,7 @@ rule figure_excitation:
     log:
         f"{OUT}/logs/figures/fig4_excitation.log",
     params:
+        plotting=PLOTTING,
         noise_level=max(NOISY, key=LEVELS.get),
     conda:
         "../envs/rockstudy.yaml"
@@ -48,6 +50,7 @@ rule figure_realisations:
     log:
         f"{OUT}/logs/figures/fig5_realisations.log",
     params:
+        plotting=PLOTTING,
         point=EX,
         a_max0=config["a_max0"],
     conda:
@@ -68,6 +71,7 @@ rule figure_noise_sensitivity:
     log:
         f"{OUT}/logs/figures/fig6_noise_sensitivity.log",
     params:
+        plotting=PLOTTING,
         panels=[s for s in ("FS", "CS01", "CS02") if s in config["strategies"]],
         a_max0=config["a_max0"],
     conda:
@@ -88,6 +92,7 @@ rule figure_sampling:
     log:
         f"{OUT}/logs/figures/fig7_sampling.log",
     params:
+        plotting=PLOTTING,
         variable="sampling_time",
         paper_figure="7",
         a_max0=config["a_max0"],
@@ -110,6 +115,7 @@ rule figure_delay:
     log:
         f"{OUT}/logs/figures/fig8_delay.log",
     params:
+        plotting=PLOTTING,
         variable="delay",
         paper_figure="8",
         a_max0=config["a_max0"],
@@ -130,6 +136,7 @@ rule figure_maps:
     log:
         f"{OUT}/logs/figures/maps_overturning.log",
     params:
+        plotting=PLOTTING,
         strategies=config["maps"]["strategies"],
         a_max0=config["a_max0"],
     conda:

@@ -6,7 +6,12 @@ rule noise:
         f"{OUT}/noise/{{level}}.nc",
     log:
         f"{OUT}/logs/noise/{{level}}.log",
+    benchmark:
+        f"{OUT}/benchmarks/noise/{{level}}.tsv"
+    group:
+        "small"
     params:
+        bookkeeping=BOOKKEEPING,
         scenario=lambda w: scenario("FS", w.level),
         frequency_grid=config["frequency_grid"],
         realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
@@ -30,6 +35,10 @@ rule spectrum_chunk:
         f"{OUT}/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.nc",
     log:
         f"{OUT}/logs/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.log",
+    benchmark:
+        f"{OUT}/benchmarks/spectra/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.tsv"
+    group:
+        "spectra"
     params:
         scenario=lambda w: scenario(w.strategy, w.level, w.ts, w.delay),
         realisations=lambda w: chunks(w.level)[int(w.chunk)],
@@ -54,6 +63,7 @@ rule gather_spectrum:
     log:
         f"{OUT}/logs/spectra/{{strategy}}_{{level}}.log",
     params:
+        bookkeeping=BOOKKEEPING,
         realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
     conda:
         "../envs/rockstudy.yaml"
@@ -70,6 +80,7 @@ rule gather_sampling:
     log:
         f"{OUT}/logs/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.log",
     params:
+        bookkeeping=BOOKKEEPING,
         realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
     conda:
         "../envs/rockstudy.yaml"
@@ -86,6 +97,7 @@ rule gather_delay:
     log:
         f"{OUT}/logs/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.log",
     params:
+        bookkeeping=BOOKKEEPING,
         realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
     conda:
         "../envs/rockstudy.yaml"
@@ -102,6 +114,7 @@ rule convergence:
     log:
         f"{OUT}/logs/convergence/{{strategy}}_{{level}}.log",
     params:
+        bookkeeping=BOOKKEEPING,
         realisations=config["realisations"],
     conda:
         "../envs/rockstudy.yaml"
@@ -115,6 +128,8 @@ rule overturning_map:
         f"{OUT}/maps/{{strategy}}.nc",
     log:
         f"{OUT}/logs/maps/{{strategy}}.log",
+    benchmark:
+        f"{OUT}/benchmarks/maps/{{strategy}}.tsv"
     params:
         scenario=lambda w: scenario(w.strategy, FREE),
         frequency_grid=config["frequency_grid"],
@@ -135,7 +150,12 @@ rule time_history:
         f"{OUT}/histories/{{strategy}}_{{level}}_k{{k}}_w{{frequency}}_a{{amplitude}}.nc",
     log:
         f"{OUT}/logs/histories/{{strategy}}_{{level}}_k{{k}}_w{{frequency}}_a{{amplitude}}.log",
+    benchmark:
+        f"{OUT}/benchmarks/histories/{{strategy}}_{{level}}_k{{k}}_w{{frequency}}_a{{amplitude}}.tsv"
+    group:
+        "small"
     params:
+        bookkeeping=BOOKKEEPING,
         scenario=lambda w: scenario(w.strategy, w.level),
         realisation=lambda w: int(w.k),
         frequency_ratio=lambda w: float(w.frequency),
@@ -161,6 +181,7 @@ rule table1:
     log:
         f"{OUT}/logs/tables/table1.log",
     params:
+        bookkeeping=BOOKKEEPING,
         strategies=config["table1"]["strategies"],
         noise_levels=LEVELS,
         a_max0=config["a_max0"],
@@ -183,6 +204,7 @@ rule timing_table_sampling:
     log:
         f"{OUT}/logs/tables/timing_sampling.log",
     params:
+        bookkeeping=BOOKKEEPING,
         variable="sampling_time",
         reference="continuous_same_noise",
         a_max0=config["a_max0"],
@@ -206,6 +228,7 @@ rule timing_table_delay:
     log:
         f"{OUT}/logs/tables/timing_delay.log",
     params:
+        bookkeeping=BOOKKEEPING,
         variable="delay",
         reference="sampled_without_delay_same_noise",
         a_max0=config["a_max0"],
