@@ -1,4 +1,5 @@
 """End-to-end tests of the study workflow (Snakefile): config validation and the tiny study."""
+import re
 import shutil
 import subprocess
 import sys
@@ -54,11 +55,21 @@ def test_lint_is_clean(tmp_path):
     assert res.returncode == 0 and "Congratulations" in res.stdout + res.stderr, res.stdout + res.stderr
 
 
+TINY = ("--configfile", str(TEST_CONFIG), "--replace-workflow-config")
+
+
+@pytest.fixture(scope="module")
+def tiny_run(tmp_path_factory):
+    """The tiny study run once with -j2: (results folder, snakemake's work dir, the run)."""
+    work = tmp_path_factory.mktemp("tiny")
+    out = work / "out"
+    res = snakemake("-j2", *TINY, "--config", f"results_dir={out}", workdir=work)
+    return out, work, res
+
+
 @pytest.mark.slow
-def test_tiny_study_end_to_end(tmp_path):
-    out = tmp_path / "out"
-    res = snakemake("-j2", "--configfile", str(TEST_CONFIG), "--replace-workflow-config",
-                    "--config", f"results_dir={out}", workdir=tmp_path)
+def test_tiny_study_end_to_end(tiny_run):
+    out, tmp_path, res = tiny_run
     assert res.returncode == 0, res.stderr[-5000:]
     import xarray as xr
 
@@ -77,6 +88,46 @@ def test_tiny_study_end_to_end(tmp_path):
     again = snakemake("-n", "--configfile", str(TEST_CONFIG), "--replace-workflow-config",
                       "--config", f"results_dir={out}", workdir=tmp_path)
     assert "Nothing to be done" in again.stdout + again.stderr, again.stdout[-3000:]
+
+
+@pytest.mark.slow
+def test_interrupted_j1_run_resumes_to_the_same_numbers_as_j2(tiny_run, tmp_path):
+    """Ctrl-C in the middle of a -j1 run, then the same command again: it finishes without
+    redoing the finished jobs, and every netCDF equals the -j2 run's (job order and -j do not
+    change the numbers)."""
+    import signal
+    import time
+
+    ref, _, first = tiny_run
+    assert first.returncode == 0, first.stderr[-3000:]
+    out = tmp_path / "out"
+    cmd = ["snakemake", "--snakefile", str(ROOT / "Snakefile"), "--directory", str(tmp_path), "-j1", *TINY,
+           "--config", f"results_dir={out}"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    deadline = time.monotonic() + 600
+    while time.monotonic() < deadline and proc.poll() is None:
+        if len(list((out / "spectra" / "chunks").glob("*.nc"))) >= 2:
+            break
+        time.sleep(0.2)
+    assert proc.poll() is None, "the run ended before it could be interrupted"
+    proc.send_signal(signal.SIGINT)
+    assert proc.wait(timeout=120) != 0
+    done_before = {p.relative_to(out) for p in out.rglob("*.nc")}
+    res = snakemake("-j1", *TINY, "--config", f"results_dir={out}", workdir=tmp_path)
+    assert res.returncode == 0, res.stderr[-5000:]
+    log = res.stdout + res.stderr
+    total = int(re.search(r"(\d+) of (\d+) steps \(100%\) done", log).group(2))
+    assert total < 45  # the jobs finished before Ctrl-C were not redone
+
+    import xarray as xr
+    ref_files = {p.relative_to(ref) for p in ref.rglob("*.nc")}
+    assert ref_files == {p.relative_to(out) for p in out.rglob("*.nc")} and done_before <= ref_files
+    for rel in sorted(ref_files):
+        with xr.open_dataset(ref / rel) as a, xr.open_dataset(out / rel) as b:
+            a.attrs.pop("compute_time_s", None)
+            b.attrs.pop("compute_time_s", None)
+            xr.testing.assert_identical(a, b)
 
 
 if __name__ == "__main__":
