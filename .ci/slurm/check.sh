@@ -65,7 +65,7 @@ mkdir -p "$(dirname "$OUT")" "$SLOGS"
 say "workflow $WF_DIR, config $CFG"
 say "SLURM run -> $OUT (log: $LOG)"
 
-cmd=(snakemake --profile "$PROFILE" --executor slurm --configfile "$CFG"
+cmd=(snakemake --profile "$PROFILE" --configfile "$CFG"
      --config "$OUTDIR_KEY=$OUT"
      --slurm-init-seconds-before-status-checks 5
      --slurm-logdir "$SLOGS" --slurm-keep-successful-logs

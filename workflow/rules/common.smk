@@ -35,6 +35,18 @@ def scenario(strategy, level, ts=0.0, delay=0.0):
     }
 
 
+# Resources measured with the default config on one core (results/benchmarks/): a spectrum chunk
+# takes about 0.05 s per (realisation x frequency) at 5 % noise and peaks at 250 MB, like
+# every simulation job (numba + xarray); maps take seconds. Requests carry a margin of 2-3x.
+SIM_MEM_MB = 600
+
+
+def chunk_runtime(wildcards):
+    """Minutes to request for one spectrum chunk: 5 + 0.15 s per (realisation x frequency)."""
+    n_freq = len(study.frequency_ratios(config["frequency_grid"]))
+    return 5 + int(0.15 * config["realisations_per_job"] * n_freq / 60.0 + 1)
+
+
 def chunks(level):
     return study.realisation_chunks(config["realisations"], config["realisations_per_job"], LEVELS[level] > 0)
 

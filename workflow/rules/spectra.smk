@@ -22,8 +22,8 @@ rule noise:
         "../envs/rockstudy.yaml"
     threads: 1
     resources:
-        mem_mb=1000,
-        runtime=10,
+        mem_mb=SIM_MEM_MB,
+        runtime=5,
     script:
         "../scripts/noise.py"
 
@@ -49,8 +49,8 @@ rule spectrum_chunk:
         "../envs/rockstudy.yaml"
     threads: 1
     resources:
-        mem_mb=1500,
-        runtime=60,
+        mem_mb=SIM_MEM_MB,
+        runtime=chunk_runtime,
     script:
         "../scripts/spectrum_chunk.py"
 
@@ -139,8 +139,8 @@ rule overturning_map:
         "../envs/rockstudy.yaml"
     threads: 1
     resources:
-        mem_mb=1500,
-        runtime=60,
+        mem_mb=SIM_MEM_MB,
+        runtime=15,
     script:
         "../scripts/overturning_map.py"
 
@@ -165,8 +165,8 @@ rule time_history:
         "../envs/rockstudy.yaml"
     threads: 1
     resources:
-        mem_mb=1000,
-        runtime=10,
+        mem_mb=SIM_MEM_MB,
+        runtime=5,
     script:
         "../scripts/time_history.py"
 
