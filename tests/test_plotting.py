@@ -59,3 +59,19 @@ def test_figures_build_and_save(tmp_path, history):
         written = plotting.save_figure(fig, tmp_path / f"f{i}.png", tmp_path / f"f{i}.pdf")
         assert all(p.stat().st_size > 1000 for p in written)
     assert not list(tmp_path.glob("*.part")) and not plt.get_fignums()
+
+
+def test_no_overturning_up_to_the_bound_is_marked_at_the_top():
+    import xarray as xr
+    thr = xr.DataArray([1.5, np.nan, 2.0, np.nan], dims="frequency_ratio",
+                       coords={"frequency_ratio": [1.0, 2.0, 3.0, 4.0]})
+    fig, ax = plt.subplots()
+    line = plotting.plot_threshold(ax, thr, color="tab:green")
+    markers = [ln for ln in ax.get_lines() if ln is not line]
+    assert len(markers) == 1 and markers[0].get_marker() == "^"
+    assert list(markers[0].get_xdata()) == [2.0, 4.0] and markers[0].get_color() == "tab:green"
+    fig2, ax2 = plt.subplots()
+    plotting.plot_threshold(ax2, thr, mark_above=False)
+    assert len(ax2.get_lines()) == 1
+    plt.close(fig)
+    plt.close(fig2)

@@ -40,9 +40,19 @@ def spectrum_axes(ax, title: str | None = None):
     return ax
 
 
-def plot_threshold(ax, threshold, **kwargs):
-    """Lower threshold of the overturning region a_min,OVER against ω_p/p (NaN: gap)."""
-    (line,) = ax.plot(threshold["frequency_ratio"].values, threshold.values, **kwargs)
+def plot_threshold(ax, threshold, mark_above: bool = True, **kwargs):
+    """Lower threshold of the overturning region a_min,OVER against ω_p/p.
+
+    NaN (no overturning up to the scan's upper bound) leaves a gap in the line and, with
+    ``mark_above``, a small triangle in the line's colour at the top edge of the axes.
+    """
+    x = threshold["frequency_ratio"].values
+    y = threshold.values
+    (line,) = ax.plot(x, y, **kwargs)
+    above = np.isnan(y)
+    if mark_above and above.any():
+        ax.plot(x[above], np.full(above.sum(), 0.985), ls="none", marker="^", ms=4, color=line.get_color(),
+                transform=ax.get_xaxis_transform(), clip_on=False)
     return line
 
 
@@ -221,7 +231,7 @@ def figure_maps(maps, a_max0: float):
     handles = []
     for ax, ds in zip(axes.flat, maps):
         _, handles = plot_outcome_map(ax, ds)
-        plot_threshold(ax, ds["threshold"], color="k", lw=1.0, label=r"$a_{min,OVER}$")
+        plot_threshold(ax, ds["threshold"], mark_above=False, color="k", lw=1.0, label=r"$a_{min,OVER}$")
         plot_a_max0(ax, a_max0)
         spectrum_axes(ax, f"{ds['strategy'].item()}, no noise")
         ax.label_outer()
