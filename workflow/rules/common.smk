@@ -41,10 +41,9 @@ def scenario(strategy, level, ts=0.0, delay=0.0):
 SIM_MEM_MB = 600
 
 
-def chunk_runtime(wildcards):
-    """Minutes to request for one spectrum chunk: 5 + 0.15 s per (realisation x frequency)."""
-    n_freq = len(study.frequency_ratios(config["frequency_grid"]))
-    return 5 + int(0.15 * config["realisations_per_job"] * n_freq / 60.0 + 1)
+CHUNK_RUNTIME = 5 + int(0.15 * config["realisations_per_job"] * len(study.frequency_ratios(config["frequency_grid"]))
+                      / 60.0 + 1)
+"""Minutes to request for one spectrum chunk: 5 + 0.15 s per (realisation x frequency)."""
 
 
 def chunks(level):

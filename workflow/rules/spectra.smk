@@ -50,7 +50,7 @@ rule spectrum_chunk:
     threads: 1
     resources:
         mem_mb=SIM_MEM_MB,
-        runtime=chunk_runtime,
+        runtime=CHUNK_RUNTIME,
     script:
         "../scripts/spectrum_chunk.py"
 
