@@ -16,19 +16,18 @@ from dataclasses import dataclass, field
 import numpy as np
 import xarray as xr
 
-from . import _kernel as kn
 from . import __version__
+from . import _kernel as kn
 from .anchorage import Anchorage
 from .block import Block
 from .control import Control
 from .excitation import EXCITATIONS, GroundMotion, excitation_duration, modulated_peak
 from .noise import MATCHES, noisy_record, record_motion
+from .outcome import OUTCOME_MEANINGS, Outcome
 from .simulate import DEFAULT_FREE_TIME, OVERTURN_CRITERIA, pack_parameters, simulate
 
 log = logging.getLogger("rockstudy")
 
-OUTCOME_MEANINGS = ("no_uplift", "safe", "overturned_without_impact", "overturned_after_impact",
-                    "undetermined")
 PAPER_EQUATIONS = "Eqs. 1-17 (model), Eq. 23 (excitation), Figs. 5-8 (spectra)"
 
 
@@ -146,24 +145,16 @@ def _unit_peak(scenario: Scenario, rec) -> float:
     return modulated_peak() if scenario.excitation == "modulated" else 1.0
 
 
-def _scan(outcome, grid: np.ndarray, resolution: float, lower: float):
-    """Python twin of ``_kernel.threshold_kernel`` for any outcome function (reference engine)."""
-    n_sim = 0
-    for j, a in enumerate(grid):
-        o, simulated = outcome(a)
-        n_sim += simulated
-        if o >= 2:
-            hi, lo = a, max(grid[j - 1] if j > 0 else lower, lower)
-            while hi - lo > resolution:
-                mid = 0.5 * (lo + hi)
-                om, simulated = outcome(mid)
-                n_sim += simulated
-                if om >= 2:
-                    hi = mid
-                else:
-                    lo = mid
-            return hi, lo, n_sim
-    return math.nan, grid[-1], n_sim
+def _reference_outcome(scenario: Scenario, motion: GroundMotion, amplitude_ratio: float, peak: float) -> Outcome:
+    """Outcome of one reference-engine run at one amplitude ratio."""
+    if amplitude_ratio * peak <= 1.0:
+        return Outcome.NO_UPLIFT
+    r = simulate(scenario.block, scenario.anchorage, scenario.control,
+                 motion.scaled(amplitude_ratio * scenario.block.uplift_acceleration), engine="reference",
+                 overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
+    if not r.overturned:
+        return Outcome.SAFE
+    return Outcome.OVERTURNED_AFTER_IMPACT if r.n_impacts else Outcome.OVERTURNED_WITHOUT_IMPACT
 
 
 def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 0,
@@ -185,15 +176,13 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
         thr, lo, n_sim, n_und = kn.threshold_kernel(P, motion.record, motion.vertical, values, grid.resolution,
                                                     peak)
     elif engine == "reference":
-        def outcome(a):
-            if a * peak <= 1.0:
-                return 0, 0
-            r = simulate(scenario.block, scenario.anchorage, scenario.control,
-                         motion.scaled(a * scenario.block.uplift_acceleration), engine="reference",
-                         overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
-            return (3 if r.n_impacts else 2) if r.overturned else 1, 1
-        thr, lo, n_sim = _scan(outcome, values, grid.resolution, 1.0 / peak)
-        n_und = 0
+        # the same scan as the fast engine's (kn.threshold_kernel), driven from Python
+        state, done, n_sim, lower = kn.scan_start(), False, 0, 1.0 / peak
+        while not done:
+            o = _reference_outcome(scenario, motion, float(kn.scan_amplitude(state, values)), peak)
+            n_sim += o != Outcome.NO_UPLIFT
+            done = kn.scan_update(state, values, grid.resolution, lower, o.overturned)
+        thr, lo, n_und = state[kn.S_HI], state[kn.S_LO], 0
     else:
         raise ValueError(f"engine must be 'fast' or 'reference', got {engine!r}")
     return {
