@@ -164,3 +164,50 @@ def test_first_half_cycle_of_eq23_uplifts_only_above_4_337(blc06, anchorage):
             motion = GroundMotion("modulated", a * blc06.uplift_acceleration, omega, modulated_duration(omega))
             r = simulate(blc06, anchorage, Control("CS01"), motion)
             assert (r.uplift_times[0] < half) == first_half
+
+
+def test_energy_bound_never_changes_an_outcome(blc06):
+    """The early stop below the overturning energy (docs/model.md) gives the same outcome as
+    integrating on, on random runs of every strategy, T_s, Δτ, criterion and anchorage, noisy or not."""
+    from rockstudy import _kernel as kn
+    from rockstudy.noise import noisy_record, record_motion
+    from rockstudy.simulate import pack_parameters
+
+    rng = np.random.default_rng(2026)
+    records = [(noisy_record("modulated", fr * blc06.p, 0.05, k, 7), fr * blc06.p)
+               for k, fr in enumerate((1.5, 3.0, 4.5))]
+    n_cases, n_stopped, strategies = 2000, 0, ("FS", "PASSIVE", "CS01", "CS02")
+    for i in range(n_cases):
+        strategy = strategies[i % 4]
+        sampling = (0.0, 0.0, 0.01, 0.05)[(i // 4) % 4]
+        delay = 0.0 if sampling == 0 else float(rng.choice([0, 0.02]))
+        control = Control(strategy, sampling_time=sampling, delay=delay)
+        kmax = float(rng.uniform(0.1, 3.0))
+        anchorage = Anchorage(kappa_max=kmax, kappa_min=float(rng.uniform(0, kmax)),
+                              damping_ratio=float(rng.uniform(0, 0.1)),
+                              spring_ultimate_rotation=float(rng.uniform(0.3, 1.2) * blc06.alpha),
+                              damper_ultimate_rotation=float(rng.uniform(0.3, 1.2) * blc06.alpha))
+        amplitude = float(rng.uniform(1.0, 5.0)) * blc06.uplift_acceleration
+        if i % 3 == 0:
+            rec, om = records[int(rng.integers(len(records)))]
+            motion = record_motion(rec, amplitude, om)
+        else:
+            om = float(rng.uniform(0.5, 5.0)) * blc06.p
+            kind = "modulated" if i % 3 == 1 else "one-sine"
+            end = modulated_duration(om) if kind == "modulated" else 2 * math.pi / om
+            motion = GroundMotion(kind, amplitude, om, end)
+        criterion = "alpha" if i % 5 == 0 else "flat"
+        results = []
+        for bound in (False, True):
+            P = pack_parameters(blc06, anchorage, control, motion, overturn_criterion=criterion, free_time=10.0,
+                                energy_bound=bound)
+            results.append(kn.simulate_kernel(P, motion.record, motion.vertical, False, False))
+        full, cut = results
+        assert (cut.status == kn.ST_OVER) == (full.status == kn.ST_OVER), (i, strategy, sampling, full.status)
+        assert (cut.n_impacts > 0) == (full.n_impacts > 0) or cut.status != kn.ST_OVER
+        if cut.status == kn.ST_BOUND:
+            n_stopped += 1
+            assert sampling == 0 and full.status in (kn.ST_REST, kn.ST_TLIM) and cut.end_time <= full.end_time
+        else:  # not stopped early: the very same run
+            assert (cut.status, cut.end_time, cut.n_impacts) == (full.status, full.end_time, full.n_impacts)
+    assert n_stopped > n_cases // 8  # the bound does act

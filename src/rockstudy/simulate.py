@@ -17,7 +17,14 @@ from .constants import FAST_ATOL, FAST_RTOL, FREE_TIME, MAX_STEP_FRACTION
 from .constants import rest_velocity as default_rest_velocity
 from .control import Control
 from .excitation import GroundMotion
-from .result import FRACTURE_ELEMENTS, STATUS_OVERTURNED, STATUS_REST, STATUS_TIME_LIMIT, SimulationResult
+from .result import (
+    FRACTURE_ELEMENTS,
+    STATUS_CANNOT_OVERTURN,
+    STATUS_OVERTURNED,
+    STATUS_REST,
+    STATUS_TIME_LIMIT,
+    SimulationResult,
+)
 
 ENGINES = ("fast", "reference")
 OVERTURN_CRITERIA = ("flat", "alpha")
@@ -94,7 +101,8 @@ def _result_from_kernel(out, block: Block, engine: str = "fast") -> SimulationRe
             f"the fast engine hit its cap of {kn.MAX_EVENTS} events at t = {t_end:.6g} s "
             "(an unresolved chattering or sliding case); run it with engine='reference' and report it"
         )
-    name = {kn.ST_REST: STATUS_REST, kn.ST_OVER: STATUS_OVERTURNED, kn.ST_TLIM: STATUS_TIME_LIMIT}[status]
+    name = {kn.ST_REST: STATUS_REST, kn.ST_OVER: STATUS_OVERTURNED, kn.ST_TLIM: STATUS_TIME_LIMIT,
+            kn.ST_BOUND: STATUS_CANNOT_OVERTURN}[status]
     history = None
     if len(H):
         history = {"t": H[:, 0].copy(), "theta": H[:, 1].copy(), "theta_dot": H[:, 2].copy(),

@@ -158,8 +158,12 @@ def _reference_outcome(scenario: Scenario, motion: GroundMotion, amplitude_ratio
 
 
 def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 0,
-              grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast") -> dict:
+              grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast", energy_bound: bool = True) -> dict:
     """Minimum overturning amplitude ratio a_p/(g·tanα) at one frequency ratio.
+
+    ``energy_bound`` (fast engine) ends each run once it provably cannot overturn any more
+    (docs/model.md); it never changes an outcome, only the time spent (False: integrate every run
+    to rest or the time limit, as before).
 
     Returns a dict with ``amplitude_ratio`` (None when nothing on the grid overturns),
     ``last_safe_amplitude_ratio``, ``n_simulations``, the bound scanned, and the noise record's
@@ -172,7 +176,8 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     values = grid.values()
     if engine == "fast":
         P = pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
-                            overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
+                            overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
+                            energy_bound=energy_bound)
         thr, lo, n_sim, n_und = kn.threshold_kernel(P, motion.record, motion.vertical, values, grid.resolution,
                                                     peak)
     elif engine == "reference":
@@ -199,7 +204,7 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     }
 
 
-def _cases(scenario: Scenario, frequency_ratios, realisations):
+def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: bool = True):
     """Parameter rows and concatenated records for every (realisation, frequency) case."""
     rows, recs, peaks, e_ratio, p_ratio = [], [], [], [], []
     for k in realisations:
@@ -207,7 +212,7 @@ def _cases(scenario: Scenario, frequency_ratios, realisations):
             motion, rec = scenario.motion(float(f), 1.0, int(k))
             rows.append(pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
                                         overturn_criterion=scenario.overturn_criterion,
-                                        free_time=scenario.free_time))
+                                        free_time=scenario.free_time, energy_bound=energy_bound))
             recs.append(motion.record)
             peaks.append(_unit_peak(scenario, rec))
             e_ratio.append(1.0 if rec is None else rec.energy_ratio)
@@ -234,7 +239,7 @@ def _run_chunked(fn, n_cases: int, label: str, n_chunks: int):
 
 
 def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: AmplitudeGrid = AmplitudeGrid(),
-             with_map: bool = False, progress_chunks: int = 10) -> xr.Dataset:
+             with_map: bool = False, progress_chunks: int = 10, energy_bound: bool = True) -> xr.Dataset:
     """Overturning spectrum: the threshold at each frequency for each noise realisation.
 
     Parameters
@@ -247,6 +252,8 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     grid : AmplitudeGrid
     with_map : bool
         Also compute the outcome at every (frequency, amplitude) grid point.
+    energy_bound : bool
+        End runs that provably cannot overturn any more (see :func:`threshold`).
 
     Returns
     -------
@@ -265,7 +272,7 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     if scenario.noise_level == 0 and len(realisations) > 1:
         realisations = realisations[:1]  # without noise every realisation is the same record
     values = grid.values()
-    Pm, recs, off, lens, peaks, e_ratio, p_ratio = _cases(scenario, freqs, realisations)
+    Pm, recs, off, lens, peaks, e_ratio, p_ratio = _cases(scenario, freqs, realisations, energy_bound)
     n = len(Pm)
     label = f"spectrum {scenario.control.strategy} noise={scenario.noise_level:g} Ts={scenario.control.sampling_time:g}"
     t0 = time.perf_counter()

@@ -27,8 +27,18 @@ from ..excitation import RECTANGULAR as KIND_RECTANGULAR
 from .engine import simulate_kernel
 from .ground import ground_acceleration, vertical_acceleration
 from .layout import *  # noqa: F401,F403  (the named parameter slots and codes)
-from .scan import (S_HI, S_LO, outcome_batch, outcome_kernel, scan_amplitude, scan_start, scan_update,
-                   threshold_batch, threshold_kernel, uplift_floor)
+from .scan import (
+                   S_HI,
+                   S_LO,
+                   outcome_batch,
+                   outcome_kernel,
+                   scan_amplitude,
+                   scan_start,
+                   scan_update,
+                   threshold_batch,
+                   threshold_kernel,
+                   uplift_floor,
+)
 
 __all__ = ["MAX_EVENTS", "NEGLIGIBLE_STEP", "CS01", "CS02", "FS", "PASSIVE", "stiffness_on", "KIND_MODULATED",
            "KIND_ONE_SINE", "KIND_RECORD", "KIND_RECTANGULAR", "ground_acceleration", "vertical_acceleration",

@@ -21,6 +21,7 @@ from .ground import ground_acceleration, vertical_acceleration
 from .layout import (
     I_ALPHA,
     I_ATOL,
+    I_BOUND,
     I_CD,
     I_DELAY,
     I_DUR,
@@ -31,6 +32,7 @@ from .layout import (
     I_KIND,
     I_KMAX,
     I_KMIN,
+    I_P,
     I_RDT,
     I_RTOL,
     I_STRAT,
@@ -47,6 +49,7 @@ from .layout import (
     MODE_REST,
     MODE_ROCK,
     RIGHT,
+    ST_BOUND,
     ST_ELIMIT,
     ST_OVER,
     ST_REST,
@@ -120,6 +123,8 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     exc_end = max(h_end, v_end)
     t_stop = exc_end + P[I_FREE]
     track_fracture = strategy != FS and (kmax > 0.0 or cdamp > 0.0)
+    # end the run once it provably cannot overturn any more (outcome runs, continuous control only)
+    energy_bound = P[I_BOUND] != 0.0 and not sampled and not want_history and not want_log
 
     # state
     t = 0.0
@@ -269,6 +274,11 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
             if kap_on != kap_before or h_on != h_before or need_apex_decision:
                 f0_ok = False
             continue  # a record knot changes nothing; other events were applied above
+
+        # ---------------- ROCK: below the overturning energy after the excitation? ----------------
+        if energy_bound and t >= exc_end and maps.cannot_overturn(th, thd, P[I_P], alpha, kmin * spring[sidx]):
+            status = ST_BOUND
+            break
 
         # ---------------- ROCK: apex decision (CS01 switch at θ̇ = 0) ----------------
         if need_apex_decision:

@@ -8,9 +8,10 @@ import numpy as np
 from numba import njit
 
 from ..anchorage import damper_left_intact, damper_right_intact, spring_left_intact, spring_right_intact
-from ..constants import ROTATION_TOLERANCE
+from ..constants import ENERGY_MARGIN, ROTATION_TOLERANCE
+from ..motion import normalised_energy
 from .dopri import acceleration
-from .layout import LEFT, MODE_REST, MODE_ROCK
+from .layout import LEFT
 
 TURN_OUT, TURN_BACK, HOLD = 1, 0, -1
 """Apex decisions of CS01: leave outward with K_max, turn back with K_min, stay on the sliding surface."""
@@ -89,9 +90,23 @@ def fracture(side, th, t, spring, damper, frac, th_ku, th_du):
 
 
 @njit(cache=True)
-def after_rest_or_rebound(what):
-    """Mode after an impact map."""
-    return MODE_REST if what == REST else MODE_ROCK
+def cannot_overturn(th, thd, p, alpha, kappa_low):
+    """True when a block free of excitation can provably never reach |θ| = α again.
+
+    W = θ̇²/(2p²) + cos(α − |θ|) + 2·κ_lo·sin²(θ/2) does not increase once the excitation is over
+    under continuous FS, PASSIVE, CS01 and CS02 control (proof in docs/model.md, "Early stop below
+    the overturning energy"), and reaching |θ| = α needs W >= 1.
+
+    Parameters
+    ----------
+    th, thd : float
+        θ [rad] and θ̇ [rad/s].
+    p, alpha : float
+        Frequency parameter [rad/s] and slenderness [rad].
+    kappa_low : float
+        Smallest stiffness the device can apply, times the working spring's fracture function. [-]
+    """
+    return abs(th) <= alpha and normalised_energy(th, thd, p, alpha, kappa_low) < 1.0 - ENERGY_MARGIN
 
 
 # ---- the sampled controller: decisions wait in a ring buffer until they act -------------------
