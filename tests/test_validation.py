@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 from rockstudy import cli, io, study
 from rockstudy import validation as v
 from rockstudy.block import BLOCK_PRESETS, Block
+from rockstudy.excitation import excitation_duration
 
 ROOT = Path(__file__).resolve().parents[1]
 TINY = yaml.safe_load((ROOT / ".test" / "config.yaml").read_text())
@@ -166,6 +167,8 @@ def config_error(config):
     (lambda c: c["anchorage"].update(kappa_max=float("inf")), "anchorage.kappa_max"),
     (lambda c: c.update(realisations=100_000, realisations_per_job=100_000), "realisations_per_job"),
     (lambda c: c["sampling_sweep"].update(sampling_times=[1e-7]), "sampling_sweep.sampling_times[0]"),
+    (lambda c: c.update(noise_reference_frequency_ratio=1e-12), "noise_reference_frequency_ratio"),
+    (lambda c: c.update(block={"width": 1e12, "height": 4e12, "depth": 1.0}), "lasts"),
 ])
 def test_config_check_names_the_key(change, key):
     config = copy.deepcopy(TINY)
@@ -211,6 +214,9 @@ def test_property_config_is_refused_naming_a_key_or_its_work_is_bounded(changes)
         per_job = min(config["realisations_per_job"], config["realisations"])
         assert per_job * n_freq * v.check_amplitude_grid(**ag) <= v.MAX_SIMULATIONS
         assert all(math.isfinite(float(val)) for _, val in changes)
+        p = BLOCK_PRESETS["BLC06"].p
+        for f in (fg["start"], config["noise_reference_frequency_ratio"], config["control_histories"]["frequency_ratio"]):
+            assert excitation_duration(config["excitation"], f * p) + config["free_time"] <= v.MAX_TIME_SPAN
     else:  # refused: the message names one of the keys that were changed (or one they constrain)
         names = {p[-1] for p, _ in changes} | {".".join(p) for p, _ in changes}
         related = {"stop", "start", "step", "resolution", "a_max0", "realisations", "realisations_per_job",

@@ -46,7 +46,7 @@ def block_from_dict(spec: dict) -> Block:
     try:
         return Block(**spec)
     except (TypeError, ValueError) as exc:
-        raise v.InputError(str(exc).replace("Block.", "block.")) from None
+        raise v.InputError(str(exc).replace("Block.", "block.").replace("Block:", "block:")) from None
 
 
 def scenario_from_dict(spec: dict) -> Scenario:
@@ -481,9 +481,12 @@ def check_study(config: dict) -> None:
     freqs = frequency_ratios(fg)
     grid_name = "frequency_grid.start" if freqs[0] < 1 else "frequency_grid.stop"
     v.check_time_span(block, config["excitation"], freqs, free_time, frequency_name=grid_name)
-    for key in ("control_histories", "example_point"):
-        v.check_time_span(block, config["excitation"], [config[key]["frequency_ratio"]], free_time,
-                          frequency_name=f"{key}.frequency_ratio")
+    for key in ("control_histories.frequency_ratio", "example_point.frequency_ratio",
+                "noise_reference_frequency_ratio"):
+        node = config
+        for part in key.split("."):
+            node = node[part]
+        v.check_time_span(block, config["excitation"], [node], free_time, frequency_name=key)
     for ts, name in ([(t, f"sampling_sweep.sampling_times[{i}]")
                       for i, t in enumerate(config["sampling_sweep"]["sampling_times"])]
                      + [(config["delay_sweep"]["sampling_time"], "delay_sweep.sampling_time")]):
