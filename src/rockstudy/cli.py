@@ -268,9 +268,10 @@ def _cmd_threshold(args, parser):
                lower_amplitudes_checked=complete)
     if not complete:
         res["note"] = (f"the scan started at {start:g}, above {uplift:.4g}, the lowest amplitude ratio that can "
-                       f"uplift the block: amplitude ratios in [{uplift:.4g}, {start:g}) were not checked, so "
-                       "amplitude_ratio is the lowest overturning amplitude at or above the scan start, not "
-                       "necessarily the threshold; lower --min-amplitude-ratio to check them")
+                       f"uplift the block: amplitude ratios in [{uplift:.4g}, {start:g}) were not scanned (at most "
+                       "bisected below an overturning one), and the overturning region has safe islands, so a "
+                       "lower overturning amplitude may exist and amplitude_ratio is not necessarily the threshold; "
+                       f"use --min-amplitude-ratio <= {uplift:.4g} to check them")
     if res.get("n_undetermined"):
         res["undetermined_note"] = (f"{res['n_undetermined']} run(s) hit the fast engine's event cap and were "
                                     "counted as not overturned; check with --engine reference")
