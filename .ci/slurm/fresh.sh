@@ -4,7 +4,7 @@
 # Usage:  bash .ci/slurm/fresh.sh            (as root, from anywhere in the repository)
 #
 # Creates a NEW virtual environment (default /tmp/venv-rockstudy-fresh, wiped first), installs
-# the package with the README's command (pip install -e ".[all]"), checks that the SLURM
+# the package with the README's command (pip install -c constraints.txt -e ".[all]"), checks that the SLURM
 # executor plugin is NOT installed (so up.sh must install it, as on a new machine), then runs
 # .ci/slurm/ci.sh inside that environment. A green run on a machine that has run the check
 # before can hide a missing install step; this one cannot.
@@ -24,7 +24,11 @@ rm -rf "$VENV"
 . "$VENV/bin/activate"
 export PYTHON="$VENV/bin/python"
 say "new venv $VENV ($(python --version))"
-python -m pip install -q --disable-pip-version-check -e ".[all]"
+if [ -f constraints.txt ]; then   # the README's install command
+    python -m pip install -q --disable-pip-version-check -c constraints.txt -e ".[all]"
+else
+    python -m pip install -q --disable-pip-version-check -e ".[all]"
+fi
 say "installed rockstudy from $(python -c 'import rockstudy, os; print(os.path.dirname(rockstudy.__file__))')"
 if python -m pip show snakemake-executor-plugin-slurm >/dev/null 2>&1; then
     echo "fresh.sh: the SLURM executor plugin is already installed in a new venv?" >&2; exit 1
