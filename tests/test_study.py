@@ -27,8 +27,9 @@ def fake_spectrum(strategy, level, thresholds, realisations=None, sampling_time=
 
 
 def base_config():
-    import yaml
     from pathlib import Path
+
+    import yaml
     return yaml.safe_load((Path(__file__).parents[1] / "config.yaml").read_text())
 
 

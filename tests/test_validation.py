@@ -118,8 +118,9 @@ def test_a_max0_rule_in_g_and_ratios(blc06):
 # --- atomic writes follow the umask --------------------------------------------------------------
 @pytest.mark.parametrize("umask,mode", [(0o022, 0o644), (0o077, 0o600), (0o002, 0o664)])
 def test_every_writer_follows_the_umask(tmp_path, umask, mode):
-    from rockstudy.plotting import save_figure
     import matplotlib.pyplot as plt
+
+    from rockstudy.plotting import save_figure
     old = os.umask(umask)
     try:
         ds = xr.Dataset({"x": ("t", np.arange(3.0))})
@@ -215,7 +216,8 @@ def test_property_config_is_refused_naming_a_key_or_its_work_is_bounded(changes)
         assert per_job * n_freq * v.check_amplitude_grid(**ag) <= v.MAX_SIMULATIONS
         assert all(math.isfinite(float(val)) for _, val in changes)
         p = BLOCK_PRESETS["BLC06"].p
-        for f in (fg["start"], config["noise_reference_frequency_ratio"], config["control_histories"]["frequency_ratio"]):
+        for f in (fg["start"], config["noise_reference_frequency_ratio"],
+                  config["control_histories"]["frequency_ratio"]):
             assert excitation_duration(config["excitation"], f * p) + config["free_time"] <= v.MAX_TIME_SPAN
     else:  # refused: the message names one of the keys that were changed (or one they constrain)
         names = {p[-1] for p, _ in changes} | {".".join(p) for p, _ in changes}

@@ -9,7 +9,7 @@ inertia about a base corner; e = 1 - 3/2 sin^2(alpha) the coefficient of restitu
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, asdict
+from dataclasses import asdict, dataclass
 
 from .validation import check_block
 

@@ -34,7 +34,7 @@ def _number(name):
         try:
             value = float(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}")
+            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
         if not math.isfinite(value):
             raise argparse.ArgumentTypeError(f"{name} must be a finite number (not NaN or inf), got {text!r}")
         return value
@@ -62,7 +62,8 @@ def _common(p: argparse.ArgumentParser, single_frequency=True):
                    help="one-sine pulse or the amplitude-modulated harmonic of Eq. 23")
     if single_frequency:
         p.add_argument("--frequency-ratio", type=_number("--frequency-ratio"), default=2.0, help="omega_p/p [-]")
-    p.add_argument("--noise-level", type=_number("--noise-level"), default=0.0, help="noise energy / baseline energy, in [0, 1)")
+    p.add_argument("--noise-level", type=_number("--noise-level"), default=0.0,
+                   help="noise energy / baseline energy, in [0, 1)")
     p.add_argument("--realisation", type=_integer("--realisation"), default=0, help="noise realisation k")
     p.add_argument("--seed", type=_integer("--seed"), default=0, help="root seed of the noise")
     p.add_argument("--match", default="energy", choices=("energy", "pga"), help="noisy record rescaled to match")
@@ -242,6 +243,7 @@ def _cmd_simulate(args, parser):
 def _uplift_amplitude_ratio(scenario, frequency_ratio, realisation) -> float:
     """Lowest amplitude ratio at which the ground motion can uplift the block (1 / its unit peak). [-]"""
     import numpy as np
+
     from .excitation import modulated_peak
     _, rec = scenario.motion(frequency_ratio, 1.0, realisation)
     if rec is not None:
@@ -282,6 +284,7 @@ def _cmd_threshold(args, parser):
 
 def _cmd_spectrum(args, parser):
     import numba
+
     from .excitation import excitation_duration
     from .io import write_netcdf
     from .spectra import frequency_grid, spectrum
@@ -321,6 +324,7 @@ def _cmd_spectrum(args, parser):
     ds = document_missing(spectrum(scenario, freqs, realisations=range(n_real), grid=grid, with_map=args.map))
     if args.plot:
         import matplotlib.pyplot as plt
+
         from .plotting import plot_a_max0, plot_threshold, save_figure, spectrum_axes
         fig, ax = plt.subplots(figsize=(6, 4))
         plot_threshold(ax, ds["threshold"], label=args.strategy)
@@ -335,6 +339,7 @@ def _cmd_spectrum(args, parser):
 
 def _cmd_jos(args, parser):
     import numpy as np
+
     from .io import read_netcdf
     from .study import jos_of
     try:

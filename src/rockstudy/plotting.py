@@ -6,6 +6,7 @@ Frequencies are ω_p/p, amplitudes a_p/(g·tanα).
 """
 from __future__ import annotations
 
+from functools import partial
 from pathlib import Path
 
 import matplotlib
@@ -244,7 +245,7 @@ def save_figure(fig, *paths) -> list[Path]:
     from .io import atomic_write
     written = []
     for path in map(Path, paths):
-        atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=150, format=path.suffix.lstrip(".")))
+        atomic_write(path, partial(fig.savefig, dpi=150, format=path.suffix.lstrip(".")))
         written.append(path)
     plt.close(fig)
     return written
