@@ -147,9 +147,10 @@ def document_missing(ds: xr.Dataset) -> xr.Dataset:
     return ds
 
 
-NOT_IN_SIMULATIONS = ("cli.py", "plotting.py", "reference.py", "study.py")
+NOT_IN_SIMULATIONS = ("cli.py", "plotting.py", "reference.py", "study.py", "validation.py")
 """Modules the compiled spectra and histories do not run (the scipy reference engine, the CLI,
-figures, and this bookkeeping module, whose outputs have their own tests)."""
+figures, this bookkeeping module, whose outputs have their own tests, and the input checks,
+which refuse inputs but never change a result)."""
 
 
 def source_fingerprint(only=None) -> str:
