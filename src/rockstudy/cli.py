@@ -83,7 +83,8 @@ def _common(p: argparse.ArgumentParser, single_frequency=True):
 _LIBRARY_NAMES = (("Control.sampling_time", "--sampling-time"), ("Control.delay", "--delay"),
                   ("Anchorage.kappa_max", "--kappa-max"), ("Anchorage.kappa_min", "--kappa-min"),
                   ("Anchorage.damping_ratio", "--damping-ratio"), ("free_time", "--free-time"),
-                  ("sampling_time", "--sampling-time"))
+                  ("sampling_time", "--sampling-time"), ("exceed kappa_max", "exceed --kappa-max"),
+                  (", delay=", ", --delay="))
 
 
 def _user_names(message: str) -> str:
