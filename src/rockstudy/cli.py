@@ -303,7 +303,8 @@ def _cmd_spectrum(args, parser):
                               high=v.MAX_FREQUENCY_RATIO,
                               names=("--frequency-start", "--frequency-stop", "--frequency-step"))
         freqs = frequency_grid(args.frequency_start, args.frequency_stop, args.frequency_step)
-        _check_time_span(scenario, freqs, "--frequency-start" if freqs[0] < 1 else "--frequency-stop")
+        _check_time_span(scenario, [args.frequency_start, float(freqs[-1])],
+                         "--frequency-start" if args.frequency_start < 1 else "--frequency-stop")
         n_real = 1 if scenario.noise_level == 0 else args.realisations
         record_bytes = 0
         if scenario.noise_level > 0:

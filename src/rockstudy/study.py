@@ -480,8 +480,9 @@ def check_study(config: dict) -> None:
     for i, d in enumerate(config["delay_sweep"]["delays"]):
         v.check_positive(f"delay_sweep.delays[{i}]", d, "s", v.MAX_TIME_SPAN)
     freqs = frequency_ratios(fg)
-    grid_name = "frequency_grid.start" if freqs[0] < 1 else "frequency_grid.stop"
-    v.check_time_span(block, config["excitation"], freqs, free_time, frequency_name=grid_name)
+    grid_name = "frequency_grid.start" if fg["start"] < 1 else "frequency_grid.stop"
+    span_freqs = [fg["start"], float(freqs[-1])]  # the user's start (the grid rounds to 10 decimals)
+    v.check_time_span(block, config["excitation"], span_freqs, free_time, frequency_name=grid_name)
     for key in ("control_histories.frequency_ratio", "example_point.frequency_ratio",
                 "noise_reference_frequency_ratio"):
         node = config
@@ -491,7 +492,7 @@ def check_study(config: dict) -> None:
     for ts, name in ([(t, f"sampling_sweep.sampling_times[{i}]")
                       for i, t in enumerate(config["sampling_sweep"]["sampling_times"])]
                      + [(config["delay_sweep"]["sampling_time"], "delay_sweep.sampling_time")]):
-        v.check_time_span(block, config["excitation"], freqs, free_time, ts, frequency_name=grid_name,
+        v.check_time_span(block, config["excitation"], span_freqs, free_time, ts, frequency_name=grid_name,
                           sampling_name=name)
     # one spectrum job: its realisations x frequencies, and the noise records it holds
     per_job = min(per_job, n_real)

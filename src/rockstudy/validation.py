@@ -243,6 +243,8 @@ def check_time_span(block, excitation: str, frequency_ratios, free_time: float, 
     from .excitation import excitation_duration
     for f in {min(frequency_ratios), max(frequency_ratios)}:
         omega = f * block.p
+        if not omega > 0:  # e.g. a grid start below 5e-11, which the grid rounds to 0
+            fail(frequency_name, f, "it must be > 0 (the grids are rounded to 10 decimals)")
         span = excitation_duration(excitation, omega) + free_time
         if span > MAX_TIME_SPAN:
             fail(frequency_name, f, f"the excitation lasts {span - free_time:.4g} s at this frequency ratio "
