@@ -62,12 +62,16 @@ def scenario_from_dict(spec: dict) -> Scenario:
 
 
 def amplitude_grid(spec: dict) -> AmplitudeGrid:
-    """:class:`AmplitudeGrid` from ``start``, ``stop``, ``step``, ``resolution`` (ratios a_p/(g·tanα))."""
+    """:class:`AmplitudeGrid` from ``start``, ``stop``, ``step``, ``resolution`` (ratios a_p/(g·tanα)),
+    refused (naming ``amplitude_grid.<key>``) beyond the limits of :mod:`rockstudy.validation`."""
+    v.check_amplitude_grid(spec["start"], spec["stop"], spec["step"], spec["resolution"])
     return AmplitudeGrid(**spec)
 
 
 def frequency_ratios(spec: dict) -> np.ndarray:
-    """Frequency ratios ω_p/p from ``start``, ``stop``, ``step``. [-]"""
+    """Frequency ratios ω_p/p from ``start``, ``stop``, ``step``, refused (naming ``frequency_grid.<key>``)
+    above :data:`rockstudy.validation.MAX_GRID_POINTS` points before the grid is built. [-]"""
+    v.check_grid("frequency_grid", spec["start"], spec["stop"], spec["step"], high=v.MAX_FREQUENCY_RATIO)
     return frequency_grid(**spec)
 
 
