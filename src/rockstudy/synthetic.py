@@ -256,3 +256,53 @@ def synthetic_suite(n_records: int, seed: int, ranges: SuiteRanges = SuiteRanges
     if isinstance(n_records, bool) or not isinstance(n_records, numbers.Integral) or n_records < 1:
         raise ValueError(f"n_records must be an integer >= 1, got {n_records!r}")
     return [suite_record(i, seed, ranges) for i in range(n_records)]
+
+
+def suite_dataset(suite, seed: int, ranges: SuiteRanges = SuiteRanges()):
+    """The synthetic suite as a self-describing :class:`xarray.Dataset`: every record's samples and
+    the model parameters it was drawn with (ω_g, ζ_g, ω_f, ζ_f, t_m), with the seed and ranges.
+
+    Parameters
+    ----------
+    suite : list of (Record, GroundMotionModel)
+        From :func:`synthetic_suite` (records of one length and step).
+    seed : int
+        The suite's root seed.
+    ranges : SuiteRanges
+    """
+    import xarray as xr
+
+    from . import __version__
+
+    records = [r for r, _ in suite]
+    models = [m for _, m in suite]
+    n = min(r.acceleration.size for r in records)
+    hz = {"units": "rad/s"}
+    return xr.Dataset(
+        {"acceleration": (("record", "time"), np.array([r.acceleration[:n] for r in records]),
+                          {"units": "m/s^2", "long_name": "horizontal ground acceleration"}),
+         "ground_frequency": ("record", [m.ground_frequency for m in models], {**hz, "long_name": "omega_g"}),
+         "ground_damping": ("record", [m.ground_damping for m in models], {"units": "1", "long_name": "zeta_g"}),
+         "filter_frequency": ("record", [m.filter_frequency for m in models], {**hz, "long_name": "omega_f"}),
+         "filter_damping": ("record", [m.filter_damping for m in models], {"units": "1", "long_name": "zeta_f"}),
+         "peak_time": ("record", [m.peak_time for m in models], {"units": "s", "long_name": "envelope peak t_m"}),
+         "pga": ("record", [r.pga for r in records], {"units": "m/s^2", "long_name": "peak ground acceleration"})},
+        coords={"record": ("record", [r.name for r in records]),
+                "time": ("time", np.arange(n) * records[0].dt, {"units": "s"})},
+        attrs={"title": "Synthetic ground-motion suite", "model": MODEL_REFERENCE, "seed": int(seed),
+               "seed_sequence": f"SeedSequence(seed, spawn_key=({SYNTHETIC_KEY}, record index))",
+               "rockstudy_version": __version__, **ranges.to_attrs()},
+    )
+
+
+def ranges_from_dict(spec: dict) -> SuiteRanges:
+    """:class:`SuiteRanges` from plain values, the PGA given in g as ``pga_g`` (other keys as the fields)."""
+    spec = dict(spec)
+    spec.pop("n_records", None)
+    spec.pop("seed", None)
+    if "pga_g" in spec:
+        spec["pga"] = float(spec.pop("pga_g")) * STANDARD_GRAVITY
+    for name in ("ground_frequency_hz", "ground_damping", "peak_time"):
+        if name in spec:
+            spec[name] = tuple(spec[name])
+    return SuiteRanges(**spec)
