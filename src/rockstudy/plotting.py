@@ -321,16 +321,19 @@ def figure_probability(surfaces, a_max0: float):
     for ds in surfaces:
         ax = axes[levels.index(float(ds["noise_level"])), strategies.index(str(ds["strategy"].values))]
         mesh = plot_probability(ax, ds)
-        plot_threshold(ax, ds["threshold"], mark_above=False, color="tab:cyan", lw=1.0, ls="--",
+        plot_threshold(ax, ds["threshold"], mark_above=False, color="#00c000", lw=1.2, ls="--",
                        label=r"$a_{min,OVER}$ (lowest of N)")
         plot_a_max0(ax, a_max0)
         spectrum_axes(ax, f"{ds['strategy'].item()}, {_level_label(float(ds['noise_level']))}, "
                           f"N = {int(ds['n_realisations'])}")
         ax.label_outer()
-    axes.flat[0].legend(fontsize=7, loc="upper left")
+    from matplotlib.lines import Line2D
+    handles, _ = axes.flat[0].get_legend_handles_labels()
+    handles.append(Line2D([], [], color="tab:cyan", lw=1.0, label="P = 0.5"))
+    axes.flat[0].legend(handles=handles, fontsize=7, loc="upper left")
     fig.tight_layout(rect=(0, 0, 0.93, 1))
     cax = fig.add_axes((0.94, 0.15, 0.012, 0.7))
-    fig.colorbar(mesh, cax=cax, label="P(overturn) over the realisations [-]  (cyan: P = 0.5)")
+    fig.colorbar(mesh, cax=cax, label="P(overturn) over the realisations [-]")
     return fig
 
 
