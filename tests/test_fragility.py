@@ -6,8 +6,15 @@ import pytest
 from scipy import optimize, stats
 
 from rockstudy import Anchorage, Control
-from rockstudy.fragility import (_nll_and_gradient, fit_lognormal, fragility_dataset, fragility_markdown,
-                                 intensity, peak_ground_velocity, stripe_outcomes)
+from rockstudy.fragility import (
+    _nll_and_gradient,
+    fit_lognormal,
+    fragility_dataset,
+    fragility_markdown,
+    intensity,
+    peak_ground_velocity,
+    stripe_outcomes,
+)
 from rockstudy.records import Record
 from rockstudy.simulate import simulate
 from rockstudy.synthetic import synthetic_suite

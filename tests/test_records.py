@@ -8,8 +8,15 @@ import pytest
 from rockstudy import Anchorage, Control
 from rockstudy.cli import main
 from rockstudy.excitation import GroundMotion, excitation_duration, modulated, one_sine
-from rockstudy.records import (STANDARD_GRAVITY, Record, RecordFormatError, read_at2, read_record,
-                               read_two_column, write_at2)
+from rockstudy.records import (
+    STANDARD_GRAVITY,
+    Record,
+    RecordFormatError,
+    read_at2,
+    read_record,
+    read_two_column,
+    write_at2,
+)
 from rockstudy.simulate import simulate
 from rockstudy.spectra import AmplitudeGrid, Scenario, threshold
 

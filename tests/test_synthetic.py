@@ -5,8 +5,16 @@ import numpy as np
 import pytest
 from scipy import signal
 
-from rockstudy.synthetic import (GroundMotionModel, SuiteRanges, envelope, filtered_noise, record_generator,
-                                 spectral_density_shape, suite_record, synthetic_suite)
+from rockstudy.synthetic import (
+    GroundMotionModel,
+    SuiteRanges,
+    envelope,
+    filtered_noise,
+    record_generator,
+    spectral_density_shape,
+    suite_record,
+    synthetic_suite,
+)
 
 
 def test_envelope_is_saragoni_hart_with_peak_one_at_peak_time():

@@ -73,7 +73,7 @@ def probability_from_outcomes(ds: xr.Dataset) -> xr.Dataset:
     return out
 
 
-def probability_surface(scenario: Scenario, frequency_ratios, realisations, grid: AmplitudeGrid = AmplitudeGrid(),
+def probability_surface(scenario: Scenario, frequency_ratios, realisations, grid: AmplitudeGrid | None = None,
                         progress_chunks: int = 10) -> xr.Dataset:
     """P(overturn) at every (ω_p/p, a_p/(g·tanα)) grid point over noise realisations (Eq. P1).
 
@@ -89,8 +89,8 @@ def probability_surface(scenario: Scenario, frequency_ratios, realisations, grid
         ω_p/p values. [-]
     realisations : sequence of int
         Noise realisation indices.
-    grid : AmplitudeGrid
-        Amplitude ratios of the surface (and of the threshold scan).
+    grid : AmplitudeGrid, optional
+        Amplitude ratios of the surface (and of the threshold scan); default ``AmplitudeGrid()``.
 
     Returns
     -------
@@ -98,6 +98,7 @@ def probability_surface(scenario: Scenario, frequency_ratios, realisations, grid
         See :func:`probability_from_outcomes`; ``compute_time_s`` in the attributes. [s]
     """
     t0 = time.perf_counter()
+    grid = AmplitudeGrid() if grid is None else grid
     ds = spectrum(scenario, frequency_ratios, realisations=realisations, grid=grid, with_map=True,
                   progress_chunks=progress_chunks)
     out = probability_from_outcomes(ds)
