@@ -56,6 +56,13 @@ def test_two_column_csv_with_unit_in_header_and_shifted_origin(tmp_path):
     np.testing.assert_allclose(rec.acceleration, np.array([1, 2, 3]) * 9.80665)
 
 
+def test_rounded_printed_times_give_the_true_step(tmp_path):
+    dt = 1.0 / 300.0
+    text = "t [s] a [m/s^2]\n" + "".join(f"{i * dt:.5f} {i % 7}\n" for i in range(3000))
+    rec = read_record(write(tmp_path, "r.txt", text))
+    assert rec.dt == pytest.approx(dt, rel=1e-6) and rec.unit == "m/s^2"
+
+
 def test_at2_written_and_read_back(tmp_path):
     acc = np.sin(np.arange(1234) * 0.01) * 3.3
     rec = read_at2(write_at2(Record("roundtrip", 0.01, acc), tmp_path / "r.AT2"))
@@ -74,7 +81,8 @@ def test_at2_written_and_read_back(tmp_path):
     ("a.AT2", AT2_HEADER + "NPTS= 4, DT= 0.01 SEC\n0.1 0.2\n0.3\n", 7, "NPTS = 4 values"),
     ("a.AT2", AT2_HEADER + "NPTS= 3, DT= 0.01 SEC\n0.1 0.2\n0.3 0.4\n", 6, "NPTS = 3 values"),
     ("a.csv", "time [s], acc [g]\n0, 1\n0.01, 2\n0.02, 3, 4\n", 4, "two numbers"),
-    ("a.csv", "time [s], acc [g]\n0, 1\n0.01, 2\n0.03, 3\n", 4, "uniform step"),
+    ("a.csv", "time [s], acc [g]\n0, 1\n0.01, 2\n0.02, 3\n0.04, 3\n0.05, 3\n", 5, "uniform step"),
+    ("a.csv", "time [s], acc [g]\n0, 1\n0.01, 2\n0.02, 3\n0.01, 3\n", 5, "greater than the previous"),
     ("a.csv", "time [s], acc [g]\n0, 1\n0.01, nan\n", 3, "finite"),
     ("a.csv", "time [s], acc [g]\n0, 1\n0.01, 2\nend of data\n", 4, "two numbers"),
     ("a.csv", "time [s], acc [g]\n0, 1\n0, 2\n", 3, "greater than the previous"),

@@ -47,8 +47,9 @@ UNITS = {"g": STANDARD_GRAVITY, "m/s^2": 1.0, "m/s2": 1.0, "cm/s^2": 0.01, "cm/s
 """Acceleration units a record file may use, with their value in m/s^2."""
 
 AT2_SUFFIXES = (".at2",)
-UNIFORM_STEP_TOLERANCE = 1e-3
-"""Largest relative deviation of a time step from the first one in a two-column file. [-]"""
+UNIFORM_STEP_TOLERANCE = 0.05
+"""Largest relative deviation of a time step from the median step in a two-column file (the
+printed times may be rounded: 0.00333, 0.00334, ... for 1/300 s). [-]"""
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][-+]?\d+)?"
 _NUMBER_RE = re.compile(_NUMBER)
@@ -257,13 +258,14 @@ def read_two_column(path, unit: str | None = None) -> Record:
     Returns
     -------
     Record
-        ``acceleration`` in m/s^2, ``dt`` the first time step; the time origin moved to the first sample.
+        ``acceleration`` in m/s^2; ``dt`` the slope of a least-squares line through the times (printed
+        times may be rounded); the time origin moved to the first sample.
 
     Raises
     ------
     RecordFormatError
         Naming the line: a row without exactly two numbers, a non-finite value, a time that
-        does not increase by the first step (within 0.1 %), fewer than 2 rows, or no unit.
+        does not increase, a step more than 5 % off the median step, fewer than 2 rows, or no unit.
     ValueError
         If ``unit`` is not one of :data:`UNITS`.
     """
@@ -300,15 +302,20 @@ def read_two_column(path, unit: str | None = None) -> Record:
     factor = unit_factor(unit)
     data = np.asarray(rows)
     steps = np.diff(data[:, 0])
-    dt = float(steps[0])
-    if not dt > 0:
-        raise RecordFormatError(path, row_lines[1], "a time greater than the previous one",
-                                lines[row_lines[1] - 1].strip())
-    bad = np.flatnonzero(np.abs(steps - dt) > UNIFORM_STEP_TOLERANCE * dt)
+    nonincreasing = np.flatnonzero(steps <= 0)
+    if nonincreasing.size:
+        i = int(nonincreasing[0]) + 1
+        raise RecordFormatError(path, row_lines[i], "a time greater than the previous one",
+                                lines[row_lines[i] - 1].strip())
+    typical = float(np.median(steps))
+    bad = np.flatnonzero(np.abs(steps - typical) > UNIFORM_STEP_TOLERANCE * typical)
     if bad.size:
         i = int(bad[0]) + 1
-        raise RecordFormatError(path, row_lines[i], f"time {data[i - 1, 0] + dt:.6g} s (a uniform step of "
-                                f"{dt:.6g} s; resample the record)", lines[row_lines[i] - 1].strip())
+        raise RecordFormatError(path, row_lines[i], f"time {data[i - 1, 0] + typical:.6g} s (a uniform step of "
+                                f"{typical:.6g} s; resample the record)", lines[row_lines[i] - 1].strip())
+    # the step from a least-squares line through all times: printed times carry rounding
+    index = np.arange(len(data))
+    dt = float(np.polyfit(index, data[:, 0], 1)[0])
     return Record(name=path.stem, dt=dt, acceleration=data[:, 1] * factor, source=str(path), unit=unit)
 
 

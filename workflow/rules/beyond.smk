@@ -4,6 +4,8 @@
 # optional `beyond:` section of the config (without it these rules do not exist).
 
 BEYOND = config.get("beyond")
+# rerun these jobs when the simulation code or the modules of these studies change
+BEYOND_LIBRARY = LIBRARY + study.source_fingerprint(["records.py", "synthetic.py", "fragility.py", "probability.py"])
 BEYOND_IN_ALL = []  # the fragility study (about a minute) runs with `all`; the probability surfaces do not
 
 if BEYOND:
@@ -56,7 +58,7 @@ if BEYOND:
             realisations=config["realisations"],
             frequency_grid=PROB["frequency_grid"],
             amplitude_grid=PROB["amplitude_grid"],
-            library=LIBRARY,
+            library=BEYOND_LIBRARY,
         conda:
             "../envs/rockstudy.yaml"
         threads: 1
@@ -76,7 +78,7 @@ if BEYOND:
                 f"{OUT}/logs/records/synthetic.log",
             params:
                 synthetic=FRAG["synthetic"],
-                library=LIBRARY,
+                library=BEYOND_LIBRARY,
             conda:
                 "../envs/rockstudy.yaml"
             threads: 1
@@ -106,7 +108,7 @@ if BEYOND:
             intensity_levels=FRAG["intensity_levels"],
             bootstrap=FRAG["bootstrap"],
             seed=FRAG["seed"],
-            library=LIBRARY,
+            library=BEYOND_LIBRARY,
         conda:
             "../envs/rockstudy.yaml"
         threads: 1
