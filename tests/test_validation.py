@@ -214,7 +214,11 @@ def test_property_config_is_refused_naming_a_key_or_its_work_is_bounded(changes)
         assert n_freq <= v.MAX_GRID_POINTS
         per_job = min(config["realisations_per_job"], config["realisations"])
         assert per_job * n_freq * v.check_amplitude_grid(**ag) <= v.MAX_SIMULATIONS
-        assert all(math.isfinite(float(val)) for _, val in changes)
+        for path, _ in changes:  # the value each changed key ended with (a later change may overwrite)
+            node = config
+            for k in path:
+                node = node[k]
+            assert math.isfinite(float(node)), path
         p = BLOCK_PRESETS["BLC06"].p
         for f in (fg["start"], config["noise_reference_frequency_ratio"],
                   config["control_histories"]["frequency_ratio"]):
