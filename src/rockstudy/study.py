@@ -151,10 +151,12 @@ def document_missing(ds: xr.Dataset) -> xr.Dataset:
     return ds
 
 
-NOT_IN_SIMULATIONS = ("cli.py", "plotting.py", "reference.py", "study.py", "validation.py")
+NOT_IN_SIMULATIONS = ("cli.py", "plotting.py", "reference.py", "study.py", "validation.py", "records.py",
+                      "synthetic.py", "fragility.py", "probability.py")
 """Modules the compiled spectra and histories do not run (the scipy reference engine, the CLI,
-figures, this bookkeeping module, whose outputs have their own tests, and the input checks,
-which refuse inputs but never change a result)."""
+figures, this bookkeeping module, whose outputs have their own tests, the input checks, which
+refuse inputs but never change a result, and the studies beyond the paper, which the workflow
+fingerprints on their own)."""
 
 
 def source_fingerprint(only=None) -> str:
@@ -163,10 +165,12 @@ def source_fingerprint(only=None) -> str:
     ``only``: a list of module file names to hash instead (e.g. ``["study.py"]``, the
     bookkeeping that builds the gathered datasets and tables)."""
     digest = hashlib.sha256()
-    for path in sorted(Path(__file__).parent.glob("*.py")):
-        if (path.name in NOT_IN_SIMULATIONS) if only is None else (path.name not in only):
+    root = Path(__file__).parent
+    for path in sorted(root.rglob("*.py")):  # recursive: the compiled engine is a subpackage
+        name = path.relative_to(root).as_posix()
+        if (name in NOT_IN_SIMULATIONS) if only is None else (name not in only):
             continue
-        digest.update(path.name.encode())
+        digest.update(name.encode())
         digest.update(path.read_bytes())
     return digest.hexdigest()
 
