@@ -42,7 +42,7 @@ def test_cs01_release_loses_the_spring_energy(blc06):
         # outward with the spring on: theta_dot^2/2p^2 + cos a = cos(a - th_a) + 2 kappa sin^2(th_a/2)
         c = after**2 / (2 * p * p) + math.cos(a)
         th_a = __import__("scipy.optimize", fromlist=["brentq"]).brentq(
-            lambda th: math.cos(a - th) + 2 * kappa * math.sin(th / 2) ** 2 - c, 0.0, a)
+            lambda th, c=c: math.cos(a - th) + 2 * kappa * math.sin(th / 2) ** 2 - c, 0.0, a)
         # back with the spring released: the spring energy is gone
         v_back = math.sqrt(2 * p * p * (math.cos(a - th_a) - math.cos(a)))
         assert abs(before_next) == pytest.approx(v_back, rel=1e-7)

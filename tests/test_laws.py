@@ -109,3 +109,30 @@ def test_engine_impact_map_uplifts_when_the_ground_can_lift_the_block():
     xg = 9.81 * math.tan(0.25) * 1.01
     what, side, thd = maps.impact(-1e-9, 1.0, 0.9, 1e-6, xg, 0.0, 9.81, 0.25)
     assert (what, side, thd) == (maps.UPLIFT, -1.0, 0.0)  # a positive Ẍg lifts it onto the θ < 0 corner
+
+
+def _apex(theta, xg, kmax, kmin):
+    from rockstudy import BLOCK_PRESETS
+    from rockstudy.excitation import GroundMotion
+    from rockstudy.simulate import pack_parameters
+    block = BLOCK_PRESETS["BLC06"]
+    P = pack_parameters(block, __import__("rockstudy").Anchorage(), __import__("rockstudy").Control("CS01"),
+                        GroundMotion("one-sine", 0.0, 1.0, 1.0))
+    return maps.apex_decision(theta, math.copysign(1.0, theta), kmax, kmin, xg, 0.0, P), block
+
+
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_cs01_apex_decision_filippov_cases(sign):
+    """MODEL-NOTES §1 at θ̇ = 0: out with K_max when gravity+K_max cannot hold the block, back with
+    K_min when even K_min pulls it home, held in between (the three cases of the sliding surface)."""
+    from rockstudy import BLOCK_PRESETS
+    block = BLOCK_PRESETS["BLC06"]
+    a, g = block.alpha, block.gravity
+    theta = sign * (a - 0.01)  # near the corner: the gravity moment is small (≈ 0.01·cos α)
+    # no excitation: both stiffnesses pull it back, however small the pull
+    assert _apex(theta, 0.0, 1.0, 0.0)[0] == maps.TURN_BACK
+    # the ground pushes outward (Makris: Ẍg of the opposite sign of θ) harder than gravity + K_max: out
+    assert _apex(theta, -sign * 5 * g, 1.0, 0.0)[0] == maps.TURN_OUT
+    # outward push between the two: held (s·a_max < 0 < s·a_min)
+    push = -sign * g * math.sin(0.01) / math.cos(0.01) * 3.0
+    assert _apex(theta, push, 1.0, 0.0)[0] == maps.HOLD
