@@ -31,6 +31,7 @@ from .layout import (
     I_HMAX,
     I_KIND,
     I_KMAX,
+    I_KNOTS,
     I_KMIN,
     I_P,
     I_RDT,
@@ -125,6 +126,10 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     track_fracture = strategy != FS and (kmax > 0.0 or cdamp > 0.0)
     # end the run once it provably cannot overturn any more (outcome runs, continuous control only)
     energy_bound = P[I_BOUND] != 0.0 and not sampled and not want_history and not want_log
+    # opt-in: while rocking, let Dormand–Prince steps span record knots (the records are linear
+    # between knots, so Ẍg only has kinks there; error control sizes the steps). Not with the CS02
+    # switch on Ẍg = 0 while the excitation lasts: its locator needs Ẍg linear within a step.
+    across_knots = P[I_KNOTS] != 0.0 and not (continuous_switching and strategy == CS02)
 
     # state
     t = 0.0
@@ -186,11 +191,12 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
         t_next = t_stop
         if h_on and h_end < t_next:
             t_next = max(h_end, t)
-        if h_on and kind == RECORD:
+        knots = not (across_knots and mode == MODE_ROCK)  # REST/HOLD exits need Ẍg linear per piece
+        if knots and h_on and kind == RECORD:
             tk = _next_knot(t, P[I_RDT])
             if tk < t_next:
                 t_next = tk
-        if nvert > 0 and t < v_end:
+        if knots and nvert > 0 and t < v_end:
             tk = _next_knot(t, P[I_VDT])
             if tk < t_next:
                 t_next = tk
