@@ -172,5 +172,5 @@ def simulate(block: Block, anchorage: Anchorage, control: Control, motion: Groun
                         initial_velocity=initial_velocity, rest_velocity=rest_velocity,
                         rtol=FAST_RTOL if rtol is None else rtol, atol=FAST_ATOL if atol is None else atol,
                         step_across_knots=step_across_knots)
-    out = kn.simulate_kernel(P, motion.record, motion.vertical, bool(record_history), True)
+    out = kn.simulate_kernel(P, kn.writable(motion.record), kn.writable(motion.vertical), bool(record_history), True)
     return _result_from_kernel(out, block)

@@ -181,8 +181,8 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
         P = pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
                             overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
                             energy_bound=energy_bound, step_across_knots=step_across_knots)
-        thr, lo, n_sim, n_und = kn.threshold_kernel(P, motion.record, motion.vertical, values, grid.resolution,
-                                                    peak)
+        thr, lo, n_sim, n_und = kn.threshold_kernel(P, kn.writable(motion.record), kn.writable(motion.vertical),
+                                                    values, float(grid.resolution), float(peak))
     elif engine == "reference":
         if step_across_knots:
             raise ValueError("step_across_knots=True needs engine='fast', got engine='reference'")

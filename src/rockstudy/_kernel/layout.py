@@ -66,3 +66,10 @@ KernelResult = namedtuple("KernelResult", [
     "fracture_times",    # [s] spring L, spring R, damper L, damper R; NaN if intact
     "history",           # n × 5: t, θ, θ̇, κ, Ẍg (on request)
 ])
+
+
+def writable(a):
+    """``a`` itself when writable, else a copy: the compiled entry points are typed for writable
+    arrays (a read-only record, e.g. a frozen :class:`~rockstudy.noise.NoisyRecord`'s, would make
+    numba compile the whole engine a second time)."""
+    return a if a.flags.writeable else a.copy()
