@@ -21,7 +21,7 @@ from .anchorage import Anchorage
 from .block import BLOCK_PRESETS, Block
 from .control import Control
 from .excitation import excitation_duration
-from .noise import NOISE_DT, baseline_samples, level_key, noisy_record
+from .noise import NOISE_DT, baseline_samples, level_key, noisy_record, reading_from_dict
 from .simulate import simulate
 from .spectra import AmplitudeGrid, Scenario, convergence, frequency_grid
 from .utility import utility_index
@@ -46,12 +46,16 @@ def block_from_dict(spec: dict) -> Block:
 
 
 def scenario_from_dict(spec: dict) -> Scenario:
-    """A :class:`Scenario` from ``block``, ``anchorage``, ``control`` dicts and scalar settings."""
+    """A :class:`Scenario` from ``block``, ``anchorage``, ``control``, ``noise`` dicts and scalar settings.
+
+    ``noise`` is the noise reading (``step``, ``rescale``, ``level_means``, ``band``, ``span``;
+    :class:`rockstudy.noise.NoiseReading`); absent: today's default reading."""
     spec = dict(spec)
     block = block_from_dict(spec.pop("block"))
     anchorage = Anchorage(**spec.pop("anchorage", {}))
     control = Control(**spec.pop("control", {}))
-    return Scenario(block, anchorage, control, **spec)
+    noise = reading_from_dict(spec.pop("noise", None))
+    return Scenario(block, anchorage, control, noise=noise, **spec)
 
 
 def amplitude_grid(spec: dict) -> AmplitudeGrid:
@@ -122,7 +126,7 @@ def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_
                   n_records: int) -> xr.Dataset:
     """The noise realisations of one level: seeds, spawn keys, energy and PGA ratios, unit records.
 
-    Records are regenerated exactly by ``noisy_record(excitation, ω_p, level, k, seed, match)``
+    Records are regenerated exactly by ``noisy_record(excitation, ω_p, level, k, seed, reading)``
     with ``SeedSequence(seed, spawn_key=(level_key, k))``; the first ``n_records`` unit records
     at ``reference_frequency_ratio`` are stored with the baseline for Fig. 4.
     """
@@ -130,10 +134,10 @@ def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_
     level = sc.noise_level
 
     def record(f, k):
-        return noisy_record(sc.excitation, sc.omega(f), level, k, sc.seed, match=sc.match)
+        return noisy_record(sc.excitation, sc.omega(f), level, k, sc.seed, sc.noise)
 
     ratios = np.array([[(r.energy_ratio, r.pga_ratio) for r in (record(f, k) for f in freqs)] for k in ks])
-    base, dt = baseline_samples(sc.excitation, sc.omega(reference_frequency_ratio), NOISE_DT)
+    base, dt = baseline_samples(sc.excitation, sc.omega(reference_frequency_ratio), sc.noise.step)
     kept = ks[:n_records]
     recs = np.array([record(reference_frequency_ratio, k).values for k in kept]).reshape(len(kept), len(base))
     ratio = {"units": "1"}
@@ -156,10 +160,12 @@ def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_
                 "time": ("time", np.arange(len(base)) * dt, {"units": "s", "long_name": "time"})},
         attrs={"title": f"Noise realisations, level {level:g} (noise energy / baseline energy)", "paper": PAPER,
                "paper_section": "5 (Fig. 4)", "rockstudy_version": __version__, "noise_level": level,
-               "noise_seed": sc.seed, "noise_level_key": level_key(level), "noise_match": sc.match,
-               "noise_dt_s": dt, "excitation": sc.excitation, "reference_frequency_ratio": reference_frequency_ratio,
+               "noise_seed": sc.seed, "noise_level_key": level_key(level), **sc.noise.to_attrs(),
+               "excitation": sc.excitation, "reference_frequency_ratio": reference_frequency_ratio,
                "regenerate": "rockstudy.noise.noisy_record(excitation, frequency_ratio*block_p, noise_level, k, "
-                             "noise_seed, match=noise_match); SeedSequence(seed, spawn_key=(level_key, k))",
+                             "noise_seed, NoiseReading(step=noise_step_s, rescale=noise_rescale, "
+                             "level_means=noise_level_means, band=noise_band_hz or None, span=noise_span_s)); "
+                             "SeedSequence(seed, spawn_key=(level_key, k))",
                **sc.block.to_attrs()})
 
 
@@ -363,11 +369,16 @@ def check_study(config: dict) -> None:
                          f"amplitude ratio, above the amplitude_grid.stop {scan_top:g}")
     frequency_ratios(config["frequency_grid"])
     Anchorage(**config["anchorage"])
+    try:
+        reading_from_dict(config["noise"])
+    except ValueError as exc:
+        raise ValueError(f"noise: {exc}") from None
 
 
 def check_noise(noise: xr.Dataset, scenario: Scenario) -> None:
-    """The noise file and the scenario describe the same realisations (seed, level, match)."""
-    for attr, value in (("noise_seed", scenario.seed), ("noise_level", scenario.noise_level),
-                        ("noise_match", scenario.match), ("excitation", scenario.excitation)):
-        if noise.attrs[attr] != value:
-            raise ValueError(f"noise file has {attr}={noise.attrs[attr]!r}, the scenario {value!r}")
+    """The noise file and the scenario describe the same realisations (seed, level, reading)."""
+    expected = {"noise_seed": scenario.seed, "noise_level": scenario.noise_level,
+                "excitation": scenario.excitation, **scenario.noise.to_attrs()}
+    for attr, value in expected.items():
+        if noise.attrs.get(attr) != value:
+            raise ValueError(f"noise file has {attr}={noise.attrs.get(attr)!r}, the scenario {value!r}")

@@ -29,7 +29,7 @@ def scenario(strategy, level, ts=0.0, delay=0.0):
         "excitation": config["excitation"],
         "noise_level": LEVELS[level],
         "seed": config["seed"],
-        "match": config["match"],
+        "noise": config["noise"],
         "overturn_criterion": config["overturn_criterion"],
         "free_time": config["free_time"],
     }
