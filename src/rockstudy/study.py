@@ -92,9 +92,10 @@ def a_max0_ratio(ds: xr.Dataset, a_max0_g: float) -> float:
     return float(a_max0_g) / math.tan(float(ds.attrs["block_alpha"]))
 
 
-NOT_IN_SIMULATIONS = ("cli.py", "plotting.py", "reference.py", "study.py")
+NOT_IN_SIMULATIONS = ("cli.py", "plotting.py", "reference.py", "study.py", "readings.py", "claims.py",
+                      "calibration.py")
 """Modules the compiled spectra and histories do not run (the scipy reference engine, the CLI,
-figures, and this bookkeeping module, whose outputs have their own tests)."""
+figures, this bookkeeping module and the reproduction bookkeeping, whose outputs have their own tests)."""
 
 
 def source_fingerprint(only=None) -> str:
