@@ -43,10 +43,14 @@ localrules:
     figure_sampling,
     figure_delay,
     figure_maps,
+    claims,
+    readings_table,
+    figure_readings,
 
 
 rule all:
     input:
         FIGURES,
         TABLES,
+        CLAIMS,
     default_target: True

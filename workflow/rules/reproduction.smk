@@ -2,8 +2,17 @@
 # calibration, and the claims checklist of §5 and the Conclusions.
 REPRO = config["reproduction"]
 READINGS = REPRO["readings"]
-READING_SPECTRA = [f"{OUT}/reproduction/readings/spectra/{REPRO['strategy']}_{name}_{level}.nc"
-                   for name in READINGS for level in NOISY]
+STUDY_READING = study.reading_from_dict(config["noise"])
+
+
+def reading_spectrum_file(name, level):
+    """The study's own spectrum when the reading is the study's (no need to compute it twice)."""
+    if study.reading_from_dict(READINGS[name]) == STUDY_READING and REPRO["realisations"] == config["realisations"]:
+        return f"{OUT}/spectra/{REPRO['strategy']}_{level}.nc"
+    return f"{OUT}/reproduction/readings/spectra/{REPRO['strategy']}_{name}_{level}.nc"
+
+
+READING_SPECTRA = [reading_spectrum_file(name, level) for name in READINGS for level in NOISY]
 
 
 wildcard_constraints:
@@ -43,3 +52,90 @@ rule reading_spectrum:
 rule reading_spectra:
     input:
         READING_SPECTRA,
+
+
+CLAIMS = [f"{OUT}/reproduction/{name}" for name in ("claims.md", "claims.nc", "claims.csv", "table1_vs_paper.nc",
+                                                     "table1_vs_paper.csv")]
+CLAIMS_BOOKKEEPING = study.source_fingerprint(["claims.py", "study.py", "utility.py"])
+
+
+rule claims:
+    input:
+        table1=f"{OUT}/tables/table1.nc",
+        sampling=f"{OUT}/tables/timing_sampling.nc",
+        delay=f"{OUT}/tables/timing_delay.nc",
+        convergence=f"{OUT}/convergence/{config['convergence']['strategy']}_{config['convergence']['noise_level']}.nc",
+        spectra=spectrum_files([s for s in ("FS", "CS01", "CS02") if s in config["strategies"]], LEVELS),
+    output:
+        md=f"{OUT}/reproduction/claims.md",
+        nc=f"{OUT}/reproduction/claims.nc",
+        csv=report(f"{OUT}/reproduction/claims.csv", caption="../report/claims.rst", category="Reproduction"),
+        comparison_nc=f"{OUT}/reproduction/table1_vs_paper.nc",
+        comparison_csv=report(f"{OUT}/reproduction/table1_vs_paper.csv", caption="../report/table1_vs_paper.rst",
+                              category="Reproduction"),
+    log:
+        f"{OUT}/logs/reproduction/claims.log",
+    params:
+        bookkeeping=CLAIMS_BOOKKEEPING,
+        noise_levels=LEVELS,
+        a_max0=config["a_max0"],
+        reading=config["noise"],
+        anchorage=config["anchorage"],
+        realisations=config["realisations"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/claims.py"
+
+
+READINGS_TABLE = [f"{OUT}/reproduction/readings/readings.{e}" for e in ("nc", "csv", "md")]
+READINGS_FIGURE = [f"{OUT}/reproduction/readings/fig_readings.{e}" for e in ("png", "pdf")]
+
+
+rule readings_table:
+    input:
+        spectra=READING_SPECTRA,
+        reference=f"{OUT}/spectra/{REPRO['strategy']}_{FREE}.nc",
+    output:
+        nc=f"{OUT}/reproduction/readings/readings.nc",
+        csv=report(f"{OUT}/reproduction/readings/readings.csv", caption="../report/readings.rst",
+                   category="Reproduction"),
+        md=f"{OUT}/reproduction/readings/readings.md",
+    log:
+        f"{OUT}/logs/reproduction/readings_table.log",
+    params:
+        bookkeeping=study.source_fingerprint(["readings.py", "claims.py", "utility.py", "noise.py"]),
+        spectrum_keys=[(name, level) for name in READINGS for level in NOISY],
+        readings=READINGS,
+        levels={level: LEVELS[level] for level in NOISY},
+        a_max0=config["a_max0"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/readings_table.py"
+
+
+rule figure_readings:
+    input:
+        f"{OUT}/reproduction/readings/readings.nc",
+    output:
+        png=report(f"{OUT}/reproduction/readings/fig_readings.png", caption="../report/readings_figure.rst",
+                   category="Reproduction"),
+        pdf=f"{OUT}/reproduction/readings/fig_readings.pdf",
+    log:
+        f"{OUT}/logs/reproduction/figure_readings.log",
+    params:
+        plotting=PLOTTING,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/figure_readings.py"
+
+
+rule reproduction:
+    input:
+        READINGS_TABLE,
+        READINGS_FIGURE,
