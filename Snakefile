@@ -9,7 +9,7 @@
 #      figures; overturning_map and time_history feed their figures directly.
 from snakemake.utils import min_version, validate
 
-from rockstudy import study
+from rockstudy import calibration, study
 
 min_version("9.0")
 
@@ -46,6 +46,7 @@ localrules:
     claims,
     readings_table,
     figure_readings,
+    calibration_grid,
 
 
 rule all:

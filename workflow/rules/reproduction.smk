@@ -139,3 +139,129 @@ rule reproduction:
     input:
         READINGS_TABLE,
         READINGS_FIGURE,
+
+
+# --- the device calibration (a separate target: snakemake -j2 calibration) ------------------------
+CAL = config["calibration"]
+CAL_DESIGN = {"kappa_max": CAL["kappa_max"], "damping_ratio": CAL["damping_ratio"],
+              "ultimate_rotation": CAL["ultimate_rotation"], "kappa_min": CAL["kappa_min"]}
+CAL_DEVICES = calibration.CalibrationDesign(**CAL_DESIGN).devices()
+CAL_FS = [f"{OUT}/reproduction/calibration/coarse/FS_{level}.nc" for level in LEVELS]
+
+
+def calibration_base():
+    spec = scenario("FS", FREE)
+    return {k: v for k, v in spec.items() if k not in ("anchorage", "control", "noise_level")}
+
+
+rule calibration_fs:
+    output:
+        CAL_FS,
+    log:
+        f"{OUT}/logs/reproduction/calibration/fs.log",
+    benchmark:
+        f"{OUT}/benchmarks/reproduction/calibration/fs.tsv"
+    params:
+        scenarios=[scenario("FS", level) for level in LEVELS],
+        realisations=CAL["coarse_realisations"],
+        frequency_grid=CAL["coarse_frequency_grid"],
+        amplitude_grid=config["amplitude_grid"],
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=SIM_MEM_MB,
+        runtime=30,
+    script:
+        "../scripts/calibration_fs.py"
+
+
+rule calibration_device:
+    input:
+        fs=CAL_FS,
+    output:
+        f"{OUT}/reproduction/calibration/coarse/device{{device}}.nc",
+    log:
+        f"{OUT}/logs/reproduction/calibration/device{{device}}.log",
+    benchmark:
+        f"{OUT}/benchmarks/reproduction/calibration/device{{device}}.tsv"
+    wildcard_constraints:
+        device="[0-9]+",
+    params:
+        scenario=calibration_base(),
+        anchorage=lambda w: CAL_DEVICES[int(w.device)],
+        levels=LEVELS,
+        realisations=CAL["coarse_realisations"],
+        frequency_grid=CAL["coarse_frequency_grid"],
+        amplitude_grid=config["amplitude_grid"],
+        a_max0=config["a_max0"],
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=SIM_MEM_MB,
+        runtime=60,
+    script:
+        "../scripts/calibration_device.py"
+
+
+rule calibration_grid:
+    input:
+        [f"{OUT}/reproduction/calibration/coarse/device{i}.nc" for i in range(len(CAL_DEVICES))],
+    output:
+        nc=f"{OUT}/reproduction/calibration/grid.nc",
+        png=report(f"{OUT}/reproduction/calibration/fig_calibration.png", caption="../report/calibration.rst",
+                   category="Reproduction"),
+        pdf=f"{OUT}/reproduction/calibration/fig_calibration.pdf",
+    log:
+        f"{OUT}/logs/reproduction/calibration/grid.log",
+    params:
+        design=CAL_DESIGN,
+        reading=config["noise"],
+        bookkeeping=study.source_fingerprint(["calibration.py", "claims.py", "study.py"]),
+        plotting=PLOTTING,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/calibration_grid.py"
+
+
+rule calibration_refine:
+    input:
+        grid=f"{OUT}/reproduction/calibration/grid.nc",
+        fs=spectrum_files(["FS"], LEVELS),
+    output:
+        nc=f"{OUT}/reproduction/calibration/candidates.nc",
+        md=f"{OUT}/reproduction/calibration/calibration.md",
+    log:
+        f"{OUT}/logs/reproduction/calibration/refine.log",
+    benchmark:
+        f"{OUT}/benchmarks/reproduction/calibration/refine.tsv"
+    params:
+        scenario=calibration_base(),
+        candidates=CAL["candidates"],
+        levels=LEVELS,
+        realisations=config["realisations"],
+        frequency_grid=config["frequency_grid"],
+        amplitude_grid=config["amplitude_grid"],
+        a_max0=config["a_max0"],
+        reading=config["noise"],
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=SIM_MEM_MB,
+        runtime=30 * CAL["candidates"],
+    script:
+        "../scripts/calibration_refine.py"
+
+
+rule calibration:
+    input:
+        f"{OUT}/reproduction/calibration/grid.nc",
+        f"{OUT}/reproduction/calibration/candidates.nc",
+        f"{OUT}/reproduction/calibration/calibration.md",
