@@ -3,13 +3,19 @@
 REPRO = config["reproduction"]
 READINGS = REPRO["readings"]
 STUDY_READING = study.reading_from_dict(config["noise"])
+SAME_AS_STUDY = [name for name in READINGS if study.reading_from_dict(READINGS[name]) == STUDY_READING
+                 and REPRO["realisations"] == config["realisations"] and REPRO["strategy"] == "FS"]
 
 
 def reading_spectrum_file(name, level):
-    """The study's own spectrum when the reading is the study's (no need to compute it twice)."""
-    if study.reading_from_dict(READINGS[name]) == STUDY_READING and REPRO["realisations"] == config["realisations"]:
-        return f"{OUT}/spectra/{REPRO['strategy']}_{level}.nc"
     return f"{OUT}/reproduction/readings/spectra/{REPRO['strategy']}_{name}_{level}.nc"
+
+
+def fs_spectra_of_the_study():
+    """FS spectra of the study's reading: the readings study's when it has them (the same records), else the study's."""
+    if SAME_AS_STUDY:
+        return [reading_spectrum_file(SAME_AS_STUDY[0], level) for level in NOISY] + spectrum_files(["FS"], [FREE])
+    return spectrum_files(["FS"], LEVELS)
 
 
 READING_SPECTRA = [reading_spectrum_file(name, level) for name in READINGS for level in NOISY]
@@ -232,7 +238,7 @@ rule calibration_grid:
 rule calibration_refine:
     input:
         grid=f"{OUT}/reproduction/calibration/grid.nc",
-        fs=spectrum_files(["FS"], LEVELS),
+        fs=fs_spectra_of_the_study(),
     output:
         nc=f"{OUT}/reproduction/calibration/candidates.nc",
         md=f"{OUT}/reproduction/calibration/calibration.md",
