@@ -1,34 +1,5 @@
 # Reproducing the paper's numbers (issue 9): the readings study of the loose noise model, the device
 # calibration, and the claims checklist of §5 and the Conclusions.
-REPRO = config["reproduction"]
-READINGS = REPRO["readings"]
-STUDY_READING = study.reading_from_dict(config["noise"])
-SAME_AS_STUDY = [name for name in READINGS if study.reading_from_dict(READINGS[name]) == STUDY_READING
-                 and REPRO["realisations"] == config["realisations"] and REPRO["strategy"] == "FS"]
-
-
-def reading_spectrum_file(name, level):
-    return f"{OUT}/reproduction/readings/spectra/{REPRO['strategy']}_{name}_{level}.nc"
-
-
-def fs_spectra_of_the_study():
-    """FS spectra of the study's reading: the readings study's when it has them (the same records), else the study's."""
-    if SAME_AS_STUDY:
-        return [reading_spectrum_file(SAME_AS_STUDY[0], level) for level in NOISY] + spectrum_files(["FS"], [FREE])
-    return spectrum_files(["FS"], LEVELS)
-
-
-READING_SPECTRA = [reading_spectrum_file(name, level) for name in READINGS for level in NOISY]
-
-
-wildcard_constraints:
-    reading="[A-Za-z0-9_]+",
-
-
-def reading_scenario(wildcards):
-    spec = scenario(wildcards.strategy, wildcards.level)
-    spec["noise"] = dict(READINGS[wildcards.reading])  # missing keys: the library defaults
-    return spec
 
 
 rule reading_spectrum:
@@ -60,11 +31,6 @@ rule reading_spectra:
         READING_SPECTRA,
 
 
-CLAIMS = [f"{OUT}/reproduction/{name}" for name in ("claims.md", "claims.nc", "claims.csv", "table1_vs_paper.nc",
-                                                     "table1_vs_paper.csv")]
-CLAIMS_BOOKKEEPING = study.source_fingerprint(["claims.py", "study.py", "utility.py"])
-
-
 rule claims:
     input:
         table1=f"{OUT}/tables/table1.nc",
@@ -93,10 +59,6 @@ rule claims:
     threads: 1
     script:
         "../scripts/claims.py"
-
-
-READINGS_TABLE = [f"{OUT}/reproduction/readings/readings.{e}" for e in ("nc", "csv", "md")]
-READINGS_FIGURE = [f"{OUT}/reproduction/readings/fig_readings.{e}" for e in ("png", "pdf")]
 
 
 rule readings_table:
@@ -148,17 +110,6 @@ rule reproduction:
 
 
 # --- the device calibration (a separate target: snakemake -j2 calibration) ------------------------
-CAL = config["calibration"]
-CAL_DESIGN = {"kappa_max": CAL["kappa_max"], "damping_ratio": CAL["damping_ratio"],
-              "ultimate_rotation": CAL["ultimate_rotation"], "kappa_min": CAL["kappa_min"]}
-CAL_DEVICES = calibration.CalibrationDesign(**CAL_DESIGN).devices()
-CAL_FS = [f"{OUT}/reproduction/calibration/coarse/FS_{level}.nc" for level in LEVELS]
-
-
-def calibration_base():
-    spec = scenario("FS", FREE)
-    return {k: v for k, v in spec.items() if k not in ("anchorage", "control", "noise_level")}
-
 
 rule calibration_fs:
     output:
