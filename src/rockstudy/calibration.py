@@ -49,7 +49,8 @@ class CalibrationDesign:
         for name in ("kappa_max", "damping_ratio", "ultimate_rotation"):
             values = tuple(getattr(self, name))
             if not values or len(set(values)) != len(values):
-                raise ValueError(f"CalibrationDesign.{name} must be a non-empty list of distinct values, got {values!r}")
+                raise ValueError(f"CalibrationDesign.{name} must be a non-empty list of distinct values, "
+                                 f"got {values!r}")
             object.__setattr__(self, name, values)
         for k in self.kappa_max:
             if not (k >= self.kappa_min and math.isfinite(k)):

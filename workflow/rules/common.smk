@@ -93,7 +93,7 @@ def reading_spectrum_file(name, level):
 
 
 def fs_spectra_of_the_study():
-    """FS spectra of the study's reading: the readings study's if it has that reading (same records), else the study's."""
+    """FS spectra of the study's reading: the readings study's if it has that reading, else the study's."""
     if SAME_AS_STUDY:
         return [reading_spectrum_file(SAME_AS_STUDY[0], level) for level in NOISY] + spectrum_files(["FS"], [FREE])
     return spectrum_files(["FS"], LEVELS)
