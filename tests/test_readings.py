@@ -112,3 +112,26 @@ def test_design_devices_order():
     assert devices[0] == {"kappa_max": 1.0, "kappa_min": 0.0, "damping_ratio": 0.0, "spring_ultimate_rotation": None,
                           "damper_ultimate_rotation": None}
     assert devices[-1]["spring_ultimate_rotation"] == 0.5 and devices[-1]["kappa_max"] == 2.0
+
+
+def test_check_study_names_bad_readings_and_designs():
+    import copy
+    from pathlib import Path
+
+    import yaml
+
+    from rockstudy import study
+    config = yaml.safe_load((Path(__file__).parents[1] / "config.yaml").read_text())
+    study.check_study(config)
+    bad = copy.deepcopy(config)
+    bad["reproduction"]["readings"]["wide"] = {"step": 0.02, "band": 30.0}  # above the 25 Hz Nyquist
+    with pytest.raises(ValueError, match="reproduction.readings.wide.*Nyquist"):
+        study.check_study(bad)
+    bad = copy.deepcopy(config)
+    bad["calibration"]["kappa_min"] = 1.0
+    with pytest.raises(ValueError, match="calibration: CalibrationDesign.kappa_max"):
+        study.check_study(bad)
+    bad = copy.deepcopy(config)
+    bad["noise"]["band"] = 300.0
+    with pytest.raises(ValueError, match="noise: NoiseReading.band"):
+        study.check_study(bad)

@@ -374,6 +374,17 @@ def check_study(config: dict) -> None:
         reading_from_dict(config["noise"])
     except ValueError as exc:
         raise ValueError(f"noise: {exc}") from None
+    for name, spec in config["reproduction"]["readings"].items():
+        try:
+            reading_from_dict(spec)
+        except ValueError as exc:
+            raise ValueError(f"reproduction.readings.{name}: {exc}") from None
+    from .calibration import CalibrationDesign
+    cal = config["calibration"]
+    try:
+        CalibrationDesign(cal["kappa_max"], cal["damping_ratio"], cal["ultimate_rotation"], cal["kappa_min"])
+    except ValueError as exc:
+        raise ValueError(f"calibration: {exc}") from None
 
 
 def check_noise(noise: xr.Dataset, scenario: Scenario) -> None:
