@@ -4,6 +4,7 @@
 #   snakemake -j2                                   # the paper's study (config.yaml)
 #   snakemake -j2 --configfile .test/config.yaml --replace-workflow-config   # tiny study
 #   snakemake --report report.html                  # figures and tables with captions
+#   snakemake -j2 probability | fragility           # beyond the paper (config `beyond:`; fragility is in `all`)
 #
 # DAG: noise -> spectrum_chunk -> gather_{spectrum,sampling,delay} -> convergence, tables,
 #      figures; overturning_map and time_history feed their figures directly.
@@ -25,6 +26,7 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/spectra.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/reproduction.smk"
+include: "workflow/rules/beyond.smk"
 
 
 localrules:
@@ -54,4 +56,5 @@ rule all:
         FIGURES,
         TABLES,
         CLAIMS,
+        BEYOND_IN_ALL,
     default_target: True

@@ -150,6 +150,13 @@ def build_parser() -> argparse.ArgumentParser:
     ps.add_argument("--amplitude-ratio", type=_pos("--amplitude-ratio"), default=2.0, help="a_p/(g tan alpha) [-]")
     ps.add_argument("--output", help="write the time history to this netCDF file")
     ps.add_argument("--plot", help="draw theta, theta_dot, K and the ground motion to this PNG")
+    ps.add_argument("--record", help="ground motion from a record file instead of --excitation: PEER NGA .AT2 "
+                    "(in g) or two columns time [s], acceleration (--excitation, --frequency-ratio and "
+                    "--amplitude-ratio are then not used)")
+    ps.add_argument("--record-unit", help="acceleration unit of a two-column record: "
+                    "g, m/s^2, cm/s^2 (gal) or mm/s^2 (default: the unit named in its header line)")
+    ps.add_argument("--record-scale", type=_pos("--record-scale"), default=1.0,
+                    help="factor multiplying the record (default 1) [-]")
     pt = sub.add_parser("threshold", help="minimum overturning amplitude ratio at one frequency (JSON)")
     _common(pt)
     _grid_args(pt)
@@ -173,6 +180,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _cmd_simulate(args, parser):
+    if args.record is not None:
+        return _cmd_simulate_record(args, parser)
+    if args.record_unit is not None or args.record_scale != 1.0:
+        parser.error("--record-unit and --record-scale need --record FILE")
     from .simulate import simulate
     scenario = _scenario(args, parser)
     motion, rec = scenario.motion(args.frequency_ratio, args.amplitude_ratio, args.realisation)
@@ -195,6 +206,54 @@ def _cmd_simulate(args, parser):
         if args.plot:
             from .plotting import figure_control_history, save_figure
             save_figure(figure_control_history(ds, "2-3 style"), args.plot)
+            out["plot"] = args.plot
+    print(json.dumps(out, indent=2))
+
+
+def _cmd_simulate_record(args, parser):
+    """``simulate --record FILE``: one run under a recorded (or synthetic) ground motion."""
+    from .records import read_record, unit_factor
+    from .simulate import simulate
+    if args.noise_level != 0:
+        parser.error("argument --noise-level: noise contaminates the analytic excitations; not with --record")
+    if args.record_unit is not None:
+        try:
+            unit_factor(args.record_unit)
+        except ValueError as exc:
+            parser.error(f"argument --record-unit: {exc}")
+    try:
+        record = read_record(args.record, args.record_unit)
+    except (OSError, ValueError) as exc:
+        parser.error(f"argument --record: {exc}")
+    scenario = _scenario(args, parser)
+    motion = record.motion(args.record_scale)
+    res = simulate(scenario.block, scenario.anchorage, scenario.control, motion, engine=args.engine,
+                   overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
+                   record_history=bool(args.output or args.plot))
+    pga_ratio = motion.peak() / scenario.block.uplift_acceleration
+    out = res.summary()
+    out.update(strategy=args.strategy, excitation="record", record=args.record, record_name=record.name,
+               record_unit=record.unit, record_scale=args.record_scale, record_dt_s=record.dt,
+               record_npts=int(record.acceleration.size), record_duration_s=record.duration,
+               pga_m_s2=motion.peak(), pga_uplift_ratio=pga_ratio, sampling_time_s=args.sampling_time,
+               delay_s=args.delay)
+    if args.output or args.plot:
+        from .study import history_dataset
+        ds = history_dataset(res, scenario, motion, math.nan, pga_ratio, 0, dt=min(record.dt, 0.0025))
+        ds.attrs.update(record.to_attrs(), excitation="record", record_scale=args.record_scale,
+                        excitation_end_s=record.duration,
+                        amplitude_ratio_note="PGA/(g tan(alpha)) of the scaled record",
+                        title=f"Time history, {args.strategy}, record {record.name}, scale {args.record_scale:g}")
+        if args.output:
+            from .io import write_netcdf
+            write_netcdf(ds, args.output)
+            out["output"] = args.output
+        if args.plot:
+            from .plotting import figure_control_history, save_figure
+            fig = figure_control_history(ds, "record")
+            fig.axes[0].set_title(f"{args.strategy}, record {record.name} x {args.record_scale:g}, "
+                                  f"PGA/(g tan(alpha)) = {pga_ratio:.3g} ({res.status})", fontsize=10)
+            save_figure(fig, args.plot)
             out["plot"] = args.plot
     print(json.dumps(out, indent=2))
 

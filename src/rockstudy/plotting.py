@@ -319,4 +319,98 @@ def figure_calibration(grid, best: dict | None = None):
             ax.set_ylabel(r"$\xi$ [-]")
             paper = float(grid["paper"].sel(strategy=s, reference="fs_same_noise", noise_level=level))
             ax.set_title(f"{s} vs FS, {level} (paper {paper:+.1f} %)", fontsize=9)
+# --- beyond the paper: probability of overturning, record fragility ----------------------------------
+STRATEGY_COLOURS = {"FS": "k", "PASSIVE": "tab:green", "CS01": "tab:blue", "CS02": "tab:red"}
+INTENSITY_LABELS = {"pga_ratio": r"PGA$/(g\,\tan\alpha)$ [-]", "pgv_ratio": r"PGV$\cdot p/(g\,\tan\alpha)$ [-]"}
+
+
+def plot_probability(ax, ds, levels=(0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0)):
+    """P(overturn) over the noise realisations at every (ω_p/p, a_p/(g·tanα)) point, with the
+    P = 0.5 contour; returns the mesh (for a colour bar)."""
+    p = ds["probability"].transpose("amplitude_ratio", "frequency_ratio")
+    x, y = ds["frequency_ratio"].values, ds["amplitude_ratio"].values
+    mesh = ax.pcolormesh(x, y, p.values, cmap="magma_r", vmin=0.0, vmax=1.0, shading="nearest", rasterized=True)
+    if float(p.min()) < 0.5 < float(p.max()):
+        ax.contour(x, y, p.values, levels=[0.5], colors="tab:cyan", linewidths=1.0)
+    return mesh
+
+
+def plot_fragility(ax, ds, strategy: str, **kwargs):
+    """Fraction of the records that overturn the block (markers) and the fitted lognormal (line)."""
+    d = ds.sel(strategy=strategy)
+    colour = kwargs.pop("color", STRATEGY_COLOURS.get(strategy, None))
+    x = ds["intensity"].values
+    dots = ax.plot(x, d["fraction"].values, ls="none", marker="o", ms=3, color=colour, alpha=0.7)[0]
+    median, beta = float(d["fragility_median"]), float(d["fragility_dispersion"])
+    fine = np.linspace(x.min(), x.max(), 400)
+    if np.isfinite(median) and beta > 0:
+        from scipy.stats import norm
+        curve = norm.cdf(np.log(fine / median) / beta)
+    else:
+        curve = np.where(fine >= median, 1.0, 0.0) if np.isfinite(median) else np.full_like(fine, np.nan)
+    line = ax.plot(fine, curve, color=colour, label=f"{strategy}: θ = {median:.2f}, β = {beta:.2f}", **kwargs)[0]
+    ax.plot([median], [0.5], marker="|", ms=10, color=colour)
+    return dots, line
+
+
+def plot_median_shift(ax, ds):
+    """Fragility median over FS's, θ/θ_FS, with the bootstrap 95 % interval over records."""
+    strategies = list(ds["strategy"].values)
+    ratio = ds["median_ratio"].values
+    low, high = ds["median_ratio_low"].values, ds["median_ratio_high"].values
+    x = np.arange(len(strategies))
+    bars = ax.bar(x, ratio, color=[STRATEGY_COLOURS.get(s, "0.5") for s in strategies], alpha=0.75)
+    ax.errorbar(x, ratio, yerr=[ratio - low, high - ratio], fmt="none", ecolor="0.2", capsize=4)
+    ax.axhline(1.0, color="0.3", lw=0.8)
+    ax.set_xticks(x, strategies)
+    for xi, r, top in zip(x, ratio, np.where(np.isfinite(high), high, ratio)):
+        ax.annotate(f"{100 * (r - 1):+.0f} %", (xi, top), xytext=(0, 3), textcoords="offset points", ha="center",
+                    va="bottom", fontsize=8)
+    ax.set_ylim(0, 1.12 * np.nanmax(np.where(np.isfinite(high), high, ratio)))
+    ax.set_ylabel(r"$\theta/\theta_{FS}$ [-]")
+    return bars
+
+
+def figure_probability(surfaces, a_max0: float):
+    """P(overturn) surfaces: one row per noise level, one column per strategy, lower envelope on top."""
+    levels = sorted({float(ds["noise_level"]) for ds in surfaces})
+    strategies = list(dict.fromkeys(str(ds["strategy"].values) for ds in surfaces))
+    fig, axes = plt.subplots(len(levels), len(strategies), figsize=(4.2 * len(strategies), 0.6 + 3.8 * len(levels)),
+                             sharex=True, sharey=True, squeeze=False)
+    mesh = None
+    for ds in surfaces:
+        ax = axes[levels.index(float(ds["noise_level"])), strategies.index(str(ds["strategy"].values))]
+        mesh = plot_probability(ax, ds)
+        plot_threshold(ax, ds["threshold"], mark_above=False, color="#00c000", lw=1.2, ls="--",
+                       label=r"$a_{min,OVER}$ (lowest of N)")
+        plot_a_max0(ax, a_max0)
+        spectrum_axes(ax, f"{ds['strategy'].item()}, {_level_label(float(ds['noise_level']))}, "
+                          f"N = {int(ds['n_realisations'])}")
+        ax.label_outer()
+    from matplotlib.lines import Line2D
+    handles, _ = axes.flat[0].get_legend_handles_labels()
+    handles.append(Line2D([], [], color="tab:cyan", lw=1.0, label="P = 0.5"))
+    axes.flat[0].legend(handles=handles, fontsize=7, loc="upper left")
+    fig.tight_layout(rect=(0, 0, 0.93, 1))
+    cax = fig.add_axes((0.94, 0.15, 0.012, 0.7))
+    fig.colorbar(mesh, cax=cax, label="P(overturn) over the realisations [-]")
+    return fig
+
+
+def figure_fragility(ds):
+    """Fragility curves of each strategy over a record suite, and the median shift over FS."""
+    fig, (ax, axr) = plt.subplots(1, 2, figsize=(10, 4.2), width_ratios=(2.2, 1))
+    for s in ds["strategy"].values:
+        plot_fragility(ax, ds, str(s))
+    measure = ds.attrs["intensity_measure"]
+    ax.set_xlabel(INTENSITY_LABELS.get(measure, f"{ds.attrs['intensity_measure_definition']} [-]"))
+    ax.set_ylabel("fraction of records that overturn the block [-]")
+    ax.set_ylim(-0.02, 1.02)
+    ax.grid(True, lw=0.3, alpha=0.5)
+    ax.legend(fontsize=8, loc="lower right")
+    ax.set_title(f"Fragility over {ds.attrs['n_records']} records (dots) and lognormal MLE (lines)", fontsize=10)
+    plot_median_shift(axr, ds)
+    axr.set_title(f"median over FS (bootstrap 95 %, {ds.attrs['n_bootstrap']} draws)", fontsize=9)
+    axr.grid(True, axis="y", lw=0.3, alpha=0.5)
+    fig.tight_layout()
     return fig

@@ -1,0 +1,54 @@
+"""The optional `beyond:` section of the workflow: validated on load, targets in the DAG."""
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+pytestmark = pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake is not installed")
+
+
+def dry_run(tmp_path, config, *targets):
+    path = tmp_path / "config.yaml"
+    path.write_text(yaml.safe_dump(config))
+    cmd = ["snakemake", "--snakefile", str(ROOT / "Snakefile"), "--directory", str(tmp_path), "-n",
+           "--configfile", str(path), "--replace-workflow-config", *targets]
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+
+
+def tiny_with_beyond():
+    config = yaml.safe_load((ROOT / ".test" / "config.yaml").read_text())
+    config["beyond"] = yaml.safe_load((ROOT / "config.yaml").read_text())["beyond"]
+    return config
+
+
+def test_targets_are_in_the_dag(tmp_path):
+    res = dry_run(tmp_path, tiny_with_beyond(), "probability", "fragility")
+    assert res.returncode == 0, res.stderr + res.stdout
+    for rule in ("synthetic_suite", "fragility_stripes", "probability_surface", "figure_probability"):
+        assert rule in res.stdout
+
+
+def test_user_record_files_replace_the_synthetic_suite(tmp_path):
+    config = tiny_with_beyond()
+    record = tmp_path / "quake.csv"
+    record.write_text("time [s], acceleration [g]\n0, 0\n0.01, 0.1\n")
+    config["beyond"]["fragility"]["records"] = [{"path": str(record)}]
+    res = dry_run(tmp_path, config, "fragility")
+    assert res.returncode == 0, res.stderr + res.stdout
+    assert "fragility_stripes" in res.stdout and "synthetic_suite" not in res.stdout
+
+
+@pytest.mark.parametrize("change, key", [
+    (lambda b: b["fragility"].update(strategies=["CS01"]), "beyond.fragility.strategies"),
+    (lambda b: b["probability"].update(noise_levels=["R999"]), "beyond.probability.noise_levels"),
+    (lambda b: b["fragility"].update(intensity_measure="sa"), "intensity_measure"),
+    (lambda b: b["fragility"].update(records=[{"path": "x.csv", "unit": "furlong"}]), "records"),
+])
+def test_a_bad_beyond_section_stops_before_any_job(tmp_path, change, key):
+    config = tiny_with_beyond()
+    change(config["beyond"])
+    res = dry_run(tmp_path, config, "fragility")
+    assert res.returncode != 0 and key in res.stderr + res.stdout

@@ -1,0 +1,6 @@
+"""Fragility curves over the record suite and the median shift of each device over FS."""
+from rockstudy import io, plotting, study
+
+study.log_to(snakemake.log[0])
+plotting.save_figure(plotting.figure_fragility(io.read_netcdf(snakemake.input[0])), snakemake.output.png,
+                     snakemake.output.pdf)

@@ -1,0 +1,13 @@
+"""The synthetic record suite: one PEER .AT2 file per record and a netCDF file with the model parameters."""
+from rockstudy import io, study
+from rockstudy.records import write_at2
+from rockstudy.synthetic import ranges_from_dict, suite_dataset, synthetic_suite
+
+study.log_to(snakemake.log[0])
+spec = snakemake.params.synthetic
+ranges = ranges_from_dict(spec)
+suite = synthetic_suite(spec["n_records"], spec["seed"], ranges)
+for (record, _), path in zip(suite, snakemake.output.records):
+    write_at2(record, path, title=f"rockstudy synthetic record (Kanai-Tajimi/Clough-Penzien noise, Saragoni-Hart "
+                                  f"envelope), seed {spec['seed']}")
+io.write_netcdf(suite_dataset(suite, spec["seed"], ranges), snakemake.output.nc)
