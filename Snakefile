@@ -49,6 +49,7 @@ localrules:
     readings_table,
     figure_readings,
     calibration_grid,
+    calibration_refine,
 
 
 rule all:

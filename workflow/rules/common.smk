@@ -118,6 +118,8 @@ CAL_DESIGN = {"kappa_max": CAL["kappa_max"], "damping_ratio": CAL["damping_ratio
               "ultimate_rotation": CAL["ultimate_rotation"], "kappa_min": CAL["kappa_min"]}
 CAL_DEVICES = calibration.CalibrationDesign(**CAL_DESIGN).devices()
 CAL_FS = [f"{OUT}/reproduction/calibration/coarse/FS_{level}.nc" for level in LEVELS]
+CAL_REFINE = [f"{OUT}/reproduction/calibration/refine/c{rank}_{s}_{level}.nc"
+              for rank in range(CAL["candidates"]) for s in ("CS01", "CS02") for level in LEVELS]
 
 
 def calibration_base():

@@ -186,33 +186,57 @@ rule calibration_grid:
         "../scripts/calibration_grid.py"
 
 
-rule calibration_refine:
+rule calibration_refine_spectrum:
     input:
         grid=f"{OUT}/reproduction/calibration/grid.nc",
-        fs=fs_spectra_of_the_study(),
     output:
-        nc=f"{OUT}/reproduction/calibration/candidates.nc",
-        md=f"{OUT}/reproduction/calibration/calibration.md",
+        f"{OUT}/reproduction/calibration/refine/c{{rank}}_{{strategy}}_{{level}}.nc",
     log:
-        f"{OUT}/logs/reproduction/calibration/refine.log",
+        f"{OUT}/logs/reproduction/calibration/refine_c{{rank}}_{{strategy}}_{{level}}.log",
     benchmark:
-        f"{OUT}/benchmarks/reproduction/calibration/refine.tsv"
+        f"{OUT}/benchmarks/reproduction/calibration/refine_c{{rank}}_{{strategy}}_{{level}}.tsv"
+    wildcard_constraints:
+        rank="[0-9]+",
     params:
         scenario=calibration_base(),
-        candidates=CAL["candidates"],
-        levels=LEVELS,
+        rank=lambda w: int(w.rank),
+        strategy=lambda w: w.strategy,
+        level=lambda w: w.level,
+        noise_level=lambda w: LEVELS[w.level],
         realisations=config["realisations"],
         frequency_grid=config["frequency_grid"],
         amplitude_grid=config["amplitude_grid"],
-        a_max0=config["a_max0"],
-        reading=config["noise"],
         library=LIBRARY,
     conda:
         "../envs/rockstudy.yaml"
     threads: 1
     resources:
         mem_mb=SIM_MEM_MB,
-        runtime=30 * CAL["candidates"],
+        runtime=CHUNK_RUNTIME * max(1, -(-config["realisations"] // config["realisations_per_job"])),
+    script:
+        "../scripts/calibration_refine_spectrum.py"
+
+
+rule calibration_refine:
+    input:
+        grid=f"{OUT}/reproduction/calibration/grid.nc",
+        fs=fs_spectra_of_the_study(),
+        spectra=CAL_REFINE,
+    output:
+        nc=f"{OUT}/reproduction/calibration/candidates.nc",
+        md=f"{OUT}/reproduction/calibration/calibration.md",
+    log:
+        f"{OUT}/logs/reproduction/calibration/refine.log",
+    params:
+        block=config["block"],
+        candidates=CAL["candidates"],
+        levels=LEVELS,
+        a_max0=config["a_max0"],
+        reading=config["noise"],
+        bookkeeping=study.source_fingerprint(["calibration.py", "claims.py", "study.py"]),
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
     script:
         "../scripts/calibration_refine.py"
 
