@@ -247,12 +247,42 @@ def device_spectra(scenario_spec: dict, anchorage: dict, strategies, levels: dic
 
 
 def device_table(fs_spectra, device_spectra_list, levels: dict, a_max0_g: float) -> xr.Dataset:
-    """Table 1 (FS, CS01, CS02) of one device from its spectra and the FS spectra on the same grid."""
-    from .study import table1
+    """Table 1 (FS, CS01, CS02) of one device from its spectra and the FS spectra on the same grid.
+
+    A J_OS that Eq. 21 leaves undefined (N* = 0: neither spectrum overturns below a_max,0 at any
+    frequency, e.g. a stiff device with and without noise) is NaN; such a device gets no score.
+    """
+    from .study import noise_free_level
+    from .utility import utility_index
     missing = [lv for lv in PAPER_LEVELS if lv not in levels]
     if missing:
         raise ValueError(f"noise_levels: the calibration needs the paper's levels {PAPER_LEVELS}, missing {missing}")
+    spectra = list(fs_spectra) + list(device_spectra_list)
+
+    def find(strategy, value):
+        for ds in spectra:
+            if ds["strategy"].item() == strategy and math.isclose(float(ds["noise_level"]), value, abs_tol=1e-12):
+                return ds
+        raise KeyError(f"no {strategy} spectrum at noise level {value}")
+
+    free = levels[noise_free_level(levels)]
+    ratio = float(a_max0_g) / math.tan(float(spectra[0].attrs["block_alpha"]))
     strategies = ["FS"] + sorted({ds["strategy"].item() for ds in device_spectra_list})
-    table = table1(list(fs_spectra) + list(device_spectra_list), strategies, levels, a_max0_g)
+    j = np.full((2, len(strategies), len(PAPER_LEVELS)), np.nan)
+    for si, s in enumerate(strategies):
+        for li, lv in enumerate(PAPER_LEVELS):
+            system = find(s, levels[lv])
+            refs = [find(s, free), None if s == "FS" else find("FS", levels[lv])]
+            for ri, ref in enumerate(refs):
+                if ref is None:
+                    continue
+                try:
+                    j[ri, si, li] = utility_index(system["threshold"].values, ref["threshold"].values, ratio)[0]
+                except ValueError:  # N* = 0: J_OS undefined
+                    j[ri, si, li] = math.nan
+    table = xr.Dataset({"j_os": (("reference", "strategy", "noise_level"), j, {"units": "percent"})},
+                       coords={"reference": list(REFERENCES), "strategy": strategies,
+                               "noise_level": list(PAPER_LEVELS)},
+                       attrs={"a_max0_g": float(a_max0_g), "rockstudy_version": __version__})
     table.attrs["compute_time_s"] = float(sum(ds.attrs.get("compute_time_s", 0.0) for ds in device_spectra_list))
     return table
