@@ -306,7 +306,8 @@ def figure_calibration(grid, best: dict | None = None):
     for i, s in enumerate(strategies):
         for j, level in enumerate(levels):
             ax = axes[i, j]
-            z = grid["j_os"].sel(strategy=s, reference="fs_same_noise", noise_level=level).values
+            z = grid["j_os"].sel(strategy=s, reference="fs_same_noise", noise_level=level).isel(
+                ultimate_rotation=0).values  # the first theta_u of the design (alpha by default)
             mesh = ax.pcolormesh(kx, xi, z.T, shading="nearest", cmap="viridis")
             cs = ax.contour(kx, xi, z.T, levels=[float(grid["paper"].sel(strategy=s, reference="fs_same_noise",
                                                                          noise_level=level))],
@@ -319,6 +320,9 @@ def figure_calibration(grid, best: dict | None = None):
             ax.set_ylabel(r"$\xi$ [-]")
             paper = float(grid["paper"].sel(strategy=s, reference="fs_same_noise", noise_level=level))
             ax.set_title(f"{s} vs FS, {level} (paper {paper:+.1f} %)", fontsize=9)
+    return fig
+
+
 # --- beyond the paper: probability of overturning, record fragility ----------------------------------
 STRATEGY_COLOURS = {"FS": "k", "PASSIVE": "tab:green", "CS01": "tab:blue", "CS02": "tab:red"}
 INTENSITY_LABELS = {"pga_ratio": r"PGA$/(g\,\tan\alpha)$ [-]", "pgv_ratio": r"PGV$\cdot p/(g\,\tan\alpha)$ [-]"}
