@@ -1,9 +1,16 @@
-"""Speed of the engines and of spectra (issues 2 and 3). Prints figures; asserts nothing.
+"""Speed of the engines and of spectra (issues 2, 3 and 11). Prints figures; asserts nothing.
 
-    python benchmarks/bench_engines.py [--quick]
+    python benchmarks/bench_engines.py [--quick] [--skip-reference]
 
-Single-core figures: numba is limited to one thread. Medians of repeats are reported;
-the machine is shared, so compare ratios measured in the same run.
+Single-core figures: numba is limited to one thread. Medians of repeats (CPU time) are reported;
+the machine is shared, so compare ratios measured in the same run. Each shortcut of issue 11 is
+measured switched off ("old") and on ("new") side by side:
+
+* ``energy bound``: outcome runs (threshold scans, maps) end once the block provably cannot
+  overturn any more (docs/model.md). Histories and ``simulate()`` never use it.
+
+"simulated seconds" are those of the full run (to rest or the time limit), so that the rate of an
+outcome run that stops early counts the motion it no longer needs to integrate.
 """
 from __future__ import annotations
 
@@ -12,9 +19,11 @@ import statistics
 import time
 
 import numba
+import numpy as np
 
 from rockstudy import BLOCK_PRESETS, Anchorage, Control
-from rockstudy.simulate import simulate
+from rockstudy import _kernel as kn
+from rockstudy.simulate import pack_parameters, simulate
 from rockstudy.spectra import AmplitudeGrid, Scenario, frequency_grid, spectrum, threshold
 
 BLOCK = BLOCK_PRESETS["BLC06"]
@@ -37,41 +46,68 @@ def median_time(fn, repeats):
     return statistics.median(times)
 
 
-def bench_engines(repeats_fast, repeats_ref):
-    print("engine comparison (CPU time per simulation, median)")
-    print(f"{'case':44s} {'fast [ms]':>10s} {'ref [ms]':>10s} {'ratio':>8s} {'sim s/CPU s':>12s}")
-    ratios, rates = [], []
+def bench_engines(repeats_fast, repeats_ref, reference=True):
+    print("engine comparison (CPU time per simulation, median); outcome runs with the energy bound off / on")
+    print(f"{'case':44s} {'fast [ms]':>10s} {'ref [ms]':>10s} {'ratio':>7s} {'sim s/CPU s':>12s} "
+          f"{'outcome old/new [ms]':>21s} {'sim s/CPU s old/new':>20s}")
+    ratios, rates, rates_old, rates_new = [], [], [], []
     for strategy, exc, fr, ar, noise, ts in CASES:
         sc = Scenario(BLOCK, Anchorage(), Control(strategy, sampling_time=ts), excitation=exc, noise_level=noise)
         motion, _ = sc.motion(fr, ar, 0)
         res = simulate(sc.block, sc.anchorage, sc.control, motion)
-        tf = median_time(lambda: simulate(sc.block, sc.anchorage, sc.control, motion), repeats_fast)
-        tr = median_time(lambda: simulate(sc.block, sc.anchorage, sc.control, motion, engine="reference"), repeats_ref)
-        ratios.append(tr / tf)
+        tf = median_time(lambda sc=sc, motion=motion: simulate(sc.block, sc.anchorage, sc.control, motion),
+                         repeats_fast)
+        tr = float("nan")
+        if reference:
+            tr = median_time(lambda sc=sc, motion=motion: simulate(sc.block, sc.anchorage, sc.control, motion,
+                                                                   engine="reference"), repeats_ref)
+            ratios.append(tr / tf)
         rates.append(res.end_time / tf)
+        outcome = {}
+        for bound in (False, True):
+            P = pack_parameters(sc.block, sc.anchorage, sc.control, motion, energy_bound=bound)
+            kn.simulate_kernel(P, motion.record, motion.vertical, False, False)
+            outcome[bound] = median_time(
+                lambda P=P, motion=motion: kn.simulate_kernel(P, motion.record, motion.vertical, False, False),
+                repeats_fast)
+        rates_old.append(res.end_time / outcome[False])
+        rates_new.append(res.end_time / outcome[True])
         label = f"{strategy} {exc} w/p={fr} a={ar} r={noise} Ts={ts}"
-        print(f"{label:44s} {tf*1e3:10.3f} {tr*1e3:10.1f} {tr/tf:8.0f} {res.end_time/tf:12.0f}")
-    print(f"median speed-up fast/reference: {statistics.median(ratios):.0f}x (target >= 300x)")
-    print(f"median simulated seconds per CPU second (fast): {statistics.median(rates):.0f} (target >= 10000)")
+        print(f"{label:44s} {tf*1e3:10.3f} {tr*1e3:10.1f} {tr/tf:7.0f} {res.end_time/tf:12.0f} "
+              f"{outcome[False]*1e3:10.3f}/{outcome[True]*1e3:<10.3f} {rates_old[-1]:9.0f}/{rates_new[-1]:<10.0f}")
+    if ratios:
+        print(f"median speed-up fast/reference: {statistics.median(ratios):.0f}x (target >= 300x)")
+    print(f"median simulated seconds per CPU second (fast, simulate()): {statistics.median(rates):.0f}")
+    print("median simulated seconds per CPU second (outcome runs): energy bound off "
+          f"{statistics.median(rates_old):.0f}, on {statistics.median(rates_new):.0f} (target >= 20000)")
 
 
 def bench_spectra(n_realisations):
     grid = AmplitudeGrid()
     freqs = frequency_grid()
     sc = Scenario(BLOCK, Anchorage(), Control("CS01"))
-    spectrum(sc, freqs[:2], grid=grid)  # compile
-    t0 = time.perf_counter()
-    ds = spectrum(sc, freqs, grid=grid)
-    t = time.perf_counter() - t0
-    n = int(ds.n_simulations.sum())
-    print(f"noise-free CS01 spectrum, {len(freqs)} frequencies: {t:.1f} s, {n} simulations, {t/n*1e3:.3f} ms/sim")
+    for bound in (False, True):
+        spectrum(sc, freqs[:2], grid=grid, energy_bound=bound)  # compile
+    for bound in (False, True):
+        t0 = time.perf_counter()
+        ds = spectrum(sc, freqs, grid=grid, energy_bound=bound)
+        t = time.perf_counter() - t0
+        n = int(ds.n_simulations.sum())
+        print(f"noise-free CS01 spectrum, {len(freqs)} frequencies, energy bound {'on ' if bound else 'off'}: "
+              f"{t:.1f} s, {n} simulations, {t/n*1e3:.3f} ms/sim")
     sc = Scenario(BLOCK, Anchorage(), Control("CS01"), noise_level=0.05, seed=1)
-    t0 = time.perf_counter()
-    ds = spectrum(sc, freqs, realisations=range(n_realisations), grid=grid)
-    t = time.perf_counter() - t0
-    n = int(ds.n_simulations.sum())
-    print(f"{n_realisations}-realisation CS01 spectrum at 5% noise: {t:.1f} s, {n} simulations, "
-          f"{t/n*1e3:.3f} ms/sim in the batch (target: 40 realisations < 120 s)")
+    results = {}
+    for bound in (False, True):
+        t0 = time.perf_counter()
+        ds = spectrum(sc, freqs, realisations=range(n_realisations), grid=grid, energy_bound=bound)
+        t = time.perf_counter() - t0
+        n = int(ds.n_simulations.sum())
+        results[bound] = ds
+        print(f"{n_realisations}-realisation CS01 spectrum at 5% noise, energy bound {'on ' if bound else 'off'}: "
+              f"{t:.1f} s, {n} simulations, {t/n*1e3:.3f} ms/sim in the batch (target: 40 realisations <= 40 s)")
+    same = all(np.array_equal(results[False][v].values, results[True][v].values, equal_nan=True)
+               for v in ("threshold_realisation", "last_safe", "n_simulations", "n_undetermined"))
+    print(f"thresholds with and without the energy bound identical: {same}")
     # the same simulations one call at a time from Python (compiled first: not timed)
     k = 0
     threshold(sc, float(freqs[0]), realisation=k, grid=grid)
@@ -79,18 +115,21 @@ def bench_spectra(n_realisations):
     for fr in freqs[::6]:
         threshold(sc, float(fr), realisation=k, grid=grid)
     t_single = time.perf_counter() - t0
+    ds = results[True]
     n_single = int(ds.n_simulations.sel(realisation=k).values[::6].sum())
-    print(f"single threshold calls: {t_single/n_single*1e3:.3f} ms/sim "
-          f"(batch/single = {(t/n)/(t_single/n_single):.2f})")
+    print(f"single threshold calls: {t_single/n_single*1e3:.3f} ms/sim")
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--quick", action="store_true", help="fewer repeats and realisations")
+    ap.add_argument("--skip-reference", action="store_true", help="do not time the (slow) reference engine")
+    ap.add_argument("--engines-only", action="store_true", help="only the per-simulation figures")
     args = ap.parse_args()
     numba.set_num_threads(1)
-    bench_engines(5 if args.quick else 20, 1 if args.quick else 3)
-    bench_spectra(4 if args.quick else 40)
+    bench_engines(5 if args.quick else 20, 1 if args.quick else 3, reference=not args.skip_reference)
+    if not args.engines_only:
+        bench_spectra(4 if args.quick else 40)
 
 
 if __name__ == "__main__":

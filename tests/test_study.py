@@ -27,8 +27,9 @@ def fake_spectrum(strategy, level, thresholds, realisations=None, sampling_time=
 
 
 def base_config():
-    import yaml
     from pathlib import Path
+
+    import yaml
     return yaml.safe_load((Path(__file__).parents[1] / "config.yaml").read_text())
 
 
@@ -121,12 +122,28 @@ def test_table1_hand_worked():
     # FS, ref. no noise: terms (1-2)/2 = -0.5, 0, 0 over N* = 3 -> -16.67 %
     assert float(j.sel(reference="no_noise", strategy="FS", noise_level="R005")) == pytest.approx(-50 / 3, rel=1e-12)
     assert int(table["n_star"].sel(reference="no_noise", strategy="FS", noise_level="R005")) == 3
-    assert np.isnan(float(j.sel(reference="fs_same_noise", strategy="FS", noise_level="R005")))
+    # FS against itself: every term is 0 over the 3 frequencies below a_max,0 -- as `rockstudy jos` gives
+    assert float(j.sel(reference="fs_same_noise", strategy="FS", noise_level="R005")) == 0.0
+    assert int(table["n_star"].sel(reference="fs_same_noise", strategy="FS", noise_level="R005")) == 3
+    assert study.jos_of(fs5, fs5, 1.0)[:2] == (0.0, 3)
     assert float(j.sel(reference="no_noise", strategy="CS01", noise_level="R005")) == pytest.approx(100.0)
     assert float(j.sel(reference="fs_same_noise", strategy="CS01", noise_level="R005")) == pytest.approx(100.0)
     md = study.table_markdown(table)
-    assert "| FS | -16.67% | - |" in md and "+100.00%" in md
+    assert "| FS | -16.67% | +0.00% |" in md and "+100.00%" in md
+    # provenance and the meaning of NaN travel with the table (issue 12)
+    for key in ("noise_seed", "block_width", "block_alpha", "anchorage_kappa_max", "n_realisations"):
+        assert key in table.attrs, key
+    assert "N* = 0" in table["j_os"].attrs["missing_value_meaning"]
     assert "j_os" in study.table_csv(table).splitlines()[0]
+
+
+def test_jos_undefined_is_nan_with_n_star_zero_and_a_max0_above_the_scan_is_refused():
+    never = fake_spectrum("CS01", 0.05, [np.nan, np.nan, np.nan, np.nan])
+    j, n, _ = study.jos_of(never, never, 1.0)
+    assert np.isnan(j) and n == 0
+    top_g = never.attrs["grid_amplitude_stop"] * math.tan(never.attrs["block_alpha"])
+    with pytest.raises(ValueError, match=r"a_max0 = .* g is not allowed.*scan"):
+        study.jos_of(never, never, 1.01 * top_g)
 
 
 def test_timing_table_references():

@@ -235,12 +235,16 @@ say "srun smoke test ok ($out)"
 if [ "${ROCKSTUDY_SLURM_SKIP_PIP:-0}" != 1 ]; then
     PY="${PYTHON:-python3}"
     want="${PLUGIN_REQ#*==}"
-    have="$("$PY" -m pip show snakemake-executor-plugin-slurm 2>/dev/null | awk '/^Version:/ {print $2}')"
+    # `pip show` exits 1 when the plugin is not installed (always so on a new machine); under
+    # `set -euo pipefail` that would end this script silently, so its status is ignored here.
+    have="$({ "$PY" -m pip show snakemake-executor-plugin-slurm 2>/dev/null || true; } | awk '/^Version:/ {print $2}')"
     if [ "$have" != "$want" ]; then
         say "pip install $PLUGIN_REQ"
         "$PY" -m pip install -q --disable-pip-version-check "$PLUGIN_REQ"
     fi
-    say "snakemake $(snakemake --version), $("$PY" -m pip show snakemake-executor-plugin-slurm | awk '/^Version:/ {print "executor-plugin-slurm " $2}')"
+    have="$({ "$PY" -m pip show snakemake-executor-plugin-slurm 2>/dev/null || true; } | awk '/^Version:/ {print $2}')"
+    [ "$have" = "$want" ] || die "snakemake-executor-plugin-slurm is '${have:-not installed}' after pip install, want $want"
+    say "snakemake $(snakemake --version), executor-plugin-slurm $have ($("$PY" -c 'import sys; print(sys.prefix)'))"
 fi
 
 say "cluster up; pids in $PIDS: $(tr '\n' ' ' < "$PIDS")"

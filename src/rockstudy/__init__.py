@@ -3,15 +3,58 @@
 Reproduces "Use of overturning spectra in the performance evaluation of on-off
 control strategies for rocking objects" (see ``docs/model.md``).
 """
-from importlib.metadata import PackageNotFoundError, version as _version
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _version
 
 try:
     __version__ = _version("rockstudy")
 except PackageNotFoundError:  # running from a source tree without install
     __version__ = "0.0.0+unknown"
 
-from .block import Block, BLOCK_PRESETS, GRAVITY  # noqa: E402
-from .anchorage import Anchorage  # noqa: E402
-from .control import Control, STRATEGIES  # noqa: E402
 
-__all__ = ["Block", "BLOCK_PRESETS", "GRAVITY", "Anchorage", "Control", "STRATEGIES", "__version__"]
+
+def _numba_cache_dir() -> str:
+    """numba's cache folder for this exact source tree.
+
+    numba invalidates a cached function only when its own file changes, not when a compiled
+    function it calls from another module does (``motion.angular_acceleration`` inside
+    ``_kernel.engine``): keying the folder by a hash of every module keeps a stale kernel from
+    being loaded after any edit. ``NUMBA_CACHE_DIR`` in the environment still wins.
+    """
+    import hashlib
+    from pathlib import Path
+
+    root = Path(__file__).parent
+    digest = hashlib.sha256()
+    for path in sorted(root.rglob("*.py")):
+        digest.update(path.relative_to(root).as_posix().encode())
+        digest.update(path.read_bytes())
+    return str(root / "__pycache__" / f"numba-{digest.hexdigest()[:16]}")
+
+
+def _configure_numba_cache():
+    import os
+
+    import numba
+
+    if not os.environ.get("NUMBA_CACHE_DIR"):
+        numba.config.CACHE_DIR = _numba_cache_dir()
+
+
+_configure_numba_cache()
+
+from .anchorage import Anchorage  # noqa: E402
+from .block import BLOCK_PRESETS, GRAVITY, Block  # noqa: E402
+from .control import STRATEGIES, Control  # noqa: E402
+from .excitation import GroundMotion  # noqa: E402
+from .outcome import Outcome  # noqa: E402
+from .result import SimulationResult  # noqa: E402
+
+# the function, not the module: ``rockstudy.simulate(...)``; the module stays importable as
+# ``from rockstudy.simulate import pack_parameters``
+from .simulate import simulate  # noqa: E402
+from .spectra import AmplitudeGrid, Scenario, frequency_grid, spectrum, threshold  # noqa: E402
+
+__all__ = ["Block", "BLOCK_PRESETS", "GRAVITY", "Anchorage", "Control", "STRATEGIES", "GroundMotion", "Outcome",
+           "SimulationResult", "AmplitudeGrid", "Scenario", "frequency_grid", "simulate", "spectrum", "threshold",
+           "__version__"]

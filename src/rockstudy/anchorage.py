@@ -12,6 +12,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from numba import njit
+
 from .block import Block
 
 
@@ -96,31 +98,39 @@ class Anchorage:
 
 
 # --- Eqs. (8)–(13): fracture and working functions ---------------------------------
+# Compiled: the fast engine breaks the working-side elements with these (rockstudy._kernel.fracture);
+# the reference engine calls them at its fracture events.
+@njit(cache=True)
 def spring_right_intact(theta_min: float, theta_K_u: float) -> int:
     """f_K,R, Eq. (8): 1 while the running minimum rotation stays above -theta_K,u."""
     return 1 if theta_min > -theta_K_u else 0
 
 
+@njit(cache=True)
 def spring_left_intact(theta_max: float, theta_K_u: float) -> int:
     """f_K,L, Eq. (9): 1 while the running maximum rotation stays below theta_K,u."""
     return 1 if theta_max < theta_K_u else 0
 
 
+@njit(cache=True)
 def damper_right_intact(theta_min: float, theta_D_u: float) -> int:
     """f_D,R, Eq. (10)."""
     return 1 if theta_min > -theta_D_u else 0
 
 
+@njit(cache=True)
 def damper_left_intact(theta_max: float, theta_D_u: float) -> int:
     """f_D,L, Eq. (11)."""
     return 1 if theta_max < theta_D_u else 0
 
 
+@njit(cache=True)
 def right_working(theta: float) -> float:
     """f_W,R, Eq. (12): (1 - sgn theta)/2; the right corner element works for theta < 0."""
     return (1.0 - math.copysign(1.0, theta) * (theta != 0)) / 2.0
 
 
+@njit(cache=True)
 def left_working(theta: float) -> float:
     """f_W,L, Eq. (13): (1 + sgn theta)/2; the left corner element works for theta > 0."""
     return (1.0 + math.copysign(1.0, theta) * (theta != 0)) / 2.0

@@ -9,7 +9,9 @@ inertia about a base corner; e = 1 - 3/2 sin^2(alpha) the coefficient of restitu
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, asdict
+from dataclasses import asdict, dataclass
+
+from .validation import check_block
 
 GRAVITY = 9.81
 """Acceleration of gravity used throughout. [m/s^2]"""
@@ -32,7 +34,14 @@ class Block:
     gravity : float, default 9.81
         Acceleration of gravity g. [m/s^2]
     restitution : float or None
-        Coefficient of restitution e. ``None`` uses Housner's value, Eq. (14). [-]
+        Coefficient of restitution e. ``None`` uses Housner's value, Eq. (14), which is >= 0 only
+        for a slender block (height/width >= 1/sqrt(2)); a squatter block needs an explicit e. [-]
+
+    Raises
+    ------
+    ValueError
+        If a size is not a positive finite number, e is outside [0, 1], or the block is too squat
+        for Eq. (14) and no restitution is given.
     """
 
     width: float
@@ -47,10 +56,12 @@ class Block:
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise ValueError(f"Block.{name} must be a positive finite number, got {value!r}")
-        if self.restitution is not None and not (0.0 <= self.restitution <= 1.0):
+        if self.restitution is not None and not (
+                isinstance(self.restitution, (int, float)) and 0.0 <= self.restitution <= 1.0):
             raise ValueError(
                 f"Block.restitution must lie in [0, 1] (or be None for Eq. 14), got {self.restitution!r}"
             )
+        check_block(self, "Block")  # a squat block would get e < 0 from Eq. (14)
 
     # --- derived geometry -------------------------------------------------------
     @property

@@ -1,7 +1,9 @@
 """Command line: ``rockstudy simulate | threshold | spectrum | jos``.
 
-Every command validates its arguments before any heavy work and exits with status 2 and a
-message naming the argument and what is allowed.
+Every command checks all its arguments before any heavy work (values, limits, output paths; see
+:mod:`rockstudy.validation`) and exits with status 2 and a message naming the argument, the value
+and what is allowed. A run that hits the fast engine's event cap ends with an "undetermined"
+result, not a traceback.
 """
 from __future__ import annotations
 
@@ -11,10 +13,13 @@ import logging
 import math
 import sys
 
+from . import validation as v
 from .block import BLOCK_PRESETS
 from .control import STRATEGIES
 
 EXCITATION_CHOICES = ("one-sine", "modulated")
+SECONDS_PER_SIMULATION = 1e-3
+"""Rough cost of one simulation on one core, for the estimate printed before a spectrum. [s]"""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -23,46 +28,30 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"rockstudy: error: {message}\n")
 
 
-def _nonneg(name):
+def _number(name):
+    """A finite number (NaN and inf refused); ranges are checked by :func:`_check_common` and friends."""
     def conv(text):
         try:
-            v = float(text)
+            value = float(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}")
-        if not (math.isfinite(v) and v >= 0):
-            raise argparse.ArgumentTypeError(f"{name} must be a finite number >= 0, got {text!r}")
-        return v
+            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{name} must be a finite number (not NaN or inf), got {text!r}")
+        return value
     return conv
 
 
-def _pos(name):
-    def conv(text):
-        v = _nonneg(name)(text)
-        if v <= 0:
-            raise argparse.ArgumentTypeError(f"{name} must be > 0, got {text!r}")
-        return v
-    return conv
-
-
-def _noise(text):
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--noise-level must be a number in [0, 1), got {text!r}")
-    if not (0 <= v < 1):
-        raise argparse.ArgumentTypeError(f"--noise-level must lie in [0, 1) (noise energy / baseline energy), got {text!r}")
-    return v
-
-
-def _nonneg_int(name):
+def _integer(name):
+    """An integer, also written as 1e3 (ranges are checked later)."""
     def conv(text):
         try:
-            v = int(text)
+            return int(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} must be an integer >= 0, got {text!r}")
-        if v < 0:
-            raise argparse.ArgumentTypeError(f"{name} must be an integer >= 0, got {text!r}")
-        return v
+            pass
+        value = _number(name)(text)
+        if not value.is_integer():
+            raise argparse.ArgumentTypeError(f"{name} must be an integer, got {text!r}")
+        return int(value)
     return conv
 
 
@@ -72,32 +61,64 @@ def _common(p: argparse.ArgumentParser, single_frequency=True):
     p.add_argument("--excitation", default="modulated", choices=EXCITATION_CHOICES,
                    help="one-sine pulse or the amplitude-modulated harmonic of Eq. 23")
     if single_frequency:
-        p.add_argument("--frequency-ratio", type=_pos("--frequency-ratio"), default=2.0, help="omega_p/p [-]")
-    p.add_argument("--noise-level", type=_noise, default=0.0, help="noise energy / baseline energy, in [0, 1)")
-    p.add_argument("--realisation", type=_nonneg_int("--realisation"), default=0, help="noise realisation k")
-    p.add_argument("--seed", type=_nonneg_int("--seed"), default=0, help="root seed of the noise")
-    p.add_argument("--noise-step", type=_pos("--noise-step"), default=0.0025, metavar="SECONDS",
+        p.add_argument("--frequency-ratio", type=_number("--frequency-ratio"), default=2.0, help="omega_p/p [-]")
+    p.add_argument("--noise-level", type=_number("--noise-level"), default=0.0,
+                   help="noise energy / baseline energy, in [0, 1)")
+    p.add_argument("--realisation", type=_integer("--realisation"), default=0, help="noise realisation k")
+    p.add_argument("--seed", type=_integer("--seed"), default=0, help="root seed of the noise")
+    p.add_argument("--noise-step", type=_number("--noise-step"), default=0.0025, metavar="SECONDS",
                    help="sampling step of the noisy record [s] (default 0.0025)")
     p.add_argument("--noise-rescale", "--match", dest="match", default="energy",
                    choices=("energy", "pga", "both", "none"),
                    help="what the noisy record keeps of the baseline: energy (default), pga, both, none")
     p.add_argument("--noise-level-means", default="energy", choices=("energy", "rms"),
                    help="--noise-level is noise/baseline energy (default) or noise/baseline RMS")
-    p.add_argument("--noise-band", type=_pos("--noise-band"), default=None, metavar="HZ",
+    p.add_argument("--noise-band", type=_number("--noise-band"), default=None, metavar="HZ",
                    help="upper band limit of the noise [Hz] (default: white up to 1/(2 step))")
-    p.add_argument("--noise-span", type=_nonneg("--noise-span"), default=0.0, metavar="SECONDS",
+    p.add_argument("--noise-span", type=_number("--noise-span"), default=0.0, metavar="SECONDS",
                    help="noise also this long after the intense part [s] (default 0)")
-    p.add_argument("--sampling-time", type=_nonneg("--sampling-time"), default=0.0,
+    p.add_argument("--sampling-time", type=_number("--sampling-time"), default=0.0,
                    help="controller sampling time T_s [s] (0: continuous)")
-    p.add_argument("--delay", type=_nonneg("--delay"), default=0.0, help="actuation delay [s] (needs T_s > 0)")
-    p.add_argument("--kappa-max", type=_nonneg("--kappa-max"), default=1.0, help="4 K_max b^2/(m g R) [-]")
-    p.add_argument("--kappa-min", type=_nonneg("--kappa-min"), default=0.0, help="4 K_min b^2/(m g R) [-]")
-    p.add_argument("--damping-ratio", type=_nonneg("--damping-ratio"), default=0.05, help="xi [-]")
+    p.add_argument("--delay", type=_number("--delay"), default=0.0, help="actuation delay [s] (needs T_s > 0)")
+    p.add_argument("--kappa-max", type=_number("--kappa-max"), default=1.0, help="4 K_max b^2/(m g R) [-]")
+    p.add_argument("--kappa-min", type=_number("--kappa-min"), default=0.0, help="4 K_min b^2/(m g R) [-]")
+    p.add_argument("--damping-ratio", type=_number("--damping-ratio"), default=0.05, help="xi [-]")
     p.add_argument("--overturn-criterion", default="flat", choices=("flat", "alpha"),
                    help="overturned at |theta| >= pi/2 (flat) or >= alpha")
-    p.add_argument("--free-time", type=_nonneg("--free-time"), default=30.0,
+    p.add_argument("--free-time", type=_number("--free-time"), default=30.0,
                    help="free motion allowed after the excitation [s]")
     p.add_argument("--engine", default="fast", choices=("fast", "reference"), help="integration engine")
+
+
+_LIBRARY_NAMES = (("Control.sampling_time", "--sampling-time"), ("Control.delay", "--delay"),
+                  ("Anchorage.kappa_max", "--kappa-max"), ("Anchorage.kappa_min", "--kappa-min"),
+                  ("Anchorage.damping_ratio", "--damping-ratio"), ("free_time", "--free-time"),
+                  ("sampling_time", "--sampling-time"), ("exceed kappa_max", "exceed --kappa-max"),
+                  (", delay=", ", --delay="))
+
+
+def _user_names(message: str) -> str:
+    """A library message with the dataclass field names replaced by the options that set them."""
+    for internal, option in _LIBRARY_NAMES:
+        message = message.replace(internal, option)
+    return message
+
+
+def _check_common(args, single_frequency=True) -> None:
+    """Ranges of the options every simulating command shares (raises :class:`validation.InputError`)."""
+    if single_frequency:
+        v.check_positive("--frequency-ratio", args.frequency_ratio, high=v.MAX_FREQUENCY_RATIO)
+    v.check_range("--noise-level", args.noise_level, 0.0, 1.0, high_open=True,
+                  why="noise energy / baseline energy")
+    v.check_int_range("--realisation", args.realisation, 0, v.MAX_INTEGER,
+                      why="stored as a netCDF int64 and in the noise's spawn key")
+    v.check_int_range("--seed", args.seed, 0, v.MAX_INTEGER, why="stored as a netCDF int64 attribute")
+    v.check_nonnegative("--sampling-time", args.sampling_time, "s", v.MAX_TIME_SPAN)
+    v.check_nonnegative("--delay", args.delay, "s", v.MAX_TIME_SPAN)
+    v.check_nonnegative("--kappa-max", args.kappa_max, high=v.MAX_KAPPA)
+    v.check_nonnegative("--kappa-min", args.kappa_min, high=v.MAX_KAPPA)
+    v.check_nonnegative("--damping-ratio", args.damping_ratio, high=v.MAX_DAMPING_RATIO)
+    v.check_nonnegative("--free-time", args.free_time, "s", v.MAX_FREE_TIME)
 
 
 def _scenario(args, parser):
@@ -118,28 +139,52 @@ def _scenario(args, parser):
                         excitation=args.excitation, noise_level=args.noise_level, seed=args.seed,
                         noise=noise, overturn_criterion=args.overturn_criterion, free_time=args.free_time)
     except ValueError as exc:
-        msg = str(exc).replace("Control.delay", "--delay").replace("Anchorage.kappa_min", "--kappa-min")
-        parser.error(msg)
+        parser.error(_user_names(str(exc)))
+
+
+_GRID_NAMES = ("--min-amplitude-ratio", "--max-amplitude-ratio", "--amplitude-step", "--resolution")
 
 
 def _grid(args, parser):
+    """The amplitude scan, and the simulations one threshold may need."""
     from .spectra import AmplitudeGrid
     try:
+        sims = v.check_amplitude_grid(args.min_amplitude_ratio, args.max_amplitude_ratio, args.amplitude_step,
+                                      args.resolution, names=_GRID_NAMES)
         return AmplitudeGrid(start=args.min_amplitude_ratio, stop=args.max_amplitude_ratio,
-                             step=args.amplitude_step, resolution=args.resolution)
+                             step=args.amplitude_step, resolution=args.resolution), sims
     except ValueError as exc:
         parser.error(str(exc).replace("AmplitudeGrid.stop", "--max-amplitude-ratio")
                      .replace("AmplitudeGrid.resolution", "--resolution")
                      .replace("AmplitudeGrid.start", "--min-amplitude-ratio"))
 
 
+def _check_outputs(args, parser) -> None:
+    """Output paths are writable before any work; ``--output`` and ``--plot`` differ."""
+    output, plot = getattr(args, "output", None), getattr(args, "plot", None)
+    if output is not None:
+        v.check_output_path("--output", output, formats=("nc",))
+    if plot is not None:
+        v.check_output_path("--plot", plot, formats=v.FIGURE_FORMATS)
+    if output is not None and plot is not None:
+        import os
+        if os.path.realpath(output) == os.path.realpath(plot):
+            parser.error(f"--plot {plot!r} is the same file as --output; give two different files")
+
+
+def _check_time_span(scenario, frequency_ratios, frequency_name) -> None:
+    v.check_time_span(scenario.block, scenario.excitation, frequency_ratios, scenario.free_time,
+                      scenario.control.sampling_time, frequency_name=frequency_name,
+                      free_time_name="--free-time", sampling_name="--sampling-time")
+
+
 def _grid_args(p):
-    p.add_argument("--min-amplitude-ratio", type=_pos("--min-amplitude-ratio"), default=0.9,
+    p.add_argument("--min-amplitude-ratio", type=_number("--min-amplitude-ratio"), default=0.9,
                    help="first amplitude ratio of the upward scan [-]")
-    p.add_argument("--max-amplitude-ratio", type=_pos("--max-amplitude-ratio"), default=6.0,
+    p.add_argument("--max-amplitude-ratio", type=_number("--max-amplitude-ratio"), default=6.0,
                    help="upper bound of the scan [-]")
-    p.add_argument("--amplitude-step", type=_pos("--amplitude-step"), default=0.1, help="coarse scan step [-]")
-    p.add_argument("--resolution", type=_pos("--resolution"), default=0.01, help="refinement resolution [-]")
+    p.add_argument("--amplitude-step", type=_number("--amplitude-step"), default=0.1, help="coarse scan step [-]")
+    p.add_argument("--resolution", type=_number("--resolution"), default=0.01, help="refinement resolution [-]")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -147,7 +192,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     ps = sub.add_parser("simulate", help="run one case and print a JSON summary")
     _common(ps)
-    ps.add_argument("--amplitude-ratio", type=_pos("--amplitude-ratio"), default=2.0, help="a_p/(g tan alpha) [-]")
+    ps.add_argument("--amplitude-ratio", type=_number("--amplitude-ratio"), default=2.0, help="a_p/(g tan alpha) [-]")
     ps.add_argument("--output", help="write the time history to this netCDF file")
     ps.add_argument("--plot", help="draw theta, theta_dot, K and the ground motion to this PNG")
     ps.add_argument("--record", help="ground motion from a record file instead of --excitation: PEER NGA .AT2 "
@@ -155,7 +200,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "--amplitude-ratio are then not used)")
     ps.add_argument("--record-unit", help="acceleration unit of a two-column record: "
                     "g, m/s^2, cm/s^2 (gal) or mm/s^2 (default: the unit named in its header line)")
-    ps.add_argument("--record-scale", type=_pos("--record-scale"), default=1.0,
+    ps.add_argument("--record-scale", type=_number("--record-scale"), default=1.0,
                     help="factor multiplying the record (default 1) [-]")
     pt = sub.add_parser("threshold", help="minimum overturning amplitude ratio at one frequency (JSON)")
     _common(pt)
@@ -163,19 +208,19 @@ def build_parser() -> argparse.ArgumentParser:
     pp = sub.add_parser("spectrum", help="overturning spectrum over a frequency grid, written to netCDF")
     _common(pp, single_frequency=False)
     _grid_args(pp)
-    pp.add_argument("--frequency-start", type=_pos("--frequency-start"), default=0.25, help="first omega_p/p [-]")
-    pp.add_argument("--frequency-stop", type=_pos("--frequency-stop"), default=5.0, help="last omega_p/p [-]")
-    pp.add_argument("--frequency-step", type=_pos("--frequency-step"), default=0.1, help="omega_p/p step [-]")
-    pp.add_argument("--realisations", type=_pos("--realisations"), default=1,
+    pp.add_argument("--frequency-start", type=_number("--frequency-start"), default=0.25, help="first omega_p/p [-]")
+    pp.add_argument("--frequency-stop", type=_number("--frequency-stop"), default=5.0, help="last omega_p/p [-]")
+    pp.add_argument("--frequency-step", type=_number("--frequency-step"), default=0.1, help="omega_p/p step [-]")
+    pp.add_argument("--realisations", type=_integer("--realisations"), default=1,
                     help="number of noise realisations N (0..N-1)")
     pp.add_argument("--map", action="store_true", help="also store the outcome at every grid point")
-    pp.add_argument("--threads", type=_pos("--threads"), default=1, help="numba threads")
+    pp.add_argument("--threads", type=_integer("--threads"), default=1, help="numba threads")
     pp.add_argument("--output", required=True, help="netCDF file to write")
     pp.add_argument("--plot", help="PNG of the spectrum")
     pj = sub.add_parser("jos", help="utility index J_OS (Eqs. 18-22) of two spectrum files")
     pj.add_argument("--reference", required=True, help="spectrum netCDF of the reference system")
     pj.add_argument("--system", required=True, help="spectrum netCDF of the investigated system")
-    pj.add_argument("--a-max0", type=_pos("--a-max0"), default=1.0, help="a_max,0 in units of g (default 1)")
+    pj.add_argument("--a-max0", type=_number("--a-max0"), default=1.0, help="a_max,0 in units of g (default 1)")
     return parser
 
 
@@ -185,18 +230,31 @@ def _cmd_simulate(args, parser):
     if args.record_unit is not None or args.record_scale != 1.0:
         parser.error("--record-unit and --record-scale need --record FILE")
     from .simulate import simulate
-    scenario = _scenario(args, parser)
+    try:
+        _check_common(args)
+        v.check_positive("--amplitude-ratio", args.amplitude_ratio, high=v.MAX_AMPLITUDE_RATIO)
+        scenario = _scenario(args, parser)
+        _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
+        _check_outputs(args, parser)
+    except v.InputError as exc:
+        parser.error(str(exc))
     motion, rec = scenario.motion(args.frequency_ratio, args.amplitude_ratio, args.realisation)
-    res = simulate(scenario.block, scenario.anchorage, scenario.control, motion, engine=args.engine,
-                   overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
-                   record_history=bool(args.output or args.plot))
-    out = res.summary()
+    out = {}
+    try:
+        res = simulate(scenario.block, scenario.anchorage, scenario.control, motion, engine=args.engine,
+                       overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
+                       record_history=bool(args.output or args.plot))
+    except RuntimeError as exc:  # the fast engine's event cap: no result, and no file is written
+        res = None
+        out.update(status="undetermined", overturned=None, message=str(exc))
+    else:
+        out.update(res.summary())
     out.update(frequency_ratio=args.frequency_ratio, amplitude_ratio=args.amplitude_ratio,
                strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
                realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
                energy_ratio=1.0 if rec is None else rec.energy_ratio,
                pga_ratio=1.0 if rec is None else rec.pga_ratio, **scenario.noise.to_attrs())
-    if args.output or args.plot:
+    if res is not None and (args.output or args.plot):
         from .study import history_dataset
         ds = history_dataset(res, scenario, motion, args.frequency_ratio, args.amplitude_ratio, args.realisation)
         if args.output:
@@ -222,15 +280,36 @@ def _cmd_simulate_record(args, parser):
         except ValueError as exc:
             parser.error(f"argument --record-unit: {exc}")
     try:
+        _check_common(args, single_frequency=False)
+        v.check_positive("--record-scale", args.record_scale)
+        _check_outputs(args, parser)
+    except v.InputError as exc:
+        parser.error(str(exc))
+    try:
         record = read_record(args.record, args.record_unit)
     except (OSError, ValueError) as exc:
         parser.error(f"argument --record: {exc}")
     scenario = _scenario(args, parser)
     motion = record.motion(args.record_scale)
-    res = simulate(scenario.block, scenario.anchorage, scenario.control, motion, engine=args.engine,
-                   overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
-                   record_history=bool(args.output or args.plot))
     pga_ratio = motion.peak() / scenario.block.uplift_acceleration
+    try:
+        v.check_positive("--record-scale", args.record_scale, high=v.MAX_AMPLITUDE_RATIO * args.record_scale
+                         / pga_ratio if pga_ratio > 0 else None,
+                         why=f"the scaled record's PGA/(g tan alpha) is {pga_ratio:.4g}, at most "
+                             f"{v.MAX_AMPLITUDE_RATIO:g} is allowed")
+        v.check_nonnegative("--free-time", args.free_time, "s", v.MAX_TIME_SPAN - record.duration,
+                            why=f"the record lasts {record.duration:.4g} s and a simulation at most "
+                                f"{v.MAX_TIME_SPAN:g} s")
+    except v.InputError as exc:
+        parser.error(str(exc))
+    try:
+        res = simulate(scenario.block, scenario.anchorage, scenario.control, motion, engine=args.engine,
+                       overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
+                       record_history=bool(args.output or args.plot))
+    except RuntimeError as exc:  # the fast engine's event cap: an undetermined result, no file written
+        print(json.dumps({"status": "undetermined", "overturned": None, "message": str(exc),
+                          "strategy": args.strategy, "record": args.record}, indent=2))
+        return
     out = res.summary()
     out.update(strategy=args.strategy, excitation="record", record=args.record, record_name=record.name,
                record_unit=record.unit, record_scale=args.record_scale, record_dt_s=record.dt,
@@ -258,11 +337,43 @@ def _cmd_simulate_record(args, parser):
     print(json.dumps(out, indent=2))
 
 
+def _uplift_amplitude_ratio(scenario, frequency_ratio, realisation) -> float:
+    """Lowest amplitude ratio at which the ground motion can uplift the block (1 / its unit peak). [-]"""
+    import numpy as np
+
+    from .excitation import modulated_peak
+    _, rec = scenario.motion(frequency_ratio, 1.0, realisation)
+    if rec is not None:
+        peak = float(np.max(np.abs(rec.values)))
+    else:
+        peak = modulated_peak() if scenario.excitation == "modulated" else 1.0
+    return 1.0 / peak
+
+
 def _cmd_threshold(args, parser):
     from .spectra import threshold
-    scenario = _scenario(args, parser)
-    grid = _grid(args, parser)
+    try:
+        _check_common(args)
+        scenario = _scenario(args, parser)
+        grid, _ = _grid(args, parser)
+        _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
+    except v.InputError as exc:
+        parser.error(str(exc))
     res = threshold(scenario, args.frequency_ratio, realisation=args.realisation, grid=grid, engine=args.engine)
+    uplift = _uplift_amplitude_ratio(scenario, args.frequency_ratio, args.realisation)
+    start = float(grid.values()[0])
+    complete = start <= uplift
+    res.update(scan_start_amplitude_ratio=start, uplift_amplitude_ratio=uplift,
+               lower_amplitudes_checked=complete)
+    if not complete:
+        res["note"] = (f"the scan started at {start:g}, above {uplift:.4g}, the lowest amplitude ratio that can "
+                       f"uplift the block: amplitude ratios in [{uplift:.4g}, {start:g}) were not scanned (at most "
+                       "bisected below an overturning one), and the overturning region has safe islands, so a "
+                       "lower overturning amplitude may exist and amplitude_ratio is not necessarily the threshold; "
+                       f"use --min-amplitude-ratio <= {uplift:.4g} to check them")
+    if res.get("n_undetermined"):
+        res["undetermined_note"] = (f"{res['n_undetermined']} run(s) hit the fast engine's event cap and were "
+                                    "counted as not overturned; check with --engine reference")
     res.update(strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
                realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
                **scenario.noise.to_attrs())
@@ -271,24 +382,48 @@ def _cmd_threshold(args, parser):
 
 def _cmd_spectrum(args, parser):
     import numba
+
+    from .excitation import excitation_duration
     from .io import write_netcdf
     from .spectra import frequency_grid, spectrum
+    from .study import document_missing
     if args.engine != "fast":
         parser.error("argument --engine: spectra run on the fast engine only")
-    if args.realisations != int(args.realisations):
-        parser.error(f"argument --realisations: must be an integer >= 1, got {args.realisations}")
-    scenario = _scenario(args, parser)
-    grid = _grid(args, parser)
     try:
+        _check_common(args, single_frequency=False)
+        v.check_int_range("--realisations", args.realisations, 1, v.MAX_REALISATIONS)
+        v.check_int_range("--threads", args.threads, 1, numba.config.NUMBA_NUM_THREADS,
+                          why="the CPUs numba can use on this machine")
+        scenario = _scenario(args, parser)
+        grid, sims_per_case = _grid(args, parser)
+        n_freq = v.check_grid("frequency grid", args.frequency_start, args.frequency_stop, args.frequency_step,
+                              high=v.MAX_FREQUENCY_RATIO,
+                              names=("--frequency-start", "--frequency-stop", "--frequency-step"))
         freqs = frequency_grid(args.frequency_start, args.frequency_stop, args.frequency_step)
-    except ValueError as exc:
-        parser.error(f"argument --frequency-start/--frequency-stop/--frequency-step: {exc}")
-    numba.set_num_threads(min(int(args.threads), numba.config.NUMBA_NUM_THREADS))
+        _check_time_span(scenario, [args.frequency_start, float(freqs[-1])],
+                         "--frequency-start" if args.frequency_start < 1 else "--frequency-stop")
+        n_real = 1 if scenario.noise_level == 0 else args.realisations
+        record_bytes = 0
+        if scenario.noise_level > 0:
+            samples = v.record_samples(excitation_duration(scenario.excitation, scenario.omega(f)) for f in freqs)
+            record_bytes = n_real * samples * v.RECORD_BYTES_PER_SAMPLE
+        v.check_workload("--realisations" if n_real > 1 else "--frequency-step",
+                         args.realisations if n_real > 1 else args.frequency_step,
+                         n_real * n_freq, sims_per_case * (2 if args.map else 1), record_bytes)
+        _check_outputs(args, parser)
+    except v.InputError as exc:
+        parser.error(str(exc))
+    numba.set_num_threads(args.threads)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s", stream=sys.stderr)
-    ds = spectrum(scenario, freqs, realisations=range(int(args.realisations)), grid=grid, with_map=args.map)
-    write_netcdf(ds, args.output)
+    n_cases, n_sims = n_real * n_freq, n_real * n_freq * sims_per_case
+    logging.getLogger("rockstudy").info(
+        "spectrum: %d realisation(s) x %d frequencies = %d cases, at most %d simulations "
+        "(at most about %.0f s on %d thread(s) at ~%g s each); progress follows", n_real, n_freq, n_cases,
+        n_sims, n_sims * SECONDS_PER_SIMULATION / args.threads, args.threads, SECONDS_PER_SIMULATION)
+    ds = document_missing(spectrum(scenario, freqs, realisations=range(n_real), grid=grid, with_map=args.map))
     if args.plot:
         import matplotlib.pyplot as plt
+
         from .plotting import plot_a_max0, plot_threshold, save_figure, spectrum_axes
         fig, ax = plt.subplots(figsize=(6, 4))
         plot_threshold(ax, ds["threshold"], label=args.strategy)
@@ -296,22 +431,31 @@ def _cmd_spectrum(args, parser):
         spectrum_axes(ax)
         ax.legend()
         save_figure(fig, args.plot)
+    write_netcdf(ds, args.output)
     print(json.dumps({"output": args.output, "frequencies": len(freqs), "realisations": int(ds.sizes["realisation"]),
                       "simulations": int(ds.n_simulations.sum()), "compute_time_s": ds.attrs["compute_time_s"]}))
 
 
 def _cmd_jos(args, parser):
-    from .io import read_netcdf
-    from .utility import utility_index
     import numpy as np
+
+    from .io import read_netcdf
+    from .study import jos_of
     try:
-        ref = read_netcdf(args.reference)
-        sys_ = read_netcdf(args.system)
-    except (OSError, ValueError) as exc:
-        parser.error(f"cannot read a spectrum file: {exc}")
-    for name, ds in (("--reference", ref), ("--system", sys_)):
-        if "threshold" not in ds or "frequency_ratio" not in ds.coords:
-            parser.error(f"argument {name}: not a rockstudy spectrum file (no 'threshold' over 'frequency_ratio')")
+        v.check_positive("--a-max0", args.a_max0, "g")
+    except v.InputError as exc:
+        parser.error(str(exc))
+    datasets = {}
+    for name, path in (("--reference", args.reference), ("--system", args.system)):
+        try:
+            datasets[name] = read_netcdf(path)
+        except (OSError, ValueError) as exc:
+            parser.error(f"argument {name}: cannot read {path!r} as a netCDF file: {exc}")
+        ds = datasets[name]
+        if "threshold" not in ds or "frequency_ratio" not in ds.coords or "block_alpha" not in ds.attrs:
+            parser.error(f"argument {name}: {path!r} is not a rockstudy spectrum file "
+                         "(no 'threshold' over 'frequency_ratio')")
+    ref, sys_ = datasets["--reference"], datasets["--system"]
     if ref.sizes["frequency_ratio"] != sys_.sizes["frequency_ratio"] or not np.allclose(
             ref.frequency_ratio.values, sys_.frequency_ratio.values):
         parser.error("--reference and --system have different frequency grids; compute them on the same grid")
@@ -319,13 +463,16 @@ def _cmd_jos(args, parser):
         if ref.attrs.get(key) != sys_.attrs.get(key):
             parser.error(f"--reference and --system are for different blocks ({key}: "
                          f"{ref.attrs.get(key)} vs {sys_.attrs.get(key)})")
-    a_max0 = args.a_max0 / math.tan(ref.attrs["block_alpha"])
     try:
-        j, n = utility_index(sys_.threshold.values, ref.threshold.values, a_max0)
+        j, n, a_max0 = jos_of(sys_, ref, args.a_max0, a_max0_name="--a-max0")
     except ValueError as exc:
         parser.error(str(exc))
-    print(json.dumps({"J_OS_percent": j, "N_star": n, "a_max0_ratio": a_max0,
-                      "reference": args.reference, "system": args.system}))
+    out = {"J_OS_percent": None if math.isnan(j) else j, "N_star": n, "a_max0_g": args.a_max0,
+           "a_max0_ratio": a_max0, "reference": args.reference, "system": args.system}
+    if n == 0:
+        out["note"] = ("N* = 0: no frequency has a threshold below a_max,0 in either file, so J_OS (Eq. 21) is "
+                       "undefined")
+    print(json.dumps(out))
 
 
 def main(argv=None):

@@ -21,8 +21,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from numba import njit
+
 STRATEGIES = ("FS", "PASSIVE", "CS01", "CS02")
 STRATEGY_CODE = {name: i for i, name in enumerate(STRATEGIES)}
+"""Integer code of each strategy, the one the compiled engine reads."""
+FS, PASSIVE, CS01, CS02 = (STRATEGY_CODE[name] for name in STRATEGIES)
 
 
 @dataclass(frozen=True)
@@ -65,16 +69,49 @@ class Control:
                 "control_delay_s": self.delay}
 
 
-def cs01_is_on(theta: float, theta_dot: float) -> bool:
-    """Eq. (16): True (K = K_max) when theta·theta_dot >= 0."""
+@njit(cache=True)
+def cs01_is_on(theta, theta_dot):
+    """Eq. (16): True (K = K_max) when θ·θ̇ >= 0, the block moving away from upright.
+
+    Parameters
+    ----------
+    theta : float
+        Rotation θ (or its sign). [rad]
+    theta_dot : float
+        Angular velocity θ̇ (or its sign). [rad/s]
+    """
     return theta * theta_dot >= 0.0
 
 
-def cs02_is_on(theta: float, theta_dot: float, ground_acceleration: float) -> bool:
+@njit(cache=True)
+def cs02_is_on(theta, theta_dot, ground_acceleration):
     """Eq. (17) in the Makris sign convention: True (K = K_max) when the ground pushes outward.
 
-    With Xg_ddot != 0: K_max when Xg_ddot·theta <= 0; with Xg_ddot == 0: CS01.
+    With Ẍg != 0: K_max when Ẍg·θ <= 0; with Ẍg == 0: CS01 (Eq. 16).
+
+    Parameters
+    ----------
+    theta : float
+        Rotation θ (or its sign). [rad]
+    theta_dot : float
+        Angular velocity θ̇ (or its sign). [rad/s]
+    ground_acceleration : float
+        Ẍg (or its sign). [m/s^2]
     """
     if ground_acceleration != 0.0:
         return ground_acceleration * theta <= 0.0
     return cs01_is_on(theta, theta_dot)
+
+
+@njit(cache=True)
+def stiffness_on(strategy, theta, theta_dot, ground_acceleration):
+    """Output of the control law of ``strategy`` (a ``STRATEGY_CODE``): True for K_max.
+
+    CS01: Eq. (16); CS02: Eq. (17); FS and PASSIVE: always True (their stiffness does not switch).
+    Both engines decide with this function.
+    """
+    if strategy == CS02:
+        return cs02_is_on(theta, theta_dot, ground_acceleration)
+    if strategy == CS01:
+        return cs01_is_on(theta, theta_dot)
+    return True

@@ -1,13 +1,18 @@
 """Dataset I/O: the one place where rockstudy writes and reads files.
 
-Writes are atomic (a temporary file in the same folder, then ``os.replace``), so an
-interrupted run never leaves a half-written netCDF file behind.
+Every data product (netCDF, PNG, PDF, CSV, Markdown) goes through :func:`atomic_write`: a
+temporary file in the same folder, flushed to disk (fsync), given the mode the umask allows
+(0666 & ~umask, like any file the user creates; ``mkstemp`` alone would leave 0600), then
+renamed over the target with ``os.replace``. An interrupted or failed write never leaves a
+half-written file behind, and an existing file is kept until the new one is complete.
 """
 from __future__ import annotations
 
 import os
 import tempfile
+import threading
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 import xarray as xr
@@ -28,10 +33,60 @@ def clean_attrs(attrs: dict) -> dict:
     return {k: netcdf_attr(v) for k, v in attrs.items()}
 
 
-def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
-    """Write ``ds`` to ``path`` atomically, with zlib compression of the data variables."""
+_UMASK_LOCK = threading.Lock()
+
+
+def current_umask() -> int:
+    """The process's file mode creation mask (read by setting and restoring it)."""
+    with _UMASK_LOCK:
+        mask = os.umask(0o022)
+        os.umask(mask)
+    return mask
+
+
+def atomic_write(path, write: Callable[[str], None]) -> Path:
+    """Write ``path`` atomically: ``write(tmp)`` fills a temporary file in the same folder, which is
+    fsynced, given mode ``0o666 & ~umask`` and renamed over ``path``. Folders are created as needed.
+
+    Parameters
+    ----------
+    path : str or Path
+        Target file.
+    write : callable
+        Called with the temporary file's name; it must write the whole content there.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+    os.close(fd)
+    try:
+        write(tmp)
+        with open(tmp, "rb+") as fh:
+            os.fsync(fh.fileno())
+        os.chmod(tmp, 0o666 & ~current_umask())
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
+    try:  # make the rename itself durable
+        dir_fd = os.open(path.parent, os.O_RDONLY)
+        try:
+            os.fsync(dir_fd)
+        finally:
+            os.close(dir_fd)
+    except OSError:  # pragma: no cover - some filesystems do not fsync folders
+        pass
+    return path
+
+
+def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
+    """Write ``ds`` to ``path`` atomically (:func:`atomic_write`), with zlib compression of the data variables."""
     ds = ds.copy()
     ds.attrs = clean_attrs(ds.attrs)
     for name in list(ds.variables):
@@ -41,16 +96,7 @@ def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
         for name, var in ds.data_vars.items():
             if var.dtype.kind in "fiub" and var.ndim > 0:
                 encoding[name] = {"zlib": True, "complevel": 4}
-    fd, tmp = tempfile.mkstemp(suffix=".nc.part", dir=path.parent)
-    os.close(fd)
-    try:
-        ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
-    return path
+    return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
 
 
 def read_netcdf(path) -> xr.Dataset:
@@ -60,11 +106,8 @@ def read_netcdf(path) -> xr.Dataset:
 
 
 def write_text(text: str, path) -> Path:
-    """Write a text file atomically."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(suffix=".part", dir=path.parent)
-    with os.fdopen(fd, "w") as fh:
-        fh.write(text)
-    os.replace(tmp, path)
-    return path
+    """Write a text file (CSV, Markdown) atomically (:func:`atomic_write`), UTF-8."""
+    def write(tmp):
+        with open(tmp, "w", encoding="utf-8") as fh:
+            fh.write(text)
+    return atomic_write(path, write)

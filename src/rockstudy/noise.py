@@ -38,10 +38,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .constants import NOISE_DT
 from .excitation import GroundMotion, analytic, excitation_duration
-
-NOISE_DT = 0.0025
-"""Default sampling step of the baseline and of the noisy records (2.5 ms). [s]"""
 
 NOISE_LEVELS = {"R000": 0.0, "R001": 0.01, "R005": 0.05, "R010": 0.10}
 """The paper's noise levels: noise energy over baseline energy (§5, Table 1). [-]"""

@@ -6,8 +6,7 @@ Frequencies are ω_p/p, amplitudes a_p/(g·tanα).
 """
 from __future__ import annotations
 
-import os
-import tempfile
+from functools import partial
 from pathlib import Path
 
 import matplotlib
@@ -241,19 +240,12 @@ def figure_maps(maps, a_max0: float):
 
 
 def save_figure(fig, *paths) -> list[Path]:
-    """Save ``fig`` to each path atomically (format from the suffix) and close it."""
+    """Save ``fig`` to each path atomically (format from the suffix; :func:`rockstudy.io.atomic_write`)
+    and close it."""
+    from .io import atomic_write
     written = []
     for path in map(Path, paths):
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(suffix=path.suffix, dir=path.parent)
-        os.close(fd)
-        try:
-            fig.savefig(tmp, dpi=150, format=path.suffix.lstrip("."))
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.remove(tmp)
-            raise
+        atomic_write(path, partial(fig.savefig, dpi=150, format=path.suffix.lstrip(".")))
         written.append(path)
     plt.close(fig)
     return written

@@ -29,9 +29,7 @@ References
 from __future__ import annotations
 
 import math
-import os
 import re
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -368,11 +366,7 @@ def at2_text(record: Record, title: str = "rockstudy record (PEER NGA AT2 layout
 
 
 def write_at2(record: Record, path, title: str = "rockstudy record (PEER NGA AT2 layout)") -> Path:
-    """Write ``record`` as a PEER NGA ``.AT2`` file, atomically. Returns the path."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(suffix=".part", dir=path.parent)
-    with os.fdopen(fd, "w") as fh:
-        fh.write(at2_text(record, title))
-    os.replace(tmp, path)
-    return path
+    """Write ``record`` as a PEER NGA ``.AT2`` file, atomically with the umask's mode
+    (:func:`rockstudy.io.write_text`). Returns the path."""
+    from .io import write_text
+    return write_text(at2_text(record, title), path)

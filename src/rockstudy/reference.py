@@ -42,8 +42,10 @@ from scipy.optimize import brentq
 
 from .anchorage import Anchorage
 from .block import Block
-from .control import Control
-from .excitation import ENVELOPE_PEAK, GroundMotion, modulated_duration
+from .constants import FREE_TIME, REFERENCE_ATOL, REFERENCE_RTOL
+from .constants import rest_velocity as default_rest_velocity
+from .control import STRATEGY_CODE, Control, stiffness_on
+from .excitation import ENVELOPE_PEAK, GroundMotion, modulated_acceleration, modulated_duration, one_sine_acceleration
 from .motion import angular_acceleration
 from .result import STATUS_OVERTURNED, STATUS_REST, STATUS_TIME_LIMIT, SimulationResult
 
@@ -98,17 +100,14 @@ class _Excitation:
             end = 2.0 * math.pi / omega
 
             def horizontal(t):
-                return a * math.sin(omega * t) if 0.0 <= t <= end else 0.0
+                return one_sine_acceleration(t, a, omega) if 0.0 <= t <= end else 0.0
 
             self.time_scale = end / 128.0
         elif kind == "modulated":
             end = modulated_duration(omega)
 
             def horizontal(t):
-                if 0.0 <= t <= end:
-                    s = t / end
-                    return 90.0 * s**2 * (s - 1.0) ** 6 * a * math.sin(omega * (t - end))
-                return 0.0
+                return modulated_acceleration(t, a, omega, end) if 0.0 <= t <= end else 0.0
 
             self.time_scale = 2.0 * math.pi / omega / 128.0
         elif kind == "rectangular":
@@ -199,6 +198,8 @@ class _ReferenceRun:
         self.kappa_max = anchorage.kappa_max if self.anchored else 0.0
         self.kappa_min = anchorage.kappa_min if self.anchored else 0.0
         self.damping_ratio = anchorage.damping_ratio if self.anchored else 0.0
+        self.damping = float(2.0 * self.damping_ratio * self.p)  # 3 D b²/(m R²) = 2ξp [1/s]
+        self.sin_alpha, self.cos_alpha = math.sin(self.alpha), math.cos(self.alpha)
         self.theta_ultimate = {
             "spring_left": anchorage.theta_spring(block), "spring_right": anchorage.theta_spring(block),
             "damper_left": anchorage.theta_damper(block), "damper_right": anchorage.theta_damper(block),
@@ -244,9 +245,10 @@ class _ReferenceRun:
     def _acceleration(self, t, theta, theta_dot, kappa):
         """θ̈ of Eqs. (1)–(7) on the current side. [rad/s^2]"""
         s = self.side
-        return angular_acceleration(theta, theta_dot, s, kappa, self._spring_ok(s), self._damper_ok(s),
-                                    self.excitation.horizontal(t), self.excitation.vertical(t),
-                                    self.p, self.alpha, self.gravity, self.damping_ratio)
+        return angular_acceleration(theta, theta_dot, float(s), float(kappa * self._spring_ok(s)),
+                                    self.damping * self._damper_ok(s), self.excitation.horizontal(t),
+                                    self.excitation.vertical(t), self.p, self.gravity, self.sin_alpha,
+                                    self.cos_alpha)
 
     def _uplift_margin(self, t):
         """|Ẍg| − (g + Ÿg)·tanα: positive when the ground lifts a block at rest. [m/s^2]"""
@@ -261,9 +263,9 @@ class _ReferenceRun:
         """Output of Eq. (16)/(17) in the current regime: True for K_max."""
         if self.mode == _REST:
             return True  # θ = θ̇ = 0
-        if self.strategy == "CS02" and self.ground_sign != 0:
-            return self.ground_sign * self.side < 0  # Ẍg·θ ≤ 0
-        return self.vel_sign >= 0  # θ·θ̇ ≥ 0
+        # the signs stand for the values: θ ~ s, θ̇ ~ s·vel_sign, Ẍg ~ ground_sign
+        return stiffness_on(STRATEGY_CODE[self.strategy], float(self.side), float(self.side * self.vel_sign),
+                            float(self.ground_sign))
 
     def _kappa(self):
         """Dimensionless stiffness currently applied by the device. [-]"""
@@ -552,11 +554,13 @@ class _ReferenceRun:
         kappa = self._kappa()
         spring_ok, damper_ok = self._spring_ok(s), self._damper_ok(s)
         ex = self.excitation
-        p, alpha, gravity, xi = self.p, self.alpha, self.gravity, self.damping_ratio
+        p, gravity, sin_alpha, cos_alpha = self.p, self.gravity, self.sin_alpha, self.cos_alpha
+        side, kappa_acting, damping = float(s), float(kappa * spring_ok), float(self.damping * damper_ok)
 
         def rhs(t, y):
-            return (y[1], angular_acceleration(y[0], y[1], s, kappa, spring_ok, damper_ok,
-                                               ex.horizontal(t), ex.vertical(t), p, alpha, gravity, xi))
+            return (y[1], angular_acceleration(float(y[0]), float(y[1]), side, kappa_acting, damping,
+                                               ex.horizontal(t), ex.vertical(t), p, gravity, sin_alpha,
+                                               cos_alpha))
 
         names, events = [], []
 
@@ -775,9 +779,9 @@ class _ReferenceRun:
 
 
 def simulate_reference(block: Block, anchorage: Anchorage, control: Control, motion: GroundMotion, *,
-                       overturn_criterion: str = "flat", free_time: float = 30.0,
+                       overturn_criterion: str = "flat", free_time: float = FREE_TIME,
                        rest_velocity: float | None = None, record_history: bool = False,
-                       rtol: float = 1e-10, atol: float = 1e-12,
+                       rtol: float = REFERENCE_RTOL, atol: float = REFERENCE_ATOL,
                        initial_rotation: float = 0.0, initial_velocity: float = 0.0) -> SimulationResult:
     """Simulate the rocking block with the event-driven reference integrator.
 
@@ -833,7 +837,7 @@ def simulate_reference(block: Block, anchorage: Anchorage, control: Control, mot
     if not (math.isfinite(free_time) and free_time >= 0):
         raise ValueError(f"free_time must be a finite number >= 0 [s], got {free_time!r}")
     if rest_velocity is None:
-        rest_velocity = 1e-6 * block.p * block.alpha
+        rest_velocity = default_rest_velocity(block.p, block.alpha)
     if not (math.isfinite(rest_velocity) and rest_velocity >= 0):
         raise ValueError(f"rest_velocity must be a finite number >= 0 [rad/s], got {rest_velocity!r}")
     for name, value in (("rtol", rtol), ("atol", atol)):

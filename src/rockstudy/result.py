@@ -8,6 +8,8 @@ import numpy as np
 STATUS_OVERTURNED = "overturned"
 STATUS_REST = "rest"
 STATUS_TIME_LIMIT = "time limit"
+STATUS_CANNOT_OVERTURN = "cannot overturn"
+"""Ended after the excitation below the overturning energy (outcome runs only, docs/model.md)."""
 
 FRACTURE_ELEMENTS = ("spring_left", "spring_right", "damper_left", "damper_right")
 
@@ -18,7 +20,7 @@ class SimulationResult:
 
     Attributes
     ----------
-    status : {"overturned", "rest", "time limit"}
+    status : {"overturned", "rest", "time limit", "cannot overturn"}
         How the simulation ended.
     overturned : bool
         True when the overturning criterion was met (or an early stop proved it would be).

@@ -13,16 +13,25 @@ import numpy as np
 from . import _kernel as kn
 from .anchorage import Anchorage
 from .block import Block
+from .constants import FAST_ATOL, FAST_RTOL, FREE_TIME, MAX_STEP_FRACTION
+from .constants import rest_velocity as default_rest_velocity
 from .control import Control
 from .excitation import GroundMotion
-from .result import FRACTURE_ELEMENTS, STATUS_OVERTURNED, STATUS_REST, STATUS_TIME_LIMIT, SimulationResult
+from .result import (
+    FRACTURE_ELEMENTS,
+    STATUS_CANNOT_OVERTURN,
+    STATUS_OVERTURNED,
+    STATUS_REST,
+    STATUS_TIME_LIMIT,
+    SimulationResult,
+)
 
 ENGINES = ("fast", "reference")
 OVERTURN_CRITERIA = ("flat", "alpha")
-DEFAULT_FREE_TIME = 30.0
-"""Free rocking allowed after the excitation before a run stops as "time limit". [s]"""
-FAST_RTOL = 1e-8
-FAST_ATOL = 1e-10
+DEFAULT_FREE_TIME = FREE_TIME
+"""Free rocking allowed after the excitation before a run stops as "time limit" (``constants.FREE_TIME``). [s]"""
+__all__ = ["simulate", "pack_parameters", "overturn_rotation", "ENGINES", "OVERTURN_CRITERIA", "DEFAULT_FREE_TIME",
+           "FAST_RTOL", "FAST_ATOL"]
 
 
 def overturn_rotation(block: Block, criterion: str) -> float:
@@ -38,8 +47,12 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
                     overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
                     initial_rotation: float = 0.0, initial_velocity: float = 0.0,
                     rest_velocity: float | None = None, rtol: float = FAST_RTOL,
-                    atol: float = FAST_ATOL) -> np.ndarray:
-    """The kernel's parameter vector (see the index constants in :mod:`rockstudy._kernel`)."""
+                    atol: float = FAST_ATOL, energy_bound: bool = False) -> np.ndarray:
+    """The kernel's parameter vector (its named slots: :mod:`rockstudy._kernel.layout`).
+
+    ``energy_bound`` lets the engine end a run once it provably can no longer overturn (outcome
+    runs only: the history and event log after that point are not computed).
+    """
     if not (free_time >= 0 and math.isfinite(free_time)):
         raise ValueError(f"free_time must be a finite number >= 0 [s], got {free_time!r}")
     P = np.zeros(kn.NPAR)
@@ -58,7 +71,7 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
     P[kn.I_STRAT] = control.code
     P[kn.I_TS] = control.sampling_time
     P[kn.I_DELAY] = control.delay
-    P[kn.I_VREST] = 1e-6 * block.p * block.alpha if rest_velocity is None else rest_velocity
+    P[kn.I_VREST] = default_rest_velocity(block.p, block.alpha) if rest_velocity is None else rest_velocity
     P[kn.I_RTOL] = rtol
     P[kn.I_ATOL] = atol
     P[kn.I_FREE] = free_time
@@ -71,21 +84,25 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
     P[kn.I_TH0] = initial_rotation
     P[kn.I_THD0] = initial_velocity
     # the largest step: a fraction of the free-rocking and of the excitation time scales
-    hmax = 0.05 * 2 * math.pi / block.p
+    hmax = MAX_STEP_FRACTION * 2 * math.pi / block.p
     if motion.kind in ("one-sine", "modulated"):
-        hmax = min(hmax, 0.05 * 2 * math.pi / motion.omega)
+        hmax = min(hmax, MAX_STEP_FRACTION * 2 * math.pi / motion.omega)
     P[kn.I_HMAX] = hmax
+    P[kn.I_BOUND] = 1.0 if energy_bound else 0.0
     return P
 
 
 def _result_from_kernel(out, block: Block, engine: str = "fast") -> SimulationResult:
-    status, t_over, t_end, max_abs, n_imp, impacts, uplifts, rests, frac, H = out
+    status, t_over, t_end, max_abs = out.status, out.overturn_time, out.end_time, out.max_abs_theta
+    impacts, uplifts, rests, frac, H = out.impact_times, out.uplift_times, out.rest_times, out.fracture_times, \
+        out.history
     if status == kn.ST_ELIMIT:
         raise RuntimeError(
             f"the fast engine hit its cap of {kn.MAX_EVENTS} events at t = {t_end:.6g} s "
             "(an unresolved chattering or sliding case); run it with engine='reference' and report it"
         )
-    name = {kn.ST_REST: STATUS_REST, kn.ST_OVER: STATUS_OVERTURNED, kn.ST_TLIM: STATUS_TIME_LIMIT}[status]
+    name = {kn.ST_REST: STATUS_REST, kn.ST_OVER: STATUS_OVERTURNED, kn.ST_TLIM: STATUS_TIME_LIMIT,
+            kn.ST_BOUND: STATUS_CANNOT_OVERTURN}[status]
     history = None
     if len(H):
         history = {"t": H[:, 0].copy(), "theta": H[:, 1].copy(), "theta_dot": H[:, 2].copy(),

@@ -16,19 +16,18 @@ from dataclasses import dataclass, field
 import numpy as np
 import xarray as xr
 
-from . import _kernel as kn
 from . import __version__
+from . import _kernel as kn
 from .anchorage import Anchorage
 from .block import Block
 from .control import Control
 from .excitation import EXCITATIONS, GroundMotion, excitation_duration, modulated_peak
 from .noise import DEFAULT_READING, NoiseReading, noisy_record, record_motion
+from .outcome import OUTCOME_MEANINGS, Outcome
 from .simulate import DEFAULT_FREE_TIME, OVERTURN_CRITERIA, pack_parameters, simulate
 
 log = logging.getLogger("rockstudy")
 
-OUTCOME_MEANINGS = ("no_uplift", "safe", "overturned_without_impact", "overturned_after_impact",
-                    "undetermined")
 PAPER_EQUATIONS = "Eqs. 1-17 (model), Eq. 23 (excitation), Figs. 5-8 (spectra)"
 
 
@@ -151,29 +150,25 @@ def _unit_peak(scenario: Scenario, rec) -> float:
     return modulated_peak() if scenario.excitation == "modulated" else 1.0
 
 
-def _scan(outcome, grid: np.ndarray, resolution: float, lower: float):
-    """Python twin of ``_kernel.threshold_kernel`` for any outcome function (reference engine)."""
-    n_sim = 0
-    for j, a in enumerate(grid):
-        o, simulated = outcome(a)
-        n_sim += simulated
-        if o >= 2:
-            hi, lo = a, max(grid[j - 1] if j > 0 else lower, lower)
-            while hi - lo > resolution:
-                mid = 0.5 * (lo + hi)
-                om, simulated = outcome(mid)
-                n_sim += simulated
-                if om >= 2:
-                    hi = mid
-                else:
-                    lo = mid
-            return hi, lo, n_sim
-    return math.nan, grid[-1], n_sim
+def _reference_outcome(scenario: Scenario, motion: GroundMotion, amplitude_ratio: float, peak: float) -> Outcome:
+    """Outcome of one reference-engine run at one amplitude ratio."""
+    if amplitude_ratio * peak <= 1.0:
+        return Outcome.NO_UPLIFT
+    r = simulate(scenario.block, scenario.anchorage, scenario.control,
+                 motion.scaled(amplitude_ratio * scenario.block.uplift_acceleration), engine="reference",
+                 overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
+    if not r.overturned:
+        return Outcome.SAFE
+    return Outcome.OVERTURNED_AFTER_IMPACT if r.n_impacts else Outcome.OVERTURNED_WITHOUT_IMPACT
 
 
 def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 0,
-              grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast") -> dict:
+              grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast", energy_bound: bool = True) -> dict:
     """Minimum overturning amplitude ratio a_p/(g·tanα) at one frequency ratio.
+
+    ``energy_bound`` (fast engine) ends each run once it provably cannot overturn any more
+    (docs/model.md); it never changes an outcome, only the time spent (False: integrate every run
+    to rest or the time limit, as before).
 
     Returns a dict with ``amplitude_ratio`` (None when nothing on the grid overturns),
     ``last_safe_amplitude_ratio``, ``n_simulations``, the bound scanned, and the noise record's
@@ -186,19 +181,18 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     values = grid.values()
     if engine == "fast":
         P = pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
-                            overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
+                            overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
+                            energy_bound=energy_bound)
         thr, lo, n_sim, n_und = kn.threshold_kernel(P, motion.record, motion.vertical, values, grid.resolution,
                                                     peak)
     elif engine == "reference":
-        def outcome(a):
-            if a * peak <= 1.0:
-                return 0, 0
-            r = simulate(scenario.block, scenario.anchorage, scenario.control,
-                         motion.scaled(a * scenario.block.uplift_acceleration), engine="reference",
-                         overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
-            return (3 if r.n_impacts else 2) if r.overturned else 1, 1
-        thr, lo, n_sim = _scan(outcome, values, grid.resolution, 1.0 / peak)
-        n_und = 0
+        # the same scan as the fast engine's (kn.threshold_kernel), driven from Python
+        state, done, n_sim, lower = kn.scan_start(), False, 0, 1.0 / peak
+        while not done:
+            o = _reference_outcome(scenario, motion, float(kn.scan_amplitude(state, values)), peak)
+            n_sim += o != Outcome.NO_UPLIFT
+            done = kn.scan_update(state, values, grid.resolution, lower, o.overturned)
+        thr, lo, n_und = state[kn.S_HI], state[kn.S_LO], 0
     else:
         raise ValueError(f"engine must be 'fast' or 'reference', got {engine!r}")
     return {
@@ -215,7 +209,7 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     }
 
 
-def _cases(scenario: Scenario, frequency_ratios, realisations):
+def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: bool = True):
     """Parameter rows and concatenated records for every (realisation, frequency) case."""
     rows, recs, peaks, e_ratio, p_ratio = [], [], [], [], []
     for k in realisations:
@@ -223,7 +217,7 @@ def _cases(scenario: Scenario, frequency_ratios, realisations):
             motion, rec = scenario.motion(float(f), 1.0, int(k))
             rows.append(pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
                                         overturn_criterion=scenario.overturn_criterion,
-                                        free_time=scenario.free_time))
+                                        free_time=scenario.free_time, energy_bound=energy_bound))
             recs.append(motion.record)
             peaks.append(_unit_peak(scenario, rec))
             e_ratio.append(1.0 if rec is None else rec.energy_ratio)
@@ -250,7 +244,7 @@ def _run_chunked(fn, n_cases: int, label: str, n_chunks: int):
 
 
 def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: AmplitudeGrid = AmplitudeGrid(),
-             with_map: bool = False, progress_chunks: int = 10) -> xr.Dataset:
+             with_map: bool = False, progress_chunks: int = 10, energy_bound: bool = True) -> xr.Dataset:
     """Overturning spectrum: the threshold at each frequency for each noise realisation.
 
     Parameters
@@ -263,6 +257,8 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     grid : AmplitudeGrid
     with_map : bool
         Also compute the outcome at every (frequency, amplitude) grid point.
+    energy_bound : bool
+        End runs that provably cannot overturn any more (see :func:`threshold`).
 
     Returns
     -------
@@ -281,7 +277,7 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     if scenario.noise_level == 0 and len(realisations) > 1:
         realisations = realisations[:1]  # without noise every realisation is the same record
     values = grid.values()
-    Pm, recs, off, lens, peaks, e_ratio, p_ratio = _cases(scenario, freqs, realisations)
+    Pm, recs, off, lens, peaks, e_ratio, p_ratio = _cases(scenario, freqs, realisations, energy_bound)
     n = len(Pm)
     label = f"spectrum {scenario.control.strategy} noise={scenario.noise_level:g} Ts={scenario.control.sampling_time:g}"
     t0 = time.perf_counter()

@@ -5,7 +5,11 @@ investigated system and of the reference, sampled at the same frequencies, and t
 acceleration a_max,0 the system must protect against (the paper suggests g).
 
 A NaN threshold means "no overturning found below the scan bound"; it counts as
->= a_max,0, which requires the scan bound to be at least a_max,0.
+>= a_max,0, which requires the scan bound to be at least a_max,0 (checked where spectra enter,
+by :func:`rockstudy.study.jos_of` and :func:`rockstudy.validation.check_a_max0`).
+
+Thresholds and a_max,0 may be given in any one unit (m/s^2, or the amplitude ratios a/(g·tanα)
+the spectra store): J_OS is a ratio of differences and does not depend on it.
 
 With a* the thresholds capped at a_max,0 (Eqs. 19–20), each frequency contributes
 
@@ -24,14 +28,14 @@ import numpy as np
 
 def _check_a_max0(a_max0) -> float:
     if isinstance(a_max0, bool) or not np.isscalar(a_max0) or not (math.isfinite(a_max0) and a_max0 > 0):
-        raise ValueError(f"a_max0 must be a positive finite number [m/s^2], got {a_max0!r}")
+        raise ValueError(f"a_max0 must be a positive finite number (in the thresholds' unit), got {a_max0!r}")
     return float(a_max0)
 
 
 def _thresholds(name: str, values) -> np.ndarray:
     a = np.asarray(values, dtype=float)
     if np.any(a < 0):  # NaN compares False, so it passes
-        raise ValueError(f"{name} must be >= 0 m/s^2 (or NaN for no overturning below the scan bound)")
+        raise ValueError(f"{name} must be >= 0 (or NaN for no overturning below the scan bound)")
     return a
 
 
@@ -98,7 +102,7 @@ def utility_terms(a_sys, a_ref, a_max0: float) -> np.ndarray:
     return terms.reshape(sys_.shape)
 
 
-def utility_index(a_sys, a_ref, a_max0: float) -> tuple[float, int]:
+def utility_index(a_sys, a_ref, a_max0: float, undefined: str = "raise") -> tuple[float, int]:
     """Utility index J_OS of a system against a reference, Eq. (21).
 
     Parameters
@@ -109,23 +113,30 @@ def utility_index(a_sys, a_ref, a_max0: float) -> tuple[float, int]:
         a_min,OVER of the reference system, same shape. [m/s^2]
     a_max0 : float
         Protection level a_max,0. [m/s^2]
+    undefined : {"raise", "nan"}
+        What to do when N* = 0: raise a ValueError, or return (NaN, 0).
 
     Returns
     -------
     j_os : float
-        100 × mean of Δa_SYS/Δa_REF over the N* counted frequencies, in [−100, 100]. [%]
+        100 × mean of Δa_SYS/Δa_REF over the N* counted frequencies, in [−100, 100]; NaN when
+        N* = 0 and ``undefined="nan"``. [%]
     n_star : int
         N*, the number of frequencies where a_min,SYS or a_min,REF is below a_max0.
 
     Raises
     ------
     ValueError
-        If N* = 0 (J_OS undefined), or as :func:`utility_terms`.
+        If N* = 0 (J_OS undefined) and ``undefined="raise"``, or as :func:`utility_terms`.
     """
+    if undefined not in ("raise", "nan"):
+        raise ValueError(f"undefined must be 'raise' or 'nan', got {undefined!r}")
     terms = utility_terms(a_sys, a_ref, a_max0)
     counted = ~np.isnan(terms)
     n_star = int(np.count_nonzero(counted))
     if n_star == 0:
-        raise ValueError(f"no frequency has a threshold below a_max0 = {a_max0} m/s^2 for either system, "
+        if undefined == "nan":
+            return math.nan, 0
+        raise ValueError(f"no frequency has a threshold below a_max0 = {a_max0:g} for either system, "
                          "so J_OS (Eq. 21) is undefined (N* = 0)")
     return 100.0 * float(np.mean(terms[counted])), n_star

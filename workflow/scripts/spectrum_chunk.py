@@ -11,5 +11,6 @@ scenario = study.scenario_from_dict(p.scenario)
 study.check_noise(io.read_netcdf(snakemake.input.noise), scenario)
 ds = spectrum(scenario, study.frequency_ratios(p.frequency_grid), realisations=p.realisations,
               grid=study.amplitude_grid(p.amplitude_grid))
+study.document_missing(ds)
 ds.attrs["rockstudy_source_sha256"] = p.library
 io.write_netcdf(ds, snakemake.output[0])

@@ -1,0 +1,47 @@
+"""Compiled fast engine: event-accurate Dormand–Prince 5(4) integration of the controlled rocking
+block (paper Eqs. 1–17), in numba, in small parts:
+
+* :mod:`.layout`  — the named parameter vector, status codes, the :class:`KernelResult` tuple;
+* :mod:`.ground`  — Ẍg(t), Ÿg(t) (Eq. 23 and records via :mod:`rockstudy.excitation`);
+* :mod:`.dopri`   — one Dormand–Prince step, its continuous extension, the right-hand side
+  (:func:`rockstudy.motion.angular_acceleration`, Eqs. 1–7);
+* :mod:`.events`  — event detection/location on the interpolant, REST and HOLD exits;
+* :mod:`.maps`    — impact (Eqs. 14–15), uplift, CS01 apex decision, fracture (Eqs. 8–13),
+  the sampled controller's queue;
+* :mod:`.engine`  — the driving loop (paper §3);
+* :mod:`.scan`    — outcomes, the one threshold scan, parallel batches.
+
+Integration: Dormand–Prince 5(4) with error control (rtol, atol), first-same-as-last, and the
+4th-order continuous extension to locate state events: impacts (θ = 0), overturning, fractures,
+the CS01 switch (θ̇ = 0) and the CS02 switch (Ẍg = 0), by the Illinois method on the
+interpolant. Known-time events are never stepped over: the end of the excitation, record knots,
+controller sample and actuation instants. Three modes: REST, ROCK and HOLD (the CS01 Filippov
+sliding state, MODEL-NOTES §1). See ``docs/model.md``.
+"""
+from ..constants import MAX_EVENTS, NEGLIGIBLE_STEP
+from ..control import CS01, CS02, FS, PASSIVE, stiffness_on
+from ..excitation import MODULATED as KIND_MODULATED
+from ..excitation import ONE_SINE as KIND_ONE_SINE
+from ..excitation import RECORD as KIND_RECORD
+from ..excitation import RECTANGULAR as KIND_RECTANGULAR
+from .engine import simulate_kernel
+from .ground import ground_acceleration, vertical_acceleration
+from .layout import *  # noqa: F401,F403  (the named parameter slots and codes)
+from .scan import (
+                   S_HI,
+                   S_LO,
+                   outcome_batch,
+                   outcome_kernel,
+                   scan_amplitude,
+                   scan_start,
+                   scan_update,
+                   threshold_batch,
+                   threshold_kernel,
+                   uplift_floor,
+)
+
+__all__ = ["MAX_EVENTS", "NEGLIGIBLE_STEP", "CS01", "CS02", "FS", "PASSIVE", "stiffness_on", "KIND_MODULATED",
+           "KIND_ONE_SINE", "KIND_RECORD", "KIND_RECTANGULAR", "ground_acceleration", "vertical_acceleration",
+           "simulate_kernel", "outcome_batch", "outcome_kernel", "scan_amplitude", "scan_start", "scan_update",
+           "S_HI", "S_LO",
+           "threshold_batch", "threshold_kernel", "uplift_floor"]
