@@ -17,9 +17,9 @@ FREQS = np.array([0.5, 1.0, 2.0, 3.0])
 LEVELS = {"R001": 0.01, "R005": 0.05, "R010": 0.10}
 
 
-def fake(strategy, level, thresholds, anchorage=Anchorage()):
+def fake(strategy, level, thresholds, anchorage=None):
     thr = np.atleast_2d(np.asarray(thresholds, float))
-    sc = Scenario(BLC06, anchorage, Control(strategy), noise_level=level)
+    sc = Scenario(BLC06, anchorage or Anchorage(), Control(strategy), noise_level=level)
     ones = np.ones_like(thr)
     return spectrum_dataset(sc, FREQS, list(range(thr.shape[0])), thr, thr - 0.01, ones.astype(int), ones, ones,
                             AmplitudeGrid())
