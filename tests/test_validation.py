@@ -4,6 +4,7 @@ tests over CLI arguments and config values (hypothesis).
 Set ``ROCKSTUDY_HYPOTHESIS_EXAMPLES`` to run a longer sweep than the CI default.
 """
 import copy
+import importlib
 import json
 import math
 import os
@@ -345,7 +346,8 @@ def test_threshold_reports_the_scan_start_and_unchecked_amplitudes(capsys):
 
 
 def test_simulate_event_cap_is_an_undetermined_result(monkeypatch, capsys):
-    import rockstudy.simulate as simulate
+    # the module, not the function: ``rockstudy.simulate`` (the package attribute) is the function
+    simulate = importlib.import_module("rockstudy.simulate")
 
     def capped(*args, **kwargs):
         raise RuntimeError("the fast engine hit its cap of 2000000 events at t = 1 s")
