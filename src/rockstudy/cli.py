@@ -66,7 +66,17 @@ def _common(p: argparse.ArgumentParser, single_frequency=True):
                    help="noise energy / baseline energy, in [0, 1)")
     p.add_argument("--realisation", type=_integer("--realisation"), default=0, help="noise realisation k")
     p.add_argument("--seed", type=_integer("--seed"), default=0, help="root seed of the noise")
-    p.add_argument("--match", default="energy", choices=("energy", "pga"), help="noisy record rescaled to match")
+    p.add_argument("--noise-step", type=_number("--noise-step"), default=0.0025, metavar="SECONDS",
+                   help="sampling step of the noisy record [s] (default 0.0025)")
+    p.add_argument("--noise-rescale", "--match", dest="match", default="energy",
+                   choices=("energy", "pga", "both", "none"),
+                   help="what the noisy record keeps of the baseline: energy (default), pga, both, none")
+    p.add_argument("--noise-level-means", default="energy", choices=("energy", "rms"),
+                   help="--noise-level is noise/baseline energy (default) or noise/baseline RMS")
+    p.add_argument("--noise-band", type=_number("--noise-band"), default=None, metavar="HZ",
+                   help="upper band limit of the noise [Hz] (default: white up to 1/(2 step))")
+    p.add_argument("--noise-span", type=_number("--noise-span"), default=0.0, metavar="SECONDS",
+                   help="noise also this long after the intense part [s] (default 0)")
     p.add_argument("--sampling-time", type=_number("--sampling-time"), default=0.0,
                    help="controller sampling time T_s [s] (0: continuous)")
     p.add_argument("--delay", type=_number("--delay"), default=0.0, help="actuation delay [s] (needs T_s > 0)")
@@ -114,14 +124,20 @@ def _check_common(args, single_frequency=True) -> None:
 def _scenario(args, parser):
     from .anchorage import Anchorage
     from .control import Control
+    from .noise import NoiseReading
     from .spectra import Scenario
+    try:
+        noise = NoiseReading(step=args.noise_step, rescale=args.match, level_means=args.noise_level_means,
+                             band=args.noise_band, span=args.noise_span)
+    except ValueError as exc:
+        parser.error(str(exc).replace("NoiseReading.band", "--noise-band").replace("NoiseReading.", "--noise-"))
     try:
         return Scenario(BLOCK_PRESETS[args.block],
                         Anchorage(kappa_max=args.kappa_max, kappa_min=args.kappa_min,
                                   damping_ratio=args.damping_ratio),
                         Control(args.strategy, sampling_time=args.sampling_time, delay=args.delay),
                         excitation=args.excitation, noise_level=args.noise_level, seed=args.seed,
-                        match=args.match, overturn_criterion=args.overturn_criterion, free_time=args.free_time)
+                        noise=noise, overturn_criterion=args.overturn_criterion, free_time=args.free_time)
     except ValueError as exc:
         parser.error(_user_names(str(exc)))
 
@@ -237,7 +253,7 @@ def _cmd_simulate(args, parser):
                strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
                realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
                energy_ratio=1.0 if rec is None else rec.energy_ratio,
-               pga_ratio=1.0 if rec is None else rec.pga_ratio)
+               pga_ratio=1.0 if rec is None else rec.pga_ratio, **scenario.noise.to_attrs())
     if res is not None and (args.output or args.plot):
         from .study import history_dataset
         ds = history_dataset(res, scenario, motion, args.frequency_ratio, args.amplitude_ratio, args.realisation)
@@ -359,7 +375,8 @@ def _cmd_threshold(args, parser):
         res["undetermined_note"] = (f"{res['n_undetermined']} run(s) hit the fast engine's event cap and were "
                                     "counted as not overturned; check with --engine reference")
     res.update(strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
-               realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay)
+               realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
+               **scenario.noise.to_attrs())
     print(json.dumps(res, indent=2))
 
 

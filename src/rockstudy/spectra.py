@@ -22,7 +22,7 @@ from .anchorage import Anchorage
 from .block import Block
 from .control import Control
 from .excitation import EXCITATIONS, GroundMotion, excitation_duration, modulated_peak
-from .noise import MATCHES, noisy_record, record_motion
+from .noise import DEFAULT_READING, NoiseReading, noisy_record, record_motion
 from .outcome import OUTCOME_MEANINGS, Outcome
 from .simulate import DEFAULT_FREE_TIME, OVERTURN_CRITERIA, pack_parameters, simulate
 
@@ -85,8 +85,9 @@ class Scenario:
         Noise energy over baseline energy, in [0, 1). [-]
     seed : int
         Root seed of the noise realisations.
-    match : {"energy", "pga"}
-        What the noisy record is rescaled to match.
+    noise : NoiseReading, default DEFAULT_READING
+        How noisy records are made: step, rescaling, meaning of the level, band, span
+        (:class:`rockstudy.noise.NoiseReading`; the former ``match`` is ``noise.rescale``).
     overturn_criterion : {"flat", "alpha"}
     free_time : float
         Free motion allowed after the excitation. [s]
@@ -98,7 +99,7 @@ class Scenario:
     excitation: str = "modulated"
     noise_level: float = 0.0
     seed: int = 0
-    match: str = "energy"
+    noise: NoiseReading = DEFAULT_READING
     overturn_criterion: str = "flat"
     free_time: float = DEFAULT_FREE_TIME
 
@@ -109,11 +110,16 @@ class Scenario:
             raise ValueError(f"noise_level must lie in [0, 1), got {self.noise_level!r}")
         if not (isinstance(self.seed, (int, np.integer)) and self.seed >= 0):
             raise ValueError(f"seed must be an integer >= 0, got {self.seed!r}")
-        if self.match not in MATCHES:
-            raise ValueError(f"match must be one of {', '.join(MATCHES)}, got {self.match!r}")
+        if not isinstance(self.noise, NoiseReading):
+            raise ValueError(f"noise must be a rockstudy.noise.NoiseReading, got {self.noise!r}")
         if self.overturn_criterion not in OVERTURN_CRITERIA:
             raise ValueError(f"overturn_criterion must be one of {', '.join(OVERTURN_CRITERIA)}, "
                              f"got {self.overturn_criterion!r}")
+
+    @property
+    def match(self) -> str:
+        """The rescaling of the noisy records (``noise.rescale``; the former field ``match``)."""
+        return self.noise.rescale
 
     def omega(self, frequency_ratio: float) -> float:
         """ω_p for a frequency ratio. [rad/s]"""
@@ -125,7 +131,7 @@ class Scenario:
         amplitude = amplitude_ratio * self.block.uplift_acceleration
         if self.noise_level == 0:
             return GroundMotion(self.excitation, amplitude, omega, excitation_duration(self.excitation, omega)), None
-        rec = noisy_record(self.excitation, omega, self.noise_level, realisation, self.seed, match=self.match)
+        rec = noisy_record(self.excitation, omega, self.noise_level, realisation, self.seed, self.noise)
         return record_motion(rec, amplitude, omega), rec
 
     def to_attrs(self) -> dict:
@@ -134,8 +140,7 @@ class Scenario:
         attrs.update(self.anchorage.to_attrs(self.block))
         attrs.update(self.control.to_attrs())
         attrs.update(excitation=self.excitation, noise_level=self.noise_level, noise_seed=int(self.seed),
-                     noise_match=self.match, noise_dt_s=0.0025, overturn_criterion=self.overturn_criterion,
-                     free_time_s=self.free_time)
+                     **self.noise.to_attrs(), overturn_criterion=self.overturn_criterion, free_time_s=self.free_time)
         return attrs
 
 

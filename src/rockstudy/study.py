@@ -22,7 +22,7 @@ from .anchorage import Anchorage
 from .block import BLOCK_PRESETS, Block
 from .control import Control
 from .excitation import excitation_duration
-from .noise import NOISE_DT, baseline_samples, level_key, noisy_record
+from .noise import NOISE_DT, baseline_samples, level_key, noisy_record, reading_from_dict
 from .simulate import simulate
 from .spectra import AmplitudeGrid, Scenario, convergence, frequency_grid
 from .utility import utility_index
@@ -50,7 +50,10 @@ def block_from_dict(spec: dict) -> Block:
 
 
 def scenario_from_dict(spec: dict) -> Scenario:
-    """A :class:`Scenario` from ``block``, ``anchorage``, ``control`` dicts and scalar settings."""
+    """A :class:`Scenario` from ``block``, ``anchorage``, ``control``, ``noise`` dicts and scalar settings.
+
+    ``noise`` is the noise reading (``step``, ``rescale``, ``level_means``, ``band``, ``span``;
+    :class:`rockstudy.noise.NoiseReading`); absent: today's default reading."""
     spec = dict(spec)
     block = block_from_dict(spec.pop("block"))
     try:
@@ -58,7 +61,8 @@ def scenario_from_dict(spec: dict) -> Scenario:
     except ValueError as exc:
         raise v.InputError(str(exc).replace("Anchorage.", "anchorage.")) from None
     control = Control(**spec.pop("control", {}))
-    return Scenario(block, anchorage, control, **spec)
+    noise = reading_from_dict(spec.pop("noise", None))
+    return Scenario(block, anchorage, control, noise=noise, **spec)
 
 
 def amplitude_grid(spec: dict) -> AmplitudeGrid:
@@ -152,11 +156,11 @@ def document_missing(ds: xr.Dataset) -> xr.Dataset:
 
 
 NOT_IN_SIMULATIONS = ("cli.py", "plotting.py", "reference.py", "study.py", "validation.py", "records.py",
-                      "synthetic.py", "fragility.py", "probability.py")
+                      "synthetic.py", "fragility.py", "probability.py", "readings.py", "claims.py", "calibration.py")
 """Modules the compiled spectra and histories do not run (the scipy reference engine, the CLI,
 figures, this bookkeeping module, whose outputs have their own tests, the input checks, which
-refuse inputs but never change a result, and the studies beyond the paper, which the workflow
-fingerprints on their own)."""
+refuse inputs but never change a result, the studies beyond the paper and the reproduction
+bookkeeping (readings, claims, calibration), which the workflow fingerprints on their own)."""
 
 
 def source_fingerprint(only=None) -> str:
@@ -190,7 +194,7 @@ def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_
                   n_records: int) -> xr.Dataset:
     """The noise realisations of one level: seeds, spawn keys, energy and PGA ratios, unit records.
 
-    Records are regenerated exactly by ``noisy_record(excitation, ω_p, level, k, seed, match)``
+    Records are regenerated exactly by ``noisy_record(excitation, ω_p, level, k, seed, reading)``
     with ``SeedSequence(seed, spawn_key=(level_key, k))``; the first ``n_records`` unit records
     at ``reference_frequency_ratio`` are stored with the baseline for Fig. 4.
     """
@@ -198,10 +202,10 @@ def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_
     level = sc.noise_level
 
     def record(f, k):
-        return noisy_record(sc.excitation, sc.omega(f), level, k, sc.seed, match=sc.match)
+        return noisy_record(sc.excitation, sc.omega(f), level, k, sc.seed, sc.noise)
 
     ratios = np.array([[(r.energy_ratio, r.pga_ratio) for r in (record(f, k) for f in freqs)] for k in ks])
-    base, dt = baseline_samples(sc.excitation, sc.omega(reference_frequency_ratio), NOISE_DT)
+    base, dt = baseline_samples(sc.excitation, sc.omega(reference_frequency_ratio), sc.noise.step)
     kept = ks[:n_records]
     recs = np.array([record(reference_frequency_ratio, k).values for k in kept]).reshape(len(kept), len(base))
     ratio = {"units": "1"}
@@ -224,10 +228,12 @@ def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_
                 "time": ("time", np.arange(len(base)) * dt, {"units": "s", "long_name": "time"})},
         attrs={"title": f"Noise realisations, level {level:g} (noise energy / baseline energy)", "paper": PAPER,
                "paper_section": "5 (Fig. 4)", "rockstudy_version": __version__, "noise_level": level,
-               "noise_seed": sc.seed, "noise_level_key": level_key(level), "noise_match": sc.match,
-               "noise_dt_s": dt, "excitation": sc.excitation, "reference_frequency_ratio": reference_frequency_ratio,
+               "noise_seed": sc.seed, "noise_level_key": level_key(level), **sc.noise.to_attrs(),
+               "excitation": sc.excitation, "reference_frequency_ratio": reference_frequency_ratio,
                "regenerate": "rockstudy.noise.noisy_record(excitation, frequency_ratio*block_p, noise_level, k, "
-                             "noise_seed, match=noise_match); SeedSequence(seed, spawn_key=(level_key, k))",
+                             "noise_seed, NoiseReading(step=noise_step_s, rescale=noise_rescale, "
+                             "level_means=noise_level_means, band=noise_band_hz or None, span=noise_span_s)); "
+                             "SeedSequence(seed, spawn_key=(level_key, k))",
                **sc.block.to_attrs()})
 
 
@@ -276,7 +282,8 @@ def _jos(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float) -> tuple[fl
 
 PROVENANCE_PREFIXES = ("block_", "anchorage_")
 PROVENANCE_KEYS = ("noise_seed", "noise_match", "noise_dt_s", "excitation", "overturn_criterion", "free_time_s",
-                   "grid_amplitude_start", "grid_amplitude_stop", "grid_amplitude_step", "grid_amplitude_resolution")
+                   "grid_amplitude_start", "grid_amplitude_stop", "grid_amplitude_step", "grid_amplitude_resolution",
+                   "noise_step_s", "noise_rescale", "noise_level_means", "noise_band_hz", "noise_span_s")
 
 
 def provenance(spectra) -> dict:
@@ -513,6 +520,21 @@ def check_study(config: dict) -> None:
                f"realisations = {n_real} in jobs of {per_job} gives {n_chunks} jobs per spectrum, the limit is "
                f"{v.MAX_JOBS_PER_SPECTRUM} (Snakemake's DAG would grow too large); use larger jobs")
     v.check_workload("amplitude_grid.step", ag["step"], n_freq, grid_size_points(ag), 0)
+    try:
+        reading_from_dict(config["noise"])
+    except ValueError as exc:
+        raise v.InputError(f"noise: {exc}") from None
+    for name, spec in config["reproduction"]["readings"].items():
+        try:
+            reading_from_dict(spec)
+        except ValueError as exc:
+            raise v.InputError(f"reproduction.readings.{name}: {exc}") from None
+    from .calibration import CalibrationDesign
+    cal = config["calibration"]
+    try:
+        CalibrationDesign(cal["kappa_max"], cal["damping_ratio"], cal["ultimate_rotation"], cal["kappa_min"])
+    except ValueError as exc:
+        raise v.InputError(f"calibration: {exc}") from None
 
 
 def grid_size_points(spec: dict) -> int:
@@ -521,8 +543,9 @@ def grid_size_points(spec: dict) -> int:
 
 
 def check_noise(noise: xr.Dataset, scenario: Scenario) -> None:
-    """The noise file and the scenario describe the same realisations (seed, level, match)."""
-    for attr, value in (("noise_seed", scenario.seed), ("noise_level", scenario.noise_level),
-                        ("noise_match", scenario.match), ("excitation", scenario.excitation)):
-        if noise.attrs[attr] != value:
-            raise ValueError(f"noise file has {attr}={noise.attrs[attr]!r}, the scenario {value!r}")
+    """The noise file and the scenario describe the same realisations (seed, level, reading)."""
+    expected = {"noise_seed": scenario.seed, "noise_level": scenario.noise_level,
+                "excitation": scenario.excitation, **scenario.noise.to_attrs()}
+    for attr, value in expected.items():
+        if noise.attrs.get(attr) != value:
+            raise ValueError(f"noise file has {attr}={noise.attrs.get(attr)!r}, the scenario {value!r}")
