@@ -3,7 +3,7 @@
 As in :func:`scipy.integrate.solve_ivp`, an event is a continuous function g(t, y) whose zero
 is located, with a ``direction`` (+1: crossed from below, −1: from above, 0: either) and a
 ``terminal`` flag (stop the piece there). Each event here is a small object; its ``name``
-tells the run which jump to apply (docs/model.md, "Reference engine").
+tells the run which jump to apply (docs/model.md, "The reference engine, part by part").
 
 A piece often starts on the surface of the event just handled (θ = 0 after an impact, θ̇ = 0
 after an apex, Ẍg = 0 after a switch). Events are therefore *armed* at the start time t0: there

@@ -29,8 +29,18 @@ from ..result import STATUS_OVERTURNED, STATUS_REST, STATUS_TIME_LIMIT, Simulati
 from .controller import Controller, filippov_stiffness
 from .crossings import missed_crossing
 from .dynamics import Dynamics, Restrainers, RockingRHS
-from .events import Apex, Fracture, GroundZero, HoldExit, Impact, Overturn, TurningPoint, UpliftFromRest, \
-    fired_event, locate_in_time
+from .events import (
+    Apex,
+    Fracture,
+    GroundZero,
+    HoldExit,
+    Impact,
+    Overturn,
+    TurningPoint,
+    UpliftFromRest,
+    fired_event,
+    locate_in_time,
+)
 from .ground import Excitation
 from .recorder import Recorder, history_grid
 
