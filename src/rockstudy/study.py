@@ -154,7 +154,7 @@ def document_missing(ds: xr.Dataset) -> xr.Dataset:
 NOT_IN_SIMULATIONS = ("cli.py", "plotting.py", "study.py", "validation.py", "records.py",
                       "reference/__init__.py", "reference/controller.py", "reference/crossings.py",
                       "reference/dynamics.py", "reference/events.py", "reference/ground.py",
-                      "reference/recorder.py", "reference/run.py",
+                      "reference/piece.py", "reference/recorder.py", "reference/run.py",
                       "synthetic.py", "fragility.py", "probability.py")
 """Modules the compiled spectra and histories do not run (the scipy reference engine, the CLI,
 figures, this bookkeeping module, whose outputs have their own tests, the input checks, which

@@ -31,6 +31,7 @@ laid out as ``solve_ivp``'s own code is:
 * :mod:`.controller` — the law in force, the sampled-control queue, the Filippov stiffness;
 * :mod:`.events` — event objects with ``terminal``/``direction`` and the time-only locator;
 * :mod:`.crossings` — crossings ``solve_ivp`` stepped over within one step;
+* :mod:`.piece` — one rocking piece integrated to its first event (the engine's step);
 * :mod:`.recorder` — history, event logs and the :class:`~rockstudy.result.SimulationResult`;
 * :mod:`.run` — the regimes (rest, held, rocking), the jumps between them and the loop.
 

@@ -29,6 +29,7 @@ class AboveLevel:
         self.side, self.level = side, level
 
     def __call__(self, t, y):
+        """The gap at (t, y)."""
         return self.side * y[0] - self.level
 
 
@@ -39,6 +40,7 @@ class BelowUpright:
         self.side = side
 
     def __call__(self, t, y):
+        """The gap at (t, y)."""
         return -self.side * y[0]
 
 
@@ -49,6 +51,7 @@ class PastEvent:
         self.event = event
 
     def __call__(self, t, y):
+        """The gap at (t, y)."""
         return self.event.direction * self.event(t, y)
 
 

@@ -9,8 +9,11 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..anchorage import Anchorage
 from ..block import Block
+from ..excitation import GroundMotion
 from ..motion import angular_acceleration
 from .ground import Excitation
 
@@ -65,6 +68,34 @@ class Dynamics:
         """|Ẍg| − (g + Ÿg)·tanα: positive when the ground lifts a block at rest (Eq. 15). [m/s^2]"""
         ex = self.excitation
         return abs(ex.horizontal(t)) - (self.gravity + ex.vertical(t)) * self.tan_alpha
+
+    def uplift_window(self, t: float, motion: GroundMotion):
+        """For records and pulses: the knot interval in which uplift can first happen after t.
+
+        Between knots Ẍg and Ÿg are linear, so the margin |Ẍg| − (g + Ÿg)·tanα is convex there
+        and can only become positive in the interval that ends at the first knot where it is.
+
+        Parameters
+        ----------
+        t : float
+            Time at rest. [s]
+        motion : GroundMotion
+            The motion (its array form evaluates the margin at every knot). [m/s^2]
+
+        Returns
+        -------
+        (float, float) or None
+            (start, end) of that interval [s], or None if there is no uplift before the end.
+        """
+        knots = self.excitation.knots
+        ahead = knots[knots > t]
+        margin = (np.abs(motion.horizontal(ahead))
+                  - (self.gravity + motion.vertical_acceleration(ahead)) * self.tan_alpha)
+        positive = np.nonzero(margin > 0.0)[0]
+        if len(positive) == 0:
+            return None
+        j = positive[0]
+        return (ahead[j - 1] if j > 0 else t), float(ahead[j])
 
 
 class RockingRHS:

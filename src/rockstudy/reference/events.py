@@ -53,7 +53,15 @@ class Event:
 
 
 class Impact(Event):
-    """θ = 0 reached from the working side: Housner's impact, Eq. (14). g = s·θ [rad]."""
+    """θ = 0 reached from the working side: Housner's impact, Eq. (14). g = s·θ [rad].
+
+    Parameters
+    ----------
+    side : {1, -1}
+        Pivoting corner.
+    t0 : float
+        Start of the piece. [s]
+    """
 
     name = "impact"
 
@@ -62,11 +70,22 @@ class Impact(Event):
         self.side = side
 
     def value(self, t, y):
+        """g(t, y); see the class docstring."""
         return self.side * y[0]
 
 
 class Overturn(Event):
-    """|θ| reaches the overturning rotation (π/2 or α). g = s·θ − θ_ov [rad]."""
+    """|θ| reaches the overturning rotation (π/2 or α). g = s·θ − θ_ov [rad].
+
+    Parameters
+    ----------
+    side : {1, -1}
+        Pivoting corner.
+    theta_overturn : float
+        Overturning rotation θ_ov. [rad]
+    t0 : float
+        Start of the piece. [s]
+    """
 
     name = "overturn"
 
@@ -76,13 +95,23 @@ class Overturn(Event):
         self.theta_overturn = theta_overturn
 
     def value(self, t, y):
+        """g(t, y); see the class docstring."""
         return self.side * y[0] - self.theta_overturn
 
 
 class Fracture(Event):
     """The working spring or damper reaches its ultimate rotation θ_u (Eqs. 8–13). g = s·θ − θ_u [rad].
 
-    ``name`` is the element's name ("spring_left", ...).
+    Parameters
+    ----------
+    element : str
+        The element's name ("spring_left", ...), also the event's ``name``.
+    side : {1, -1}
+        Pivoting corner.
+    theta_ultimate : float
+        Ultimate rotation θ_u. [rad]
+    t0 : float
+        Start of the piece. [s]
     """
 
     def __init__(self, element: str, side: int, theta_ultimate: float, t0: float):
@@ -92,13 +121,22 @@ class Fracture(Event):
         self.theta_ultimate = theta_ultimate
 
     def value(self, t, y):
+        """g(t, y); see the class docstring."""
         return self.side * y[0] - self.theta_ultimate
 
 
 class Apex(Event):
     """θ̇ = 0 where the CS01 law switches (Eq. 16). g = s·θ̇ [rad/s].
 
-    ``direction`` is −vel_sign: moving away from upright (vel_sign = +1), s·θ̇ falls through 0.
+    Parameters
+    ----------
+    side : {1, -1}
+        Pivoting corner.
+    vel_sign : {1, -1}
+        Sign of s·θ̇ in the piece; ``direction`` is −vel_sign (moving away from upright, s·θ̇
+        falls through 0).
+    t0 : float
+        Start of the piece. [s]
     """
 
     name = "apex"
@@ -108,11 +146,18 @@ class Apex(Event):
         self.side = side
 
     def value(self, t, y):
+        """g(t, y); see the class docstring."""
         return self.side * y[1]
 
 
 class TurningPoint(Event):
-    """θ̇ = 0 where no law switches: recorded (not terminal, not armed) to check for missed crossings."""
+    """θ̇ = 0 where no law switches: recorded (not terminal, not armed) to check for missed crossings.
+
+    Parameters
+    ----------
+    side : {1, -1}
+        Pivoting corner. g = s·θ̇ [rad/s]
+    """
 
     name = "turn"
 
@@ -121,13 +166,21 @@ class TurningPoint(Event):
         self.side = side
 
     def value(self, t, y):
+        """g(t, y); see the class docstring."""
         return self.side * y[1]
 
 
 class GroundZero(Event):
     """Ẍg = 0, where the CS02 law switches (Eq. 17). g = Ẍg(t) [m/s^2].
 
-    ``direction`` is −sgn Ẍg of the current half-wave.
+    Parameters
+    ----------
+    excitation : Excitation
+        Ẍg(t). [m/s^2]
+    ground_sign : {1, -1}
+        Sign of Ẍg in the current half-wave; ``direction`` is −ground_sign.
+    t0 : float
+        Start of the piece. [s]
     """
 
     name = "ground"
@@ -137,6 +190,7 @@ class GroundZero(Event):
         self.excitation = excitation
 
     def value(self, t, y):
+        """g(t, y); see the class docstring."""
         return self.excitation.horizontal(t)
 
 
@@ -198,6 +252,7 @@ class HoldExit(Event):
         self.spring_ok, self.damper_ok = spring_ok, damper_ok
 
     def value(self, t, y):
+        """g(t, y); see the class docstring."""
         return self.side * self.dynamics.acceleration(t, self.theta, 0.0, self.side, self.kappa, self.spring_ok,
                                                       self.damper_ok)
 

@@ -16,10 +16,8 @@ to its first event (:mod:`.events`), then applies the jump the event stands for:
 from __future__ import annotations
 
 import math
-from operator import itemgetter
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ..anchorage import Anchorage
 from ..block import Block
@@ -27,7 +25,6 @@ from ..control import Control
 from ..excitation import GroundMotion
 from ..result import STATUS_OVERTURNED, STATUS_REST, STATUS_TIME_LIMIT, SimulationResult
 from .controller import Controller, filippov_stiffness
-from .crossings import missed_crossing
 from .dynamics import Dynamics, Restrainers, RockingRHS
 from .events import (
     Apex,
@@ -38,10 +35,10 @@ from .events import (
     Overturn,
     TurningPoint,
     UpliftFromRest,
-    fired_event,
     locate_in_time,
 )
 from .ground import Excitation
+from .piece import integrate_piece
 from .recorder import Recorder, history_grid
 
 METHOD = "DOP853"
@@ -256,27 +253,6 @@ class ReferenceRun:
             stop = min(stop, self.controller.next_actuation())
         return stop
 
-    def _uplift_window(self, t: float):
-        """For records and pulses: the knot interval in which uplift can first happen after t.
-
-        The margin |Ẍg| − (g + Ÿg)·tanα is convex between knots, so it can only become positive
-        in the interval that ends at the first knot where it is positive.
-
-        Returns
-        -------
-        (float, float) or None
-            (start, end) of that interval [s], or None if there is no uplift before the end.
-        """
-        ex, d = self.excitation, self.dynamics
-        ahead = ex.knots[ex.knots > t]
-        margin = (np.abs(self.motion.horizontal(ahead))
-                  - (d.gravity + self.motion.vertical_acceleration(ahead)) * d.tan_alpha)
-        positive = np.nonzero(margin > 0.0)[0]
-        if len(positive) == 0:
-            return None
-        j = positive[0]
-        return (ahead[j - 1] if j > 0 else t), float(ahead[j])
-
     def _rest_piece(self) -> None:
         """At rest: stay until uplift (located as a zero of the margin) or the end of the piece."""
         t = self.t
@@ -289,7 +265,7 @@ class ReferenceRun:
             return
         t1 = self._next_stop(t, with_actuation=False)
         if self.excitation.piecewise_linear:
-            window = self._uplift_window(t)
+            window = self.dynamics.uplift_window(t, self.motion)
             if window is None:
                 self._rest_until(self.excitation.end)
                 return
@@ -361,32 +337,6 @@ class ReferenceRun:
             events.append(GroundZero(self.excitation, self.ground_sign, t0))
         return events
 
-    def _piece_end(self, sol, rhs, events):
-        """Where a rocking piece really ends: its last point, or an earlier crossing it stepped over.
-
-        Returns
-        -------
-        (float, float, float, Event or None)
-            t [s], θ [rad], θ̇ [rad/s] at the end, and the event that ends the piece.
-        """
-        t_end = float(sol.t[-1])
-        theta_end, theta_dot_end = float(sol.y[0, -1]), float(sol.y[1, -1])
-        fired = fired_event(sol, events)
-        # Turning points (θ̇ = 0) inside the piece: a crossing of θ = 0, θ_u or the overturning
-        # rotation that starts and ends within one solver step shows up only there.
-        turning = sorted([(float(te), ye) for event, te_all, ye_all in zip(events, sol.t_events, sol.y_events)
-                          if event.name in ("turn", "apex") for te, ye in zip(te_all, ye_all)],
-                         key=itemgetter(0))
-        thresholds = [(self.restrainers.theta_ultimate[name], name) for name in self.restrainers.working(self.side)]
-        thresholds.append((self.theta_overturn, "overturn"))
-        watched = [event for event in events if event.terminal and event is not fired]
-        missed = missed_crossing(sol, rhs, self.side, turning, thresholds, watched, fired, METHOD, self.rtol,
-                                 self.atol)
-        if missed is None:
-            return t_end, theta_end, theta_dot_end, fired
-        t_end, (theta_end, theta_dot_end), name = missed
-        return t_end, theta_end, theta_dot_end, next(event for event in events if event.name == name)
-
     def _rocking_piece(self) -> None:
         """On one corner: integrate Eq. (1) with ``solve_ivp`` to the first event, then jump."""
         t0 = self.t
@@ -399,29 +349,36 @@ class ReferenceRun:
         kappa = self._kappa()
         rhs = RockingRHS(self.dynamics, s, kappa * r.spring_ok(s), self.dynamics.damping * r.damper_ok(s))
         events = self._rocking_events(t0)
-        sol = solve_ivp(rhs, (t0, t1), np.array([self.theta, self.theta_dot]), method=METHOD, rtol=self.rtol,
-                        atol=self.atol, events=events, dense_output=self.recorder.enabled)
-        if sol.status < 0:
-            raise RuntimeError(f"solve_ivp failed at t = {t0} s: {sol.message}")
-        t_end, theta_end, theta_dot_end, fired = self._piece_end(sol, rhs, events)
+        thresholds = [(r.theta_ultimate[name], name) for name in r.working(s)] + [(self.theta_overturn, "overturn")]
+        sol, (t_end, theta_end, theta_dot_end), fired = integrate_piece(
+            rhs, events, thresholds, s, (t0, t1), np.array([self.theta, self.theta_dot]), METHOD, self.rtol,
+            self.atol, self.recorder.enabled)
         self.recorder.piece_peak(sol, t_end, theta_end)
-        # Put the state exactly on the surface of the event that stopped the piece.
-        name = None if fired is None else fired.name
-        if name == "impact":
-            theta_end = 0.0
-        elif name == "overturn":
-            theta_end = s * self.theta_overturn
-        elif name == "apex":
-            theta_dot_end = 0.0
+        theta_end, theta_dot_end = self._on_surface(fired, theta_end, theta_dot_end)
         if self.recorder.enabled:
-            grid = history_grid(t0, t_end)
-            if len(grid):
-                y_grid = sol.sol(grid)
-                self.recorder.sample(grid, y_grid[0], y_grid[1], kappa)
-            self.recorder.sample(t_end, theta_end, theta_dot_end, kappa)
+            self._record_piece(sol, t0, (t_end, theta_end, theta_dot_end), kappa)
         self.t, self.theta, self.theta_dot = t_end, theta_end, theta_dot_end
         self._after_stop(fired, t_end)
         self._record_state()
+
+    def _on_surface(self, event, theta: float, theta_dot: float) -> tuple[float, float]:
+        """The end state put exactly on the surface of the event that stopped the piece. [rad], [rad/s]"""
+        name = None if event is None else event.name
+        if name == "impact":
+            return 0.0, theta_dot
+        if name == "overturn":
+            return self.side * self.theta_overturn, theta_dot
+        if name == "apex":
+            return theta, 0.0
+        return theta, theta_dot
+
+    def _record_piece(self, sol, t0: float, end: tuple, kappa: float) -> None:
+        """Record a rocking piece: the regular grid on its dense output, then its end state. [s], [-]"""
+        grid = history_grid(t0, end[0])
+        if len(grid):
+            y_grid = sol.sol(grid)
+            self.recorder.sample(grid, y_grid[0], y_grid[1], kappa)
+        self.recorder.sample(*end, kappa)
 
     # ---------------------------------------------------------------- driver
     def _check_progress(self, count: int, stalled: int) -> None:
