@@ -77,7 +77,7 @@ def paper_rows() -> np.ndarray:
 
 
 def rows_of(table: xr.Dataset) -> np.ndarray:
-    """CS01/CS02 rows of a Table 1 dataset (:func:`rockstudy.study.table1`) at R001-R010. [%]"""
+    """CS01/CS02 rows of a Table 1 dataset (:func:`rockstudy.tables.table1`) at R001-R010. [%]"""
     return np.array([[[float(table["j_os"].sel(reference=ref, strategy=s, noise_level=lv)) for lv in PAPER_LEVELS]
                       for ref in REFERENCES] for s in STRATEGIES])
 

@@ -367,11 +367,11 @@ def evaluate_claims(table1: xr.Dataset | None, *, convergence: xr.Dataset | None
     Parameters
     ----------
     table1 : xarray.Dataset or None
-        Table 1 as built by :func:`rockstudy.study.table1`.
+        Table 1 as built by :func:`rockstudy.tables.table1`.
     convergence : xarray.Dataset, optional
-        Fig. 6a data (:func:`rockstudy.study.convergence_dataset`).
+        Fig. 6a data (:func:`rockstudy.datasets.convergence_dataset`).
     sampling, delay : xarray.Dataset, optional
-        The timing tables (:func:`rockstudy.study.timing_table`).
+        The timing tables (:func:`rockstudy.tables.timing_table`).
     spectra : dict, optional
         {(strategy, level name): aggregate thresholds over the frequency grid} [-].
     levels : dict, optional

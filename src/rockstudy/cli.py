@@ -255,7 +255,7 @@ def _cmd_simulate(args, parser):
                energy_ratio=1.0 if rec is None else rec.energy_ratio,
                pga_ratio=1.0 if rec is None else rec.pga_ratio, **scenario.noise.to_attrs())
     if res is not None and (args.output or args.plot):
-        from .study import history_dataset
+        from .datasets import history_dataset
         ds = history_dataset(res, scenario, motion, args.frequency_ratio, args.amplitude_ratio, args.realisation)
         if args.output:
             from .io import write_netcdf
@@ -317,7 +317,7 @@ def _cmd_simulate_record(args, parser):
                pga_m_s2=motion.peak(), pga_uplift_ratio=pga_ratio, sampling_time_s=args.sampling_time,
                delay_s=args.delay)
     if args.output or args.plot:
-        from .study import history_dataset
+        from .datasets import history_dataset
         ds = history_dataset(res, scenario, motion, math.nan, pga_ratio, 0, dt=min(record.dt, 0.0025))
         ds.attrs.update(record.to_attrs(), excitation="record", record_scale=args.record_scale,
                         excitation_end_s=record.duration,
@@ -383,10 +383,10 @@ def _cmd_threshold(args, parser):
 def _cmd_spectrum(args, parser):
     import numba
 
+    from .datasets import document_missing
     from .excitation import excitation_duration
     from .io import write_netcdf
     from .spectra import frequency_grid, spectrum
-    from .study import document_missing
     if args.engine != "fast":
         parser.error("argument --engine: spectra run on the fast engine only")
     try:
@@ -440,7 +440,7 @@ def _cmd_jos(args, parser):
     import numpy as np
 
     from .io import read_netcdf
-    from .study import jos_of
+    from .tables import jos_of
     try:
         v.check_positive("--a-max0", args.a_max0, "g")
     except v.InputError as exc:

@@ -75,7 +75,8 @@ def plot_outcome_map(ax, ds, realisation: int = 0):
 def plot_history(ax, hist):
     """Normalised ground motion Ẍ_g/(g·tanα), rotation θ/α and velocity θ̇/(p·α) against time."""
     t = hist["time"].values
-    return [ax.plot(hist["ground_time"].values, hist["ground_ratio"], color="0.5", ls="--", lw=0.9, label=r"$\ddot X_g/(g\tan\alpha)$")[0],
+    return [ax.plot(hist["ground_time"].values, hist["ground_ratio"], color="0.5", ls="--", lw=0.9,
+                    label=r"$\ddot X_g/(g\tan\alpha)$")[0],
             ax.plot(t, hist["rotation_ratio"], color="tab:blue", lw=1.3, label=r"$\theta/\alpha$")[0],
             ax.plot(t, hist["velocity_ratio"], color="tab:red", lw=0.9, label=r"$\dot\theta/(p\,\alpha)$")[0]]
 
@@ -185,7 +186,8 @@ def figure_noise_sensitivity(convergence, spectra, a_max0: float, panels=("FS", 
                      "increasing number of realisations")
     a.legend(fontsize=8, loc="upper left")
     for ax, letter, strategy in zip(axes.flat[1:], "bcd", panels):
-        for ds in sorted((d for d in spectra if d["strategy"].item() == strategy), key=lambda d: float(d["noise_level"])):
+        mine = (d for d in spectra if d["strategy"].item() == strategy)
+        for ds in sorted(mine, key=lambda d: float(d["noise_level"])):
             level = float(ds["noise_level"])
             colour, ls = LEVEL_STYLE.get(round(level, 4), ("0.3", "-"))
             plot_threshold(ax, ds["threshold"], color=colour, ls=ls, lw=1.3, label=_level_label(level))

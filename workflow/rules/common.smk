@@ -4,7 +4,7 @@ LEVELS = config["noise_levels"]
 FREE = study.noise_free_level(LEVELS)
 NOISY = [name for name in LEVELS if name != FREE]
 LIBRARY = study.source_fingerprint()  # rerun the simulations whenever the library changes
-BOOKKEEPING = study.source_fingerprint(["study.py"])  # rerun what study.py assembles when it changes
+BOOKKEEPING = study.source_fingerprint(["study.py", "datasets.py", "tables.py"])  # rerun what they assemble
 PLOTTING = study.source_fingerprint(["plotting.py"])  # redraw the figures when plotting.py changes
 SAMPLING = config["sampling_sweep"]
 DELAY = config["delay_sweep"]
@@ -112,7 +112,7 @@ READINGS_TABLE = [f"{OUT}/reproduction/readings/readings.{e}" for e in ("nc", "c
 READINGS_FIGURE = [f"{OUT}/reproduction/readings/fig_readings.{e}" for e in ("png", "pdf")]
 CLAIMS = [f"{OUT}/reproduction/{name}" for name in ("claims.md", "claims.nc", "claims.csv", "table1_vs_paper.nc",
                                                      "table1_vs_paper.csv")]
-CLAIMS_BOOKKEEPING = study.source_fingerprint(["claims.py", "study.py", "utility.py"])
+CLAIMS_BOOKKEEPING = study.source_fingerprint(["claims.py", "study.py", "tables.py", "utility.py"])
 CAL = config["calibration"]
 CAL_DESIGN = {"kappa_max": CAL["kappa_max"], "damping_ratio": CAL["damping_ratio"],
               "ultimate_rotation": CAL["ultimate_rotation"], "kappa_min": CAL["kappa_min"]}

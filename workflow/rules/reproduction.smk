@@ -177,7 +177,7 @@ rule calibration_grid:
     params:
         design=CAL_DESIGN,
         reading=config["noise"],
-        bookkeeping=study.source_fingerprint(["calibration.py", "claims.py", "study.py"]),
+        bookkeeping=study.source_fingerprint(["calibration.py", "claims.py", "study.py", "tables.py"]),
         plotting=PLOTTING,
     conda:
         "../envs/rockstudy.yaml"
@@ -233,7 +233,7 @@ rule calibration_refine:
         levels=LEVELS,
         a_max0=config["a_max0"],
         reading=config["noise"],
-        bookkeeping=study.source_fingerprint(["calibration.py", "claims.py", "study.py"]),
+        bookkeeping=study.source_fingerprint(["calibration.py", "claims.py", "study.py", "tables.py"]),
     conda:
         "../envs/rockstudy.yaml"
     threads: 1
