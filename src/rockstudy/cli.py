@@ -422,15 +422,8 @@ def _cmd_spectrum(args, parser):
         n_sims, n_sims * SECONDS_PER_SIMULATION / args.threads, args.threads, SECONDS_PER_SIMULATION)
     ds = document_missing(spectrum(scenario, freqs, realisations=range(n_real), grid=grid, with_map=args.map))
     if args.plot:
-        import matplotlib.pyplot as plt
-
-        from .plotting import plot_a_max0, plot_threshold, save_figure, spectrum_axes
-        fig, ax = plt.subplots(figsize=(6, 4))
-        plot_threshold(ax, ds["threshold"], label=args.strategy)
-        plot_a_max0(ax, ds.attrs["a_max0_ratio"])
-        spectrum_axes(ax)
-        ax.legend()
-        save_figure(fig, args.plot)
+        from .plotting import figure_spectrum, save_figure
+        save_figure(figure_spectrum(ds, label=args.strategy), args.plot)
     write_netcdf(ds, args.output)
     print(json.dumps({"output": args.output, "frequencies": len(freqs), "realisations": int(ds.sizes["realisation"]),
                       "simulations": int(ds.n_simulations.sum()), "compute_time_s": ds.attrs["compute_time_s"]}))

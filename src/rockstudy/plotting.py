@@ -241,6 +241,16 @@ def figure_maps(maps, a_max0: float):
     return fig
 
 
+def figure_spectrum(ds, label: str | None = None):
+    """One overturning spectrum: the lower threshold (the aggregate over realisations) and a_max,0."""
+    fig, ax = plt.subplots(figsize=(6, 4))
+    plot_threshold(ax, ds["threshold"], label=label)
+    plot_a_max0(ax, ds.attrs["a_max0_ratio"])
+    spectrum_axes(ax)
+    ax.legend()
+    return fig
+
+
 def save_figure(fig, *paths) -> list[Path]:
     """Save ``fig`` to each path atomically (format from the suffix; :func:`rockstudy.io.atomic_write`)
     and close it."""

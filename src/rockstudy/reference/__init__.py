@@ -16,7 +16,7 @@ instant with a terminal event or a time breakpoint, applies the jump, and carrie
   changes only at the actuation instants t_k + Δτ where the decision differs from the one in
   force (zero-order hold, K_max before the first decision acts), and pieces stop there;
 * the Filippov sliding mode of continuous CS01 at θ̇ = 0 (docs/model.md item 6,
-  MODEL-NOTES §1): the block is held (θ̇ = 0, θ constant) and the release instant is located
+  docs/model.md, "CS01 sliding"): the block is held (θ̇ = 0, θ constant) and the release instant is located
   with the same event machinery on the trivial ODE;
 * kinks of sampled records (horizontal and vertical) at their knots i·dt;
 * overturning, |θ| ≥ π/2 (``"flat"``) or |θ| ≥ α (``"alpha"``).
