@@ -10,7 +10,7 @@
 #      figures; overturning_map and time_history feed their figures directly.
 from snakemake.utils import min_version, validate
 
-from rockstudy import study
+from rockstudy import calibration, study
 
 min_version("9.0")
 
@@ -25,6 +25,7 @@ study.check_study(config)
 include: "workflow/rules/common.smk"
 include: "workflow/rules/spectra.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/reproduction.smk"
 include: "workflow/rules/beyond.smk"
 
 
@@ -44,11 +45,17 @@ localrules:
     figure_sampling,
     figure_delay,
     figure_maps,
+    claims,
+    readings_table,
+    figure_readings,
+    calibration_grid,
+    calibration_refine,
 
 
 rule all:
     input:
         FIGURES,
         TABLES,
+        CLAIMS,
         BEYOND_IN_ALL,
     default_target: True

@@ -68,3 +68,34 @@ def test_jos_rejects_different_grids(tmp_path, capsys):
         main(["jos", "--reference", str(tmp_path / "a.nc"), "--system", str(tmp_path / "b.nc")])
     assert exc.value.code == 2
     assert "frequency grids" in capsys.readouterr().err
+
+
+def test_noise_options_reach_the_records(tmp_path, capsys, blc06):
+    from rockstudy import Control
+    from rockstudy.noise import NoiseReading
+    from rockstudy.spectra import AmplitudeGrid, Scenario, threshold
+    args = ["threshold", "--strategy", "FS", "--frequency-ratio", "2", "--noise-level", "0.1", "--realisation", "1",
+            "--max-amplitude-ratio", "3", "--noise-step", "0.01", "--noise-rescale", "none",
+            "--noise-level-means", "rms", "--noise-band", "20", "--noise-span", "0.5"]
+    out = run(args, capsys)
+    reading = NoiseReading(step=0.01, rescale="none", level_means="rms", band=20.0, span=0.5)
+    assert (out["noise_step_s"], out["noise_rescale"], out["noise_level_means"], out["noise_band_hz"],
+            out["noise_span_s"]) == (0.01, "none", "rms", 20.0, 0.5)
+    lib = threshold(Scenario(blc06, control=Control("FS"), noise_level=0.1, noise=reading), 2.0, realisation=1,
+                    grid=AmplitudeGrid(stop=3.0))
+    assert out["amplitude_ratio"] == lib["amplitude_ratio"] and out["energy_ratio"] == lib["energy_ratio"]
+    assert out["energy_ratio"] != pytest.approx(1.0, abs=1e-6)  # "none" keeps the sum unscaled
+    # --match is the former name of --noise-rescale; defaults are today's reading
+    out = run(["simulate", "--strategy", "FS", "--noise-level", "0.05", "--match", "pga"], capsys)
+    assert out["noise_rescale"] == "pga" and out["noise_step_s"] == 0.0025 and out["pga_ratio"] == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("args, name", [(["--noise-step", "0"], "--noise-step"),
+                                        (["--noise-band", "500"], "--noise-band"),
+                                        (["--noise-span", "-1"], "--noise-span"),
+                                        (["--noise-rescale", "rms"], "--noise-rescale")])
+def test_bad_noise_options_exit_2_naming_the_option(args, name, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["simulate", "--noise-level", "0.05"] + args)
+    assert exc.value.code == 2
+    assert name in capsys.readouterr().err

@@ -1,4 +1,4 @@
-"""The opt-in shortcut ``step_across_knots`` (docs/model.md, "Stepping across record knots").
+"""The opt-in ``step_across_knots`` (docs/model.md, "Stepping across record knots"; measured slower).
 
 It is OFF by default everywhere, and when switched on it stays within stated tolerances of the
 default, knot-clipped integration, which integrates the exact piecewise-linear forcing (every step

@@ -6,7 +6,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from rockstudy import plotting, study  # noqa: E402
+from rockstudy import datasets, plotting  # noqa: E402
 from rockstudy.control import Control  # noqa: E402
 from rockstudy.spectra import OUTCOME_MEANINGS, Scenario  # noqa: E402
 from test_study import BLC06, fake_spectrum  # noqa: E402
@@ -14,7 +14,7 @@ from test_study import BLC06, fake_spectrum  # noqa: E402
 
 @pytest.fixture(scope="module")
 def history():
-    return study.time_history(Scenario(BLC06, control=Control("CS01")), 2.0, 1.3)
+    return datasets.time_history(Scenario(BLC06, control=Control("CS01")), 2.0, 1.3)
 
 
 def with_map(ds):
@@ -44,7 +44,7 @@ def test_axis_functions_return_artists(history):
 def test_figures_build_and_save(tmp_path, history):
     spectra = [fake_spectrum(s, lev, np.full((2, 4), 1.0 + lev * 10)) for s in ("FS", "CS01", "CS02")
                for lev in (0.0, 0.05)]
-    conv = study.convergence_dataset(spectra[1])
+    conv = datasets.convergence_dataset(spectra[1])
     figs = [plotting.figure_control_history(history, "2"),
             plotting.figure_noise_sensitivity(conv, spectra, 4.0),
             plotting.figure_timing([fake_spectrum("CS01", 0.05, np.ones(4), sampling_time=t) for t in (0.01, 0.1)],
@@ -53,7 +53,7 @@ def test_figures_build_and_save(tmp_path, history):
             plotting.figure_realisations(spectra[1], [history, history],
                                          {"label": "Ex01", "frequency_ratio": 2.0, "amplitude_ratio": 1.3,
                                           "a_max0_ratio": 4.0})]
-    noise = study.noise_dataset(Scenario(BLC06, noise_level=0.1), [1.0], [0], 1.0, 1)
+    noise = datasets.noise_dataset(Scenario(BLC06, noise_level=0.1), [1.0], [0], 1.0, 1)
     figs.append(plotting.figure_excitation(noise))
     for i, fig in enumerate(figs):
         written = plotting.save_figure(fig, tmp_path / f"f{i}.png", tmp_path / f"f{i}.pdf")

@@ -9,8 +9,8 @@ import math
 
 import numpy as np
 import pytest
-from scipy.integrate import quad
 
+import oracles
 from rockstudy.anchorage import Anchorage
 from rockstudy.block import BLOCK_PRESETS, GRAVITY
 from rockstudy.control import Control
@@ -36,17 +36,10 @@ def one_sine(frequency_ratio, amplitude_ratio, block=BLC06):
                         duration=2 * math.pi / omega)
 
 
-def quarter_period(theta0, p=P, alpha=ALPHA):
-    """Exact time from θ0 (at rest) to θ = 0 in free rocking. [s]
 
-    T/4 = ∫_0^θ0 dθ / √(2p²[cos(α−θ0) − cos(α−θ)]); with θ = θ0(1 − v²) the integrand is
-    regular: cos(α−θ0) − cos(α−θ) = 2 sin(α − θ0 + θ0v²/2)·sin(θ0v²/2).
-    """
-    def integrand(v):
-        x = 0.5 * theta0 * v * v
-        sin_ratio = math.sin(x) / (v * v) if v > 0 else 0.5 * theta0
-        return 2 * theta0 / math.sqrt(4 * p * p * math.sin(alpha - theta0 + x) * sin_ratio)
-    return quad(integrand, 0.0, 1.0, epsabs=0.0, epsrel=1e-13)[0]
+def quarter_period(theta0, p=P, alpha=ALPHA):
+    """Exact time from θ0 (at rest) to θ = 0 in free rocking of BLC06 (see ``oracles.quarter_period``). [s]"""
+    return oracles.quarter_period(theta0, p, alpha)
 
 
 def jumps(history):
@@ -354,3 +347,69 @@ def test_overturn_criteria():
     i = np.nonzero(np.abs(h["theta"]) >= ALPHA)[0][0]
     crossing = np.interp(ALPHA, np.abs(h["theta"][i - 1:i + 1]), h["t"][i - 1:i + 1])
     assert crossing == pytest.approx(alpha.overturn_time, abs=1e-4)
+
+
+# ----------------------------------------------------------------------------- the engine's parts
+def test_every_reference_module_is_outside_the_simulation_fingerprint():
+    """The workflow reruns the simulations when a module they run changes; the reference engine is not one."""
+    from pathlib import Path
+
+    from rockstudy import reference, study
+
+    names = {f"reference/{p.name}" for p in Path(reference.__file__).parent.glob("*.py")}
+    assert names <= set(study.NOT_IN_SIMULATIONS)
+
+
+def test_filippov_stiffness_zeroes_the_acceleration():
+    """θ̈ is affine in κ, so the equivalent stiffness gives θ̈ = 0 exactly (up to round-off)."""
+    from rockstudy.reference.controller import filippov_stiffness
+
+    args = (0.3 * ALPHA, 0.0, 1.0)
+    ground = (-1.0 * UPLIFT, 0.0, P, GRAVITY, math.sin(ALPHA), math.cos(ALPHA))
+    a_max = angular_acceleration(*args, 2.0, 0.0, *ground)
+    a_min = angular_acceleration(*args, 0.0, 0.0, *ground)
+    assert a_max < 0 < a_min  # a held state: K_max pulls back, K_min lets it go out
+    kappa = filippov_stiffness(a_max, a_min, 2.0, 0.0)
+    assert 0.0 < kappa < 2.0
+    assert abs(angular_acceleration(*args, kappa, 0.0, *ground)) < 1e-12 * abs(a_min)
+    assert filippov_stiffness(1.0, 1.0, 2.0, 0.0) == 2.0
+
+
+def test_armed_event_does_not_fire_at_its_start():
+    """On its surface at t0 an event reads a tiny value on the approach side; later, its plain value."""
+    from rockstudy.reference.events import Apex, Impact, TurningPoint
+
+    impact = Impact(side=-1, t0=0.5)  # s·θ falls through 0: approached from above
+    assert impact(0.5, np.array([0.0, 1.0])) > 0.0
+    assert impact(0.5, np.array([-0.2, 1.0])) == pytest.approx(0.2)  # already on the approach side
+    assert impact(0.6, np.array([0.0, 1.0])) == 0.0
+    apex = Apex(side=1, vel_sign=-1, t0=0.0)  # returning: s·θ̇ rises through 0
+    assert apex.direction == 1 and apex(0.0, np.array([0.1, 0.0])) < 0.0
+    turn = TurningPoint(side=1)
+    assert not turn.terminal and turn.direction == 0 and turn(0.0, np.array([0.1, 0.0])) == 0.0
+
+
+def test_sampled_queue_hand_worked():
+    """T_s = 0.1 s, Δτ = 0.03 s: a change read at the next sample, overwritten within an interval."""
+    from rockstudy.reference.controller import Controller
+
+    c = Controller("CS01", 1.0, 0.0, sampling_time=0.1, delay=0.03)
+    c.push(0.0, True)  # read at t_0 = 0, acts at 0.03
+    c.push(0.05, False)  # read at t_1 = 0.1 ...
+    assert list(c.queue) == [(0, True), (1, False)]
+    c.push(0.07, True)  # ... but back on before t_1: t_1 reads on, the same as t_0's decision
+    assert list(c.queue) == [(0, True)]
+    assert c.next_actuation() == pytest.approx(0.03)
+    c.push(0.25, False)  # read at t_3 = 0.3, acts at 0.33
+    assert c.kappa_at(np.array([0.02, 0.1, 0.34]), law_on=True) == [1.0, 1.0, 0.0]
+    c.apply_due(0.2)
+    assert c.active_on and list(c.queue) == [(3, False)]
+    c.apply_due(0.34)
+    assert not c.active_on and c.kappa(law_on=True) == 0.0 and c.next_actuation() == math.inf
+
+
+def test_history_grid_is_strictly_inside():
+    from rockstudy.reference.recorder import HISTORY_STEP, history_grid
+
+    assert history_grid(0.0, 3 * HISTORY_STEP) == pytest.approx([HISTORY_STEP, 2 * HISTORY_STEP])
+    assert len(history_grid(HISTORY_STEP, 1.5 * HISTORY_STEP)) == 0

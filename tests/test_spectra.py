@@ -45,7 +45,8 @@ def test_aggregate_never_rises_with_n_and_realisations_are_order_free(blc06):
     assert np.all(np.diff(finite, axis=0) <= 0)
     np.testing.assert_array_equal(conv[-1], ds.threshold.values)
     alone = spectrum(sc, freqs, realisations=[2], grid=GRID)
-    np.testing.assert_array_equal(alone.threshold_realisation.values[0], ds.threshold_realisation.sel(realisation=2).values)
+    np.testing.assert_array_equal(alone.threshold_realisation.values[0],
+                                  ds.threshold_realisation.sel(realisation=2).values)
     reordered = spectrum(sc, freqs, realisations=[3, 2, 1, 0], grid=GRID)
     np.testing.assert_array_equal(reordered.threshold_realisation.sel(realisation=2).values,
                                   ds.threshold_realisation.sel(realisation=2).values)

@@ -4,6 +4,7 @@ tests over CLI arguments and config values (hypothesis).
 Set ``ROCKSTUDY_HYPOTHESIS_EXAMPLES`` to run a longer sweep than the CI default.
 """
 import copy
+import importlib
 import json
 import math
 import os
@@ -19,7 +20,7 @@ import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from rockstudy import cli, io, study
+from rockstudy import cli, datasets, io, study
 from rockstudy import validation as v
 from rockstudy.block import BLOCK_PRESETS, Block
 from rockstudy.excitation import excitation_duration
@@ -345,7 +346,8 @@ def test_threshold_reports_the_scan_start_and_unchecked_amplitudes(capsys):
 
 
 def test_simulate_event_cap_is_an_undetermined_result(monkeypatch, capsys):
-    import rockstudy.simulate as simulate
+    # the module, not the function: ``rockstudy.simulate`` (the package attribute) is the function
+    simulate = importlib.import_module("rockstudy.simulate")
 
     def capped(*args, **kwargs):
         raise RuntimeError("the fast engine hit its cap of 2000000 events at t = 1 s")
@@ -357,7 +359,7 @@ def test_simulate_event_cap_is_an_undetermined_result(monkeypatch, capsys):
 
 def test_jos_refuses_a_max0_above_the_scan_and_reports_undefined(tmp_path, capsys):
     block = BLOCK_PRESETS["BLC06"]
-    ds = study.document_missing(xr.Dataset(
+    ds = datasets.document_missing(xr.Dataset(
         {"threshold": ("frequency_ratio", [np.nan, np.nan])},
         coords={"frequency_ratio": [1.0, 2.0]},
         attrs={**block.to_attrs(), "grid_amplitude_start": 0.9, "grid_amplitude_stop": 4.5,

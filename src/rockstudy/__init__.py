@@ -49,11 +49,12 @@ from .control import STRATEGIES, Control  # noqa: E402
 from .excitation import GroundMotion  # noqa: E402
 from .outcome import Outcome  # noqa: E402
 from .result import SimulationResult  # noqa: E402
+from .scenario import Scenario  # noqa: E402
 
 # the function, not the module: ``rockstudy.simulate(...)``; the module stays importable as
 # ``from rockstudy.simulate import pack_parameters``
 from .simulate import simulate  # noqa: E402
-from .spectra import AmplitudeGrid, Scenario, frequency_grid, spectrum, threshold  # noqa: E402
+from .spectra import AmplitudeGrid, frequency_grid, spectrum, threshold  # noqa: E402
 
 __all__ = ["Block", "BLOCK_PRESETS", "GRAVITY", "Anchorage", "Control", "STRATEGIES", "GroundMotion", "Outcome",
            "SimulationResult", "AmplitudeGrid", "Scenario", "frequency_grid", "simulate", "spectrum", "threshold",

@@ -66,7 +66,17 @@ def _common(p: argparse.ArgumentParser, single_frequency=True):
                    help="noise energy / baseline energy, in [0, 1)")
     p.add_argument("--realisation", type=_integer("--realisation"), default=0, help="noise realisation k")
     p.add_argument("--seed", type=_integer("--seed"), default=0, help="root seed of the noise")
-    p.add_argument("--match", default="energy", choices=("energy", "pga"), help="noisy record rescaled to match")
+    p.add_argument("--noise-step", type=_number("--noise-step"), default=0.0025, metavar="SECONDS",
+                   help="sampling step of the noisy record [s] (default 0.0025)")
+    p.add_argument("--noise-rescale", "--match", dest="match", default="energy",
+                   choices=("energy", "pga", "both", "none"),
+                   help="what the noisy record keeps of the baseline: energy (default), pga, both, none")
+    p.add_argument("--noise-level-means", default="energy", choices=("energy", "rms"),
+                   help="--noise-level is noise/baseline energy (default) or noise/baseline RMS")
+    p.add_argument("--noise-band", type=_number("--noise-band"), default=None, metavar="HZ",
+                   help="upper band limit of the noise [Hz] (default: white up to 1/(2 step))")
+    p.add_argument("--noise-span", type=_number("--noise-span"), default=0.0, metavar="SECONDS",
+                   help="noise also this long after the intense part [s] (default 0)")
     p.add_argument("--sampling-time", type=_number("--sampling-time"), default=0.0,
                    help="controller sampling time T_s [s] (0: continuous)")
     p.add_argument("--delay", type=_number("--delay"), default=0.0, help="actuation delay [s] (needs T_s > 0)")
@@ -114,14 +124,20 @@ def _check_common(args, single_frequency=True) -> None:
 def _scenario(args, parser):
     from .anchorage import Anchorage
     from .control import Control
+    from .noise import NoiseReading
     from .spectra import Scenario
+    try:
+        noise = NoiseReading(step=args.noise_step, rescale=args.match, level_means=args.noise_level_means,
+                             band=args.noise_band, span=args.noise_span)
+    except ValueError as exc:
+        parser.error(str(exc).replace("NoiseReading.band", "--noise-band").replace("NoiseReading.", "--noise-"))
     try:
         return Scenario(BLOCK_PRESETS[args.block],
                         Anchorage(kappa_max=args.kappa_max, kappa_min=args.kappa_min,
                                   damping_ratio=args.damping_ratio),
                         Control(args.strategy, sampling_time=args.sampling_time, delay=args.delay),
                         excitation=args.excitation, noise_level=args.noise_level, seed=args.seed,
-                        match=args.match, overturn_criterion=args.overturn_criterion, free_time=args.free_time)
+                        noise=noise, overturn_criterion=args.overturn_criterion, free_time=args.free_time)
     except ValueError as exc:
         parser.error(_user_names(str(exc)))
 
@@ -237,9 +253,9 @@ def _cmd_simulate(args, parser):
                strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
                realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
                energy_ratio=1.0 if rec is None else rec.energy_ratio,
-               pga_ratio=1.0 if rec is None else rec.pga_ratio)
+               pga_ratio=1.0 if rec is None else rec.pga_ratio, **scenario.noise.to_attrs())
     if res is not None and (args.output or args.plot):
-        from .study import history_dataset
+        from .datasets import history_dataset
         ds = history_dataset(res, scenario, motion, args.frequency_ratio, args.amplitude_ratio, args.realisation)
         if args.output:
             from .io import write_netcdf
@@ -301,7 +317,7 @@ def _cmd_simulate_record(args, parser):
                pga_m_s2=motion.peak(), pga_uplift_ratio=pga_ratio, sampling_time_s=args.sampling_time,
                delay_s=args.delay)
     if args.output or args.plot:
-        from .study import history_dataset
+        from .datasets import history_dataset
         ds = history_dataset(res, scenario, motion, math.nan, pga_ratio, 0, dt=min(record.dt, 0.0025))
         ds.attrs.update(record.to_attrs(), excitation="record", record_scale=args.record_scale,
                         excitation_end_s=record.duration,
@@ -359,17 +375,18 @@ def _cmd_threshold(args, parser):
         res["undetermined_note"] = (f"{res['n_undetermined']} run(s) hit the fast engine's event cap and were "
                                     "counted as not overturned; check with --engine reference")
     res.update(strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
-               realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay)
+               realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
+               **scenario.noise.to_attrs())
     print(json.dumps(res, indent=2))
 
 
 def _cmd_spectrum(args, parser):
     import numba
 
+    from .datasets import document_missing
     from .excitation import excitation_duration
     from .io import write_netcdf
     from .spectra import frequency_grid, spectrum
-    from .study import document_missing
     if args.engine != "fast":
         parser.error("argument --engine: spectra run on the fast engine only")
     try:
@@ -405,15 +422,8 @@ def _cmd_spectrum(args, parser):
         n_sims, n_sims * SECONDS_PER_SIMULATION / args.threads, args.threads, SECONDS_PER_SIMULATION)
     ds = document_missing(spectrum(scenario, freqs, realisations=range(n_real), grid=grid, with_map=args.map))
     if args.plot:
-        import matplotlib.pyplot as plt
-
-        from .plotting import plot_a_max0, plot_threshold, save_figure, spectrum_axes
-        fig, ax = plt.subplots(figsize=(6, 4))
-        plot_threshold(ax, ds["threshold"], label=args.strategy)
-        plot_a_max0(ax, ds.attrs["a_max0_ratio"])
-        spectrum_axes(ax)
-        ax.legend()
-        save_figure(fig, args.plot)
+        from .plotting import figure_spectrum, save_figure
+        save_figure(figure_spectrum(ds, label=args.strategy), args.plot)
     write_netcdf(ds, args.output)
     print(json.dumps({"output": args.output, "frequencies": len(freqs), "realisations": int(ds.sizes["realisation"]),
                       "simulations": int(ds.n_simulations.sum()), "compute_time_s": ds.attrs["compute_time_s"]}))
@@ -423,7 +433,7 @@ def _cmd_jos(args, parser):
     import numpy as np
 
     from .io import read_netcdf
-    from .study import jos_of
+    from .tables import jos_of
     try:
         v.check_positive("--a-max0", args.a_max0, "g")
     except v.InputError as exc:

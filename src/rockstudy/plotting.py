@@ -75,7 +75,8 @@ def plot_outcome_map(ax, ds, realisation: int = 0):
 def plot_history(ax, hist):
     """Normalised ground motion Ẍ_g/(g·tanα), rotation θ/α and velocity θ̇/(p·α) against time."""
     t = hist["time"].values
-    return [ax.plot(hist["ground_time"].values, hist["ground_ratio"], color="0.5", ls="--", lw=0.9, label=r"$\ddot X_g/(g\tan\alpha)$")[0],
+    return [ax.plot(hist["ground_time"].values, hist["ground_ratio"], color="0.5", ls="--", lw=0.9,
+                    label=r"$\ddot X_g/(g\tan\alpha)$")[0],
             ax.plot(t, hist["rotation_ratio"], color="tab:blue", lw=1.3, label=r"$\theta/\alpha$")[0],
             ax.plot(t, hist["velocity_ratio"], color="tab:red", lw=0.9, label=r"$\dot\theta/(p\,\alpha)$")[0]]
 
@@ -185,7 +186,8 @@ def figure_noise_sensitivity(convergence, spectra, a_max0: float, panels=("FS", 
                      "increasing number of realisations")
     a.legend(fontsize=8, loc="upper left")
     for ax, letter, strategy in zip(axes.flat[1:], "bcd", panels):
-        for ds in sorted((d for d in spectra if d["strategy"].item() == strategy), key=lambda d: float(d["noise_level"])):
+        mine = (d for d in spectra if d["strategy"].item() == strategy)
+        for ds in sorted(mine, key=lambda d: float(d["noise_level"])):
             level = float(ds["noise_level"])
             colour, ls = LEVEL_STYLE.get(round(level, 4), ("0.3", "-"))
             plot_threshold(ax, ds["threshold"], color=colour, ls=ls, lw=1.3, label=_level_label(level))
@@ -239,6 +241,16 @@ def figure_maps(maps, a_max0: float):
     return fig
 
 
+def figure_spectrum(ds, label: str | None = None):
+    """One overturning spectrum: the lower threshold (the aggregate over realisations) and a_max,0."""
+    fig, ax = plt.subplots(figsize=(6, 4))
+    plot_threshold(ax, ds["threshold"], label=label)
+    plot_a_max0(ax, ds.attrs["a_max0_ratio"])
+    spectrum_axes(ax)
+    ax.legend()
+    return fig
+
+
 def save_figure(fig, *paths) -> list[Path]:
     """Save ``fig`` to each path atomically (format from the suffix; :func:`rockstudy.io.atomic_write`)
     and close it."""
@@ -249,6 +261,70 @@ def save_figure(fig, *paths) -> list[Path]:
         written.append(path)
     plt.close(fig)
     return written
+
+
+# --- reproduction (issue 9) ----------------------------------------------------------------------
+def plot_readings(ax, table, closest: str | None = None):
+    """FS J_OS against the noise level, one line per noise reading, the paper's values as markers.
+
+    ``table`` is a readings table (:func:`rockstudy.readings.readings_table`); the closest reading
+    is drawn thicker. Returns the lines drawn.
+    """
+    x = 100 * np.asarray(table["level_value"].values, dtype=float)
+    lines = []
+    for name in table["reading"].values:
+        t = table.sel(reading=name)
+        bold = name == closest
+        (line,) = ax.plot(x, t["j_os"].values, marker="o", ms=3, lw=2.4 if bold else 1.0,
+                          label=f"{name}: {t['label'].item()}" + (" (closest)" if bold else ""))
+        lines.append(line)
+    lines.append(ax.plot(x, table["paper"].values, ls="none", marker="*", ms=12, color="k", label="paper, Table 1")[0])
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel("noise level r [%]")
+    ax.set_ylabel(r"$J_{OS}$ of FS against no noise [%]")
+    ax.grid(True, lw=0.3, alpha=0.5)
+    return lines
+
+
+def figure_readings(table):
+    """The readings study: FS row of Table 1 under each reading of the noise model."""
+    fig, ax = plt.subplots(figsize=(8, 5), constrained_layout=True)
+    plot_readings(ax, table, table.attrs.get("closest_reading"))
+    ax.set_title("Readings of the noise model: FS row of Table 1", fontsize=10)
+    ax.legend(fontsize=7, loc="lower left")
+    return fig
+
+
+def figure_calibration(grid, best: dict | None = None):
+    """J_OS of CS01 and CS02 against FS over kappa_max x xi (one panel per strategy and noise level).
+
+    ``grid`` is a calibration grid dataset (:func:`rockstudy.calibration.grid_dataset`) with
+    ``j_os`` over (strategy, reference, noise_level, kappa_max, damping_ratio); the paper's value of
+    each panel is in its title, and the device closest to the paper is marked with a star.
+    """
+    levels = list(grid["noise_level"].values)
+    strategies = list(grid["strategy"].values)
+    fig, axes = plt.subplots(len(strategies), len(levels), figsize=(3.6 * len(levels), 3.0 * len(strategies)),
+                             squeeze=False, constrained_layout=True)
+    kx, xi = grid["kappa_max"].values, grid["damping_ratio"].values
+    for i, s in enumerate(strategies):
+        for j, level in enumerate(levels):
+            ax = axes[i, j]
+            z = grid["j_os"].sel(strategy=s, reference="fs_same_noise", noise_level=level).isel(
+                ultimate_rotation=0).values  # the first theta_u of the design (alpha by default)
+            mesh = ax.pcolormesh(kx, xi, z.T, shading="nearest", cmap="viridis")
+            cs = ax.contour(kx, xi, z.T, levels=[float(grid["paper"].sel(strategy=s, reference="fs_same_noise",
+                                                                         noise_level=level))],
+                            colors="w", linewidths=1.2)
+            ax.clabel(cs, fmt="paper %.1f", fontsize=6)
+            fig.colorbar(mesh, ax=ax, label=r"$J_{OS}$ vs FS [%]")
+            if best is not None:
+                ax.plot(best["kappa_max"], best["damping_ratio"], marker="*", ms=12, color="r")
+            ax.set_xlabel(r"$\kappa_{max}$ [-]")
+            ax.set_ylabel(r"$\xi$ [-]")
+            paper = float(grid["paper"].sel(strategy=s, reference="fs_same_noise", noise_level=level))
+            ax.set_title(f"{s} vs FS, {level} (paper {paper:+.1f} %)", fontsize=9)
+    return fig
 
 
 # --- beyond the paper: probability of overturning, record fragility ----------------------------------

@@ -54,7 +54,7 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
     ``energy_bound`` lets the engine end a run once it provably can no longer overturn (outcome
     runs only: the history and event log after that point are not computed).
     ``step_across_knots`` lets the integrator's steps span record knots while the block rocks
-    (opt-in shortcut: faster on noisy records, not bit-identical; docs/model.md).
+    (opt-in, not bit-identical, measured slower on noisy records; docs/model.md).
     """
     if not (free_time >= 0 and math.isfinite(free_time)):
         raise ValueError(f"free_time must be a finite number >= 0 [s], got {free_time!r}")
@@ -149,8 +149,8 @@ def simulate(block: Block, anchorage: Anchorage, control: Control, motion: Groun
     step_across_knots : bool
         Fast engine only, opt-in: let the Dormand–Prince steps span the knots of a sampled record
         while the block rocks instead of stopping at each (records are linear between knots; error
-        control sizes the steps). Faster on noisy records; results differ from the default in the
-        last digits, and a threshold can move by a scan step (docs/model.md). Default False.
+        control sizes the steps). Not bit-identical to the default and, measured, slower on noisy
+        records at the default tolerance (docs/model.md). Default False.
     """
     if engine not in ENGINES:
         raise ValueError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")

@@ -11,23 +11,21 @@ from __future__ import annotations
 import logging
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
 
 from . import __version__
 from . import _kernel as kn
-from .anchorage import Anchorage
-from .block import Block
-from .control import Control
-from .excitation import EXCITATIONS, GroundMotion, excitation_duration, modulated_peak
-from .noise import MATCHES, noisy_record, record_motion
+from .excitation import GroundMotion, modulated_peak
 from .outcome import OUTCOME_MEANINGS, Outcome
-from .simulate import DEFAULT_FREE_TIME, OVERTURN_CRITERIA, pack_parameters, simulate
+from .scenario import Scenario
+from .simulate import pack_parameters, simulate
 
 log = logging.getLogger("rockstudy")
 
+PAPER = "Use of overturning spectra in the performance evaluation of on-off control strategies for rocking objects"
 PAPER_EQUATIONS = "Eqs. 1-17 (model), Eq. 23 (excitation), Figs. 5-8 (spectra)"
 
 
@@ -71,74 +69,6 @@ def frequency_grid(start: float = 0.25, stop: float = 5.0, step: float = 0.1) ->
     return np.round(start + step * np.arange(n + 1), 10)
 
 
-@dataclass(frozen=True)
-class Scenario:
-    """Everything but frequency, amplitude and realisation that defines a simulation.
-
-    Parameters
-    ----------
-    block, anchorage, control
-        The block, its restrainers, and the control law with its timing.
-    excitation : {"one-sine", "modulated"}
-        Baseline excitation.
-    noise_level : float
-        Noise energy over baseline energy, in [0, 1). [-]
-    seed : int
-        Root seed of the noise realisations.
-    match : {"energy", "pga"}
-        What the noisy record is rescaled to match.
-    overturn_criterion : {"flat", "alpha"}
-    free_time : float
-        Free motion allowed after the excitation. [s]
-    """
-
-    block: Block
-    anchorage: Anchorage = field(default_factory=Anchorage)
-    control: Control = field(default_factory=Control)
-    excitation: str = "modulated"
-    noise_level: float = 0.0
-    seed: int = 0
-    match: str = "energy"
-    overturn_criterion: str = "flat"
-    free_time: float = DEFAULT_FREE_TIME
-
-    def __post_init__(self):
-        if self.excitation not in EXCITATIONS:
-            raise ValueError(f"excitation must be one of {', '.join(EXCITATIONS)}, got {self.excitation!r}")
-        if not (0.0 <= self.noise_level < 1.0):
-            raise ValueError(f"noise_level must lie in [0, 1), got {self.noise_level!r}")
-        if not (isinstance(self.seed, (int, np.integer)) and self.seed >= 0):
-            raise ValueError(f"seed must be an integer >= 0, got {self.seed!r}")
-        if self.match not in MATCHES:
-            raise ValueError(f"match must be one of {', '.join(MATCHES)}, got {self.match!r}")
-        if self.overturn_criterion not in OVERTURN_CRITERIA:
-            raise ValueError(f"overturn_criterion must be one of {', '.join(OVERTURN_CRITERIA)}, "
-                             f"got {self.overturn_criterion!r}")
-
-    def omega(self, frequency_ratio: float) -> float:
-        """ω_p for a frequency ratio. [rad/s]"""
-        return frequency_ratio * self.block.p
-
-    def motion(self, frequency_ratio: float, amplitude_ratio: float, realisation: int = 0):
-        """The ground motion and its noise record info (None without noise)."""
-        omega = self.omega(frequency_ratio)
-        amplitude = amplitude_ratio * self.block.uplift_acceleration
-        if self.noise_level == 0:
-            return GroundMotion(self.excitation, amplitude, omega, excitation_duration(self.excitation, omega)), None
-        rec = noisy_record(self.excitation, omega, self.noise_level, realisation, self.seed, match=self.match)
-        return record_motion(rec, amplitude, omega), rec
-
-    def to_attrs(self) -> dict:
-        attrs = {}
-        attrs.update(self.block.to_attrs())
-        attrs.update(self.anchorage.to_attrs(self.block))
-        attrs.update(self.control.to_attrs())
-        attrs.update(excitation=self.excitation, noise_level=self.noise_level, noise_seed=int(self.seed),
-                     noise_match=self.match, noise_dt_s=0.0025, overturn_criterion=self.overturn_criterion,
-                     free_time_s=self.free_time)
-        return attrs
-
-
 def _unit_peak(scenario: Scenario, rec) -> float:
     if rec is not None:
         return float(np.max(np.abs(rec.values)))
@@ -165,8 +95,8 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     ``energy_bound`` (fast engine) ends each run once it provably cannot overturn any more
     (docs/model.md); it never changes an outcome, only the time spent (False: integrate every run
     to rest or the time limit, as before). ``step_across_knots`` (fast engine, opt-in, default
-    False) lets the steps span record knots (:func:`rockstudy.simulate.simulate`): faster on noisy
-    records, not bit-identical to the default (docs/model.md gives its measured accuracy).
+    False) lets the steps span record knots (:func:`rockstudy.simulate.simulate`): not bit-identical
+    to the default and, measured, slower on noisy records (docs/model.md).
 
     Returns a dict with ``amplitude_ratio`` (None when nothing on the grid overturns),
     ``last_safe_amplitude_ratio``, ``n_simulations``, the bound scanned, and the noise record's
@@ -342,7 +272,8 @@ def spectrum_dataset(scenario, freqs, realisations, thr, low, nsim, e_ratio, p_r
             "threshold_mean": ("frequency_ratio", mean, {**amp, "description": "mean over realisations (NaN ignored)"}),
             "threshold_std": ("frequency_ratio", std, {**amp, "description": "std over realisations (NaN ignored)"}),
             "threshold_realisation": (dims, thr, {**amp, "description": "threshold of each noise realisation"}),
-            "last_safe": (dims, low, {"units": "1", "long_name": "highest amplitude ratio found safe below the threshold"}),
+            "last_safe": (dims, low, {"units": "1",
+                                      "long_name": "highest amplitude ratio found safe below the threshold"}),
             "n_simulations": (dims, nsim, {"units": "1", "long_name": "simulations run for the threshold"}),
             "n_undetermined": (dims, n_undetermined, {
                 "units": "1", "long_name": "runs that hit the fast engine's event cap",
@@ -358,14 +289,16 @@ def spectrum_dataset(scenario, freqs, realisations, thr, low, nsim, e_ratio, p_r
             "realisation": ("realisation", np.asarray(realisations, dtype=np.int64),
                             {"long_name": "noise realisation index k"}),
             "strategy": ((), scenario.control.strategy, {"long_name": "control strategy"}),
-            "noise_level": ((), float(scenario.noise_level), {"units": "1", "long_name": "noise energy / baseline energy"}),
-            "sampling_time": ((), float(scenario.control.sampling_time), {"units": "s", "long_name": "controller sampling time T_s (0: continuous)"}),
+            "noise_level": ((), float(scenario.noise_level),
+                            {"units": "1", "long_name": "noise energy / baseline energy"}),
+            "sampling_time": ((), float(scenario.control.sampling_time),
+                              {"units": "s", "long_name": "controller sampling time T_s (0: continuous)"}),
             "delay": ((), float(scenario.control.delay), {"units": "s", "long_name": "actuation delay"}),
         },
         attrs={
             "title": f"Overturning spectrum, {scenario.control.strategy}, {scenario.excitation} excitation",
             "rockstudy_version": __version__,
-            "paper": "Use of overturning spectra in the performance evaluation of on-off control strategies for rocking objects",
+            "paper": PAPER,
             "paper_equations": PAPER_EQUATIONS,
             "grid_amplitude_start": grid.start, "grid_amplitude_stop": grid.stop,
             "grid_amplitude_step": grid.step, "grid_amplitude_resolution": grid.resolution,

@@ -4,7 +4,7 @@ LEVELS = config["noise_levels"]
 FREE = study.noise_free_level(LEVELS)
 NOISY = [name for name in LEVELS if name != FREE]
 LIBRARY = study.source_fingerprint()  # rerun the simulations whenever the library changes
-BOOKKEEPING = study.source_fingerprint(["study.py"])  # rerun what study.py assembles when it changes
+BOOKKEEPING = study.source_fingerprint(["study.py", "datasets.py", "tables.py"])  # rerun what they assemble
 PLOTTING = study.source_fingerprint(["plotting.py"])  # redraw the figures when plotting.py changes
 SAMPLING = config["sampling_sweep"]
 DELAY = config["delay_sweep"]
@@ -19,6 +19,7 @@ wildcard_constraints:
     ts="[0-9.e-]+",
     delay="[0-9.e-]+",
     chunk="[0-9]+",
+    reading="[A-Za-z0-9_]+",
 
 
 def scenario(strategy, level, ts=0.0, delay=0.0):
@@ -29,7 +30,7 @@ def scenario(strategy, level, ts=0.0, delay=0.0):
         "excitation": config["excitation"],
         "noise_level": LEVELS[level],
         "seed": config["seed"],
-        "match": config["match"],
+        "noise": config["noise"],
         "overturn_criterion": config["overturn_criterion"],
         "free_time": config["free_time"],
     }
@@ -77,3 +78,50 @@ FIGURE_NAMES = ([f"fig{PAPER_FIGURE[s]}_history_{s}" for s in HIST["strategies"]
                    "fig8_delay", "maps_overturning"])
 FIGURES = [FIG.format(name=n, ext=e) for n in FIGURE_NAMES for e in ("png", "pdf")]
 TABLES = [f"{OUT}/tables/{t}.{e}" for t in ("table1", "timing_sampling", "timing_delay") for e in ("nc", "csv", "md")]
+
+
+# Reproducing the paper's numbers (issue 9): readings study, claims checklist, device calibration.
+REPRO = config["reproduction"]
+READINGS = REPRO["readings"]
+STUDY_READING = study.reading_from_dict(config["noise"])
+SAME_AS_STUDY = [name for name in READINGS if study.reading_from_dict(READINGS[name]) == STUDY_READING
+                 and REPRO["realisations"] == config["realisations"] and REPRO["strategy"] == "FS"]
+
+
+def reading_spectrum_file(name, level):
+    return f"{OUT}/reproduction/readings/spectra/{REPRO['strategy']}_{name}_{level}.nc"
+
+
+def fs_spectra_of_the_study():
+    """FS spectra of the study's reading: the readings study's if it has that reading, else the study's."""
+    if SAME_AS_STUDY:
+        return [reading_spectrum_file(SAME_AS_STUDY[0], level) for level in NOISY] + spectrum_files(["FS"], [FREE])
+    return spectrum_files(["FS"], LEVELS)
+
+
+READING_SPECTRA = [reading_spectrum_file(name, level) for name in READINGS for level in NOISY]
+
+
+def reading_scenario(wildcards):
+    spec = scenario(wildcards.strategy, wildcards.level)
+    spec["noise"] = dict(READINGS[wildcards.reading])  # missing keys: the library defaults
+    return spec
+
+
+READINGS_TABLE = [f"{OUT}/reproduction/readings/readings.{e}" for e in ("nc", "csv", "md")]
+READINGS_FIGURE = [f"{OUT}/reproduction/readings/fig_readings.{e}" for e in ("png", "pdf")]
+CLAIMS = [f"{OUT}/reproduction/{name}" for name in ("claims.md", "claims.nc", "claims.csv", "table1_vs_paper.nc",
+                                                     "table1_vs_paper.csv")]
+CLAIMS_BOOKKEEPING = study.source_fingerprint(["claims.py", "study.py", "tables.py", "utility.py"])
+CAL = config["calibration"]
+CAL_DESIGN = {"kappa_max": CAL["kappa_max"], "damping_ratio": CAL["damping_ratio"],
+              "ultimate_rotation": CAL["ultimate_rotation"], "kappa_min": CAL["kappa_min"]}
+CAL_DEVICES = calibration.CalibrationDesign(**CAL_DESIGN).devices()
+CAL_FS = [f"{OUT}/reproduction/calibration/coarse/FS_{level}.nc" for level in LEVELS]
+CAL_REFINE = [f"{OUT}/reproduction/calibration/refine/c{rank}_{s}_{level}.nc"
+              for rank in range(CAL["candidates"]) for s in ("CS01", "CS02") for level in LEVELS]
+
+
+def calibration_base():
+    spec = scenario("FS", FREE)
+    return {k: v for k, v in spec.items() if k not in ("anchorage", "control", "noise_level")}

@@ -72,38 +72,18 @@ rule gather_spectrum:
         "../scripts/gather_spectra.py"
 
 
-rule gather_sampling:
-    input:
-        chunk_files,
+use rule gather_spectrum as gather_sampling with:
     output:
         f"{OUT}/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.nc",
     log:
         f"{OUT}/logs/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.log",
-    params:
-        bookkeeping=BOOKKEEPING,
-        realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
-    conda:
-        "../envs/rockstudy.yaml"
-    threads: 1
-    script:
-        "../scripts/gather_spectra.py"
 
 
-rule gather_delay:
-    input:
-        chunk_files,
+use rule gather_spectrum as gather_delay with:
     output:
         f"{OUT}/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.nc",
     log:
         f"{OUT}/logs/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.log",
-    params:
-        bookkeeping=BOOKKEEPING,
-        realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
-    conda:
-        "../envs/rockstudy.yaml"
-    threads: 1
-    script:
-        "../scripts/gather_spectra.py"
 
 
 rule convergence:

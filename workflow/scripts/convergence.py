@@ -1,8 +1,8 @@
 """Fig. 6a data: a_min,OVER over the first N noise realisations, N = 1 ... n."""
-from rockstudy import io, study
+from rockstudy import datasets, io, study
 
 study.log_to(snakemake.log[0])
 ds = io.read_netcdf(snakemake.input[0])
 if ds.sizes["realisation"] != snakemake.params.realisations:
     raise ValueError(f"spectrum has {ds.sizes['realisation']} realisations, expected {snakemake.params.realisations}")
-io.write_netcdf(study.convergence_dataset(ds), snakemake.output[0])
+io.write_netcdf(datasets.convergence_dataset(ds), snakemake.output[0])

@@ -1,10 +1,10 @@
 """Concatenate the realisation chunks of one spectrum and recompute a_min,OVER (min over realisations)."""
 import numpy as np
 
-from rockstudy import io, study
+from rockstudy import datasets, io, study
 
 study.log_to(snakemake.log[0])
-ds = study.gather_spectra([io.read_netcdf(path) for path in snakemake.input])
+ds = datasets.gather_spectra([io.read_netcdf(path) for path in snakemake.input])
 if list(ds["realisation"].values) != list(np.sort(snakemake.params.realisations)):
     raise ValueError(f"chunks hold realisations {ds['realisation'].values}, expected {snakemake.params.realisations}")
 io.write_netcdf(ds, snakemake.output[0])

@@ -1,9 +1,9 @@
 """Table 1: J_OS at each noise level against the noise-free strategy and against FS (Eqs. 18-22)."""
-from rockstudy import io, study
+from rockstudy import io, study, tables
 
 study.log_to(snakemake.log[0])
 p = snakemake.params
-table = study.table1([io.read_netcdf(path) for path in snakemake.input], p.strategies, dict(p.noise_levels), p.a_max0)
+table = tables.table1([io.read_netcdf(path) for path in snakemake.input], p.strategies, dict(p.noise_levels), p.a_max0)
 io.write_netcdf(table, snakemake.output.nc)
-io.write_text(study.table_csv(table), snakemake.output.csv)
-io.write_text(study.table_markdown(table), snakemake.output.md)
+io.write_text(tables.table_csv(table), snakemake.output.csv)
+io.write_text(tables.table_markdown(table), snakemake.output.md)

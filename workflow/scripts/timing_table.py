@@ -1,11 +1,11 @@
 """J_OS of the sampling (or delay) sweep against the same strategy without it and against FS (§5.2)."""
-from rockstudy import io, study
+from rockstudy import io, study, tables
 
 study.log_to(snakemake.log[0])
 p = snakemake.params
 read = lambda paths: [io.read_netcdf(path) for path in paths]  # noqa: E731
-table = study.timing_table(read(snakemake.input.sweep), read(snakemake.input.same_strategy),
+table = tables.timing_table(read(snakemake.input.sweep), read(snakemake.input.same_strategy),
                            read(snakemake.input.free_standing), p.variable, p.a_max0, p.reference)
 io.write_netcdf(table, snakemake.output.nc)
-io.write_text(study.table_csv(table), snakemake.output.csv)
-io.write_text(study.table_markdown(table), snakemake.output.md)
+io.write_text(tables.table_csv(table), snakemake.output.csv)
+io.write_text(tables.table_markdown(table), snakemake.output.md)

@@ -1,0 +1,288 @@
+"""The device calibration (issue 9): which anchorage brings the CS01 and CS02 rows of Table 1 to the paper's.
+
+The paper publishes no device parameters. With the study's noise reading, a grid of devices
+(κ_max × ξ × θ_u, θ_u = θ_K,u = θ_D,u; κ_min fixed) is screened on a coarse frequency grid with
+few realisations, then the best candidates are recomputed with the study's full settings.
+Each device gives 12 numbers: J_OS of CS01 and CS02 against the same strategy without noise
+and against FS with the same noise, at R001, R005, R010 (Table 1, Eq. 21); the score is the
+RMS of their differences to the paper's.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from . import __version__
+from .anchorage import Anchorage
+from .block import Block
+from .claims import PAPER, PAPER_LEVELS, PAPER_TABLE1
+
+STRATEGIES = ("CS01", "CS02")
+REFERENCES = ("no_noise", "fs_same_noise")
+
+
+@dataclass(frozen=True)
+class CalibrationDesign:
+    """The devices screened: every combination of the listed values.
+
+    Parameters
+    ----------
+    kappa_max : tuple of float
+        κ_max = 4·K_max·b²/(m·g·R) values. [-]
+    damping_ratio : tuple of float
+        ξ values (3·D·b²/(m·R²) = 2ξp). [-]
+    ultimate_rotation : tuple of float or None
+        θ_u = θ_K,u = θ_D,u values; None: α. [rad]
+    kappa_min : float, default 0.0
+        κ_min of every device. [-]
+    """
+
+    kappa_max: tuple
+    damping_ratio: tuple
+    ultimate_rotation: tuple = (None,)
+    kappa_min: float = 0.0
+
+    def __post_init__(self):
+        for name in ("kappa_max", "damping_ratio", "ultimate_rotation"):
+            values = tuple(getattr(self, name))
+            if not values or len(set(values)) != len(values):
+                raise ValueError(f"CalibrationDesign.{name} must be a non-empty list of distinct values, "
+                                 f"got {values!r}")
+            object.__setattr__(self, name, values)
+        for k in self.kappa_max:
+            if not (k >= self.kappa_min and math.isfinite(k)):
+                raise ValueError(f"CalibrationDesign.kappa_max values must be finite and >= kappa_min "
+                                 f"({self.kappa_min}), got {k!r}")
+        for xi in self.damping_ratio:
+            if not (xi >= 0 and math.isfinite(xi)):
+                raise ValueError(f"CalibrationDesign.damping_ratio values must be finite and >= 0, got {xi!r}")
+        for th in self.ultimate_rotation:
+            if th is not None and not (0 < th <= math.pi / 2):
+                raise ValueError(f"CalibrationDesign.ultimate_rotation values must be None or in (0, pi/2] rad, "
+                                 f"got {th!r}")
+
+    def devices(self) -> list[dict]:
+        """The anchorage dicts (keys of ``Anchorage``), ultimate rotation outermost, then κ_max, then ξ."""
+        return [{"kappa_max": float(k), "kappa_min": float(self.kappa_min), "damping_ratio": float(xi),
+                 "spring_ultimate_rotation": th, "damper_ultimate_rotation": th}
+                for th in self.ultimate_rotation for k in self.kappa_max for xi in self.damping_ratio]
+
+
+def paper_rows() -> np.ndarray:
+    """The paper's CS01/CS02 rows: array (strategy, reference, noise_level) in % (12 numbers)."""
+    return np.array([[PAPER_TABLE1[(ref, s)] for ref in REFERENCES] for s in STRATEGIES], dtype=float)
+
+
+def rows_of(table: xr.Dataset) -> np.ndarray:
+    """CS01/CS02 rows of a Table 1 dataset (:func:`rockstudy.tables.table1`) at R001-R010. [%]"""
+    return np.array([[[float(table["j_os"].sel(reference=ref, strategy=s, noise_level=lv)) for lv in PAPER_LEVELS]
+                      for ref in REFERENCES] for s in STRATEGIES])
+
+
+def score(rows: np.ndarray) -> tuple[float, float]:
+    """RMS and largest absolute difference of 12 J_OS values to the paper's. [points of %]"""
+    d = np.asarray(rows, float) - paper_rows()
+    if np.any(np.isnan(d)):
+        return math.nan, math.nan
+    return float(np.sqrt(np.mean(d * d))), float(np.max(np.abs(d)))
+
+
+def conclusions_hold(rows: np.ndarray) -> np.ndarray:
+    """Per level: J_OS(CS01 vs FS) > J_OS(CS02 vs FS) > 0 (the paper's ranking). [bool]"""
+    vs_fs = np.asarray(rows)[:, REFERENCES.index("fs_same_noise"), :]
+    return (vs_fs[0] > vs_fs[1]) & (vs_fs[1] > 0)
+
+
+def grid_dataset(design: CalibrationDesign, tables, attrs: dict | None = None) -> xr.Dataset:
+    """The screened grid: J_OS, residuals, score and the share of devices keeping the paper's ranking.
+
+    ``tables`` are Table 1 datasets, one per device in the order of ``design.devices()``.
+    """
+    shape = (len(design.ultimate_rotation), len(design.kappa_max), len(design.damping_ratio))
+    rows = np.array([rows_of(t) for t in tables]).reshape(shape + (2, 2, 3))
+    rows = np.moveaxis(rows, (3, 4, 5), (0, 1, 2))  # (strategy, reference, level, theta, kappa, xi)
+    paper = paper_rows()
+    resid = rows - paper[:, :, :, None, None, None]
+    rms = np.sqrt(np.mean(resid.reshape(12, -1) ** 2, axis=0)).reshape(shape)
+    worst = np.max(np.abs(resid.reshape(12, -1)), axis=0).reshape(shape)
+    vs_fs = rows[:, REFERENCES.index("fs_same_noise")]
+    holds = (vs_fs[0] > vs_fs[1]) & (vs_fs[1] > 0)  # (level, theta, kappa, xi)
+    theta = [math.nan if th is None else th for th in design.ultimate_rotation]
+    dims = ("strategy", "reference", "noise_level", "ultimate_rotation", "kappa_max", "damping_ratio")
+    pct = {"units": "percent"}
+    return xr.Dataset(
+        {"j_os": (dims, rows, {**pct, "long_name": "J_OS (Eq. 21) of the device"}),
+         "paper": (dims[:3], paper, {**pct, "long_name": "the paper's Table 1"}),
+         "residual": (dims, resid, {**pct, "long_name": "ours minus paper (points)"}),
+         "rms_residual": (dims[3:], rms, {**pct, "long_name": "RMS of the 12 residuals"}),
+         "max_abs_residual": (dims[3:], worst, {**pct, "long_name": "largest |residual| of the 12"}),
+         "ranking_holds": (("noise_level",) + dims[3:], holds.astype(np.int8),
+                           {"long_name": "J_OS(CS01 vs FS) > J_OS(CS02 vs FS) > 0"}),
+         "ranking_share": ("noise_level", holds.reshape(3, -1).mean(axis=1),
+                           {"units": "1", "long_name": "share of the screened devices where CS01 > CS02 > 0 vs FS"})},
+        coords={"strategy": list(STRATEGIES), "reference": list(REFERENCES), "noise_level": list(PAPER_LEVELS),
+                "ultimate_rotation": ("ultimate_rotation", theta,
+                                      {"units": "rad", "long_name": "theta_K,u = theta_D,u (NaN: alpha)"}),
+                "kappa_max": ("kappa_max", list(design.kappa_max), {"units": "1", "long_name": "4 K_max b^2/(m g R)"}),
+                "damping_ratio": ("damping_ratio", list(design.damping_ratio), {"units": "1", "long_name": "xi"})},
+        attrs={"title": "Device calibration: J_OS of CS01 and CS02 over the screened anchorages", "paper": PAPER,
+               "rockstudy_version": __version__, "kappa_min": design.kappa_min, **(attrs or {})})
+
+
+def best_devices(grid: xr.Dataset, n: int) -> list[tuple[dict, float]]:
+    """The ``n`` devices with the smallest RMS residual: (anchorage dict, RMS residual [%]), best first."""
+    rms = grid["rms_residual"]
+    flat = np.argsort(np.where(np.isnan(rms.values), np.inf, rms.values), axis=None, kind="stable")[:n]
+    out = []
+    for index in flat:
+        i, j, k = np.unravel_index(index, rms.shape)
+        th = float(grid["ultimate_rotation"].values[i])
+        th = None if math.isnan(th) else th
+        out.append(({"kappa_max": float(grid["kappa_max"].values[j]), "kappa_min": float(grid.attrs["kappa_min"]),
+                    "damping_ratio": float(grid["damping_ratio"].values[k]), "spring_ultimate_rotation": th,
+                    "damper_ultimate_rotation": th}, float(rms.values[i, j, k])))
+    return out
+
+
+def physical(block: Block, anchorage: Anchorage) -> dict:
+    """K_max [N/m], K_min [N/m], D [N s/m] and θ_u [rad] a device means for ``block``."""
+    return {"K_max_N_per_m": anchorage.K_max(block), "K_min_N_per_m": anchorage.K_min(block),
+            "D_N_s_per_m": anchorage.D(block), "theta_K_u_rad": anchorage.theta_spring(block),
+            "theta_D_u_rad": anchorage.theta_damper(block)}
+
+
+def candidates_dataset(block: Block, devices: list[dict], tables, coarse_rms, attrs: dict | None = None) -> xr.Dataset:
+    """The refined candidates: their 12 J_OS values, residuals, score and physical parameters."""
+    rows = np.array([rows_of(t) for t in tables])  # (candidate, strategy, reference, level)
+    resid = rows - paper_rows()[None]
+    anchorages = [Anchorage(**d) for d in devices]
+    phys = [physical(block, a) for a in anchorages]
+    dims = ("candidate", "strategy", "reference", "noise_level")
+    pct = {"units": "percent"}
+    data = {
+        "j_os": (dims, rows, {**pct, "long_name": "J_OS (Eq. 21), full settings"}),
+        "paper": (dims[1:], paper_rows(), {**pct, "long_name": "the paper's Table 1"}),
+        "residual": (dims, resid, {**pct, "long_name": "ours minus paper (points)"}),
+        "rms_residual": ("candidate", np.sqrt(np.mean(resid.reshape(len(devices), -1) ** 2, axis=1)), pct),
+        "max_abs_residual": ("candidate", np.max(np.abs(resid.reshape(len(devices), -1)), axis=1), pct),
+        "coarse_rms_residual": ("candidate", np.asarray(coarse_rms, float),
+                                {**pct, "long_name": "RMS residual in the coarse screening"}),
+        "kappa_max": ("candidate", [a.kappa_max for a in anchorages], {"units": "1"}),
+        "kappa_min": ("candidate", [a.kappa_min for a in anchorages], {"units": "1"}),
+        "damping_ratio": ("candidate", [a.damping_ratio for a in anchorages], {"units": "1"}),
+    }
+    for key, unit in (("K_max_N_per_m", "N/m"), ("K_min_N_per_m", "N/m"), ("D_N_s_per_m", "N s/m"),
+                      ("theta_K_u_rad", "rad"), ("theta_D_u_rad", "rad")):
+        data[key] = ("candidate", [p[key] for p in phys], {"units": unit})
+    return xr.Dataset(data, coords={"candidate": np.arange(len(devices)), "strategy": list(STRATEGIES),
+                                    "reference": list(REFERENCES), "noise_level": list(PAPER_LEVELS)},
+                      attrs={"title": "Device calibration: best candidates recomputed with the study's settings",
+                             "paper": PAPER, "rockstudy_version": __version__, **block.to_attrs(), **(attrs or {})})
+
+
+def calibration_markdown(grid: xr.Dataset, candidates: xr.Dataset | None = None, runtime_s: float | None = None) -> str:
+    """Summary: best devices with their 12 residuals and physical parameters, the ranking share."""
+    out = ["# Device calibration", ""]
+    out.append("Share of screened devices where J_OS(CS01 vs FS) > J_OS(CS02 vs FS) > 0: " + ", ".join(
+        f"{lv} {100 * float(v):.0f} %" for lv, v in zip(grid["noise_level"].values, grid["ranking_share"].values))
+        + f" (of {int(grid['rms_residual'].size)} devices).")
+    out.append("")
+    rms = grid["rms_residual"]
+    out += ["## Screening (coarse)", "", "| theta_u [rad] | kappa_max | xi | RMS residual | max abs residual | "
+            "CS02 vs no noise R001/R005/R010 |", "|---|---|---|---|---|---|"]
+    order = np.argsort(np.where(np.isnan(rms.values), np.inf, rms.values), axis=None, kind="stable")
+    for index in order:
+        i, j, k = np.unravel_index(index, rms.shape)
+        th = float(grid["ultimate_rotation"].values[i])
+        sel = dict(ultimate_rotation=i, kappa_max=j, damping_ratio=k)
+        cs02 = grid["j_os"].isel(**sel).sel(strategy="CS02", reference="no_noise").values
+        out.append(f"| {'alpha' if math.isnan(th) else f'{th:.3f}'} | {float(grid['kappa_max'][j]):g} | "
+                   f"{float(grid['damping_ratio'][k]):g} | {float(rms.values[i, j, k]):.2f} | "
+                   f"{float(grid['max_abs_residual'].values[i, j, k]):.2f} | "
+                   + "/".join(f"{v:+.2f}" for v in cs02) + " |")
+    if candidates is not None:
+        out += ["", "## Candidates with the study's full settings", ""]
+        for c in candidates["candidate"].values:
+            t = candidates.sel(candidate=c)
+            out.append(f"### Candidate {int(c)}: kappa_max = {float(t['kappa_max']):g}, xi = "
+                       f"{float(t['damping_ratio']):g}, theta_u = {float(t['theta_K_u_rad']):.3f} rad "
+                       f"(K_max = {float(t['K_max_N_per_m']) / 1000:.1f} kN/m, D = "
+                       f"{float(t['D_N_s_per_m']) / 1000:.2f} kN s/m for this block)")
+            out.append(f"RMS residual {float(t['rms_residual']):.2f}, max {float(t['max_abs_residual']):.2f} points "
+                       f"(coarse screening: {float(t['coarse_rms_residual']):.2f}).")
+            out += ["", "| row | R001 paper / ours / diff | R005 | R010 |", "|---|---|---|---|"]
+            for s in STRATEGIES:
+                for ref in REFERENCES:
+                    cells = [f"{float(t['paper'].sel(strategy=s, reference=ref, noise_level=lv)):+.2f} / "
+                             f"{float(t['j_os'].sel(strategy=s, reference=ref, noise_level=lv)):+.2f} / "
+                             f"{float(t['residual'].sel(strategy=s, reference=ref, noise_level=lv)):+.2f}"
+                             for lv in PAPER_LEVELS]
+                    out.append(f"| {s} vs {ref} | " + " | ".join(cells) + " |")
+            out.append("")
+    if runtime_s is not None:
+        out += ["", f"Run time of the calibration jobs (sum of their benchmarks): {runtime_s:.0f} s."]
+    return "\n".join(out) + "\n"
+
+
+def device_spectra(scenario_spec: dict, anchorage: dict, strategies, levels: dict, frequency_ratios,
+                   realisations: int, grid) -> list[xr.Dataset]:
+    """Spectra of one device for each strategy and noise level (the noise-free level with one realisation).
+
+    ``scenario_spec`` is a :func:`rockstudy.study.scenario_from_dict` dict without ``anchorage``,
+    ``control`` and ``noise_level``; ``grid`` an :class:`rockstudy.spectra.AmplitudeGrid`.
+    """
+    from .spectra import spectrum
+    from .study import scenario_from_dict
+    out = []
+    for s in strategies:
+        for level in levels.values():
+            sc = scenario_from_dict({**scenario_spec, "anchorage": anchorage, "control": {"strategy": s},
+                                     "noise_level": float(level)})
+            out.append(spectrum(sc, frequency_ratios, realisations=range(realisations if level > 0 else 1),
+                                grid=grid, progress_chunks=2))
+    return out
+
+
+def device_table(fs_spectra, device_spectra_list, levels: dict, a_max0_g: float) -> xr.Dataset:
+    """Table 1 (FS, CS01, CS02) of one device from its spectra and the FS spectra on the same grid.
+
+    A J_OS that Eq. 21 leaves undefined (N* = 0: neither spectrum overturns below a_max,0 at any
+    frequency, e.g. a stiff device with and without noise) is NaN; such a device gets no score.
+    """
+    from .study import noise_free_level
+    from .utility import utility_index
+    missing = [lv for lv in PAPER_LEVELS if lv not in levels]
+    if missing:
+        raise ValueError(f"noise_levels: the calibration needs the paper's levels {PAPER_LEVELS}, missing {missing}")
+    spectra = list(fs_spectra) + list(device_spectra_list)
+
+    def find(strategy, value):
+        for ds in spectra:
+            if ds["strategy"].item() == strategy and math.isclose(float(ds["noise_level"]), value, abs_tol=1e-12):
+                return ds
+        raise KeyError(f"no {strategy} spectrum at noise level {value}")
+
+    free = levels[noise_free_level(levels)]
+    ratio = float(a_max0_g) / math.tan(float(spectra[0].attrs["block_alpha"]))
+    strategies = ["FS"] + sorted({ds["strategy"].item() for ds in device_spectra_list})
+    j = np.full((2, len(strategies), len(PAPER_LEVELS)), np.nan)
+    for si, s in enumerate(strategies):
+        for li, lv in enumerate(PAPER_LEVELS):
+            system = find(s, levels[lv])
+            refs = [find(s, free), None if s == "FS" else find("FS", levels[lv])]
+            for ri, ref in enumerate(refs):
+                if ref is None:
+                    continue
+                try:
+                    j[ri, si, li] = utility_index(system["threshold"].values, ref["threshold"].values, ratio)[0]
+                except ValueError:  # N* = 0: J_OS undefined
+                    j[ri, si, li] = math.nan
+    table = xr.Dataset({"j_os": (("reference", "strategy", "noise_level"), j, {"units": "percent"})},
+                       coords={"reference": list(REFERENCES), "strategy": strategies,
+                               "noise_level": list(PAPER_LEVELS)},
+                       attrs={"a_max0_g": float(a_max0_g), "rockstudy_version": __version__})
+    table.attrs["compute_time_s"] = float(sum(ds.attrs.get("compute_time_s", 0.0) for ds in device_spectra_list))
+    return table

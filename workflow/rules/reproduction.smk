@@ -1,0 +1,248 @@
+# Reproducing the paper's numbers (issue 9): the readings study of the loose noise model, the device
+# calibration, and the claims checklist of §5 and the Conclusions.
+
+
+rule reading_spectrum:
+    output:
+        f"{OUT}/reproduction/readings/spectra/{{strategy}}_{{reading}}_{{level}}.nc",
+    log:
+        f"{OUT}/logs/reproduction/readings/{{strategy}}_{{reading}}_{{level}}.log",
+    benchmark:
+        f"{OUT}/benchmarks/reproduction/readings/{{strategy}}_{{reading}}_{{level}}.tsv"
+    params:
+        scenario=reading_scenario,
+        reading_name=lambda w: w.reading,
+        realisations=REPRO["realisations"],
+        frequency_grid=config["frequency_grid"],
+        amplitude_grid=config["amplitude_grid"],
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=SIM_MEM_MB,
+        runtime=CHUNK_RUNTIME * max(1, -(-REPRO["realisations"] // config["realisations_per_job"])),
+    script:
+        "../scripts/reading_spectrum.py"
+
+
+rule reading_spectra:
+    input:
+        READING_SPECTRA,
+
+
+rule claims:
+    input:
+        table1=f"{OUT}/tables/table1.nc",
+        sampling=f"{OUT}/tables/timing_sampling.nc",
+        delay=f"{OUT}/tables/timing_delay.nc",
+        convergence=f"{OUT}/convergence/{config['convergence']['strategy']}_{config['convergence']['noise_level']}.nc",
+        spectra=spectrum_files([s for s in ("FS", "CS01", "CS02") if s in config["strategies"]], LEVELS),
+    output:
+        md=f"{OUT}/reproduction/claims.md",
+        nc=f"{OUT}/reproduction/claims.nc",
+        csv=report(f"{OUT}/reproduction/claims.csv", caption="../report/claims.rst", category="Reproduction"),
+        comparison_nc=f"{OUT}/reproduction/table1_vs_paper.nc",
+        comparison_csv=report(f"{OUT}/reproduction/table1_vs_paper.csv", caption="../report/table1_vs_paper.rst",
+                              category="Reproduction"),
+    log:
+        f"{OUT}/logs/reproduction/claims.log",
+    params:
+        bookkeeping=CLAIMS_BOOKKEEPING,
+        noise_levels=LEVELS,
+        a_max0=config["a_max0"],
+        reading=config["noise"],
+        anchorage=config["anchorage"],
+        realisations=config["realisations"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/claims.py"
+
+
+rule readings_table:
+    input:
+        spectra=READING_SPECTRA,
+        reference=f"{OUT}/spectra/{REPRO['strategy']}_{FREE}.nc",
+    output:
+        nc=f"{OUT}/reproduction/readings/readings.nc",
+        csv=report(f"{OUT}/reproduction/readings/readings.csv", caption="../report/readings.rst",
+                   category="Reproduction"),
+        md=f"{OUT}/reproduction/readings/readings.md",
+    log:
+        f"{OUT}/logs/reproduction/readings_table.log",
+    params:
+        bookkeeping=study.source_fingerprint(["readings.py", "claims.py", "utility.py", "noise.py"]),
+        spectrum_keys=[(name, level) for name in READINGS for level in NOISY],
+        readings=READINGS,
+        levels={level: LEVELS[level] for level in NOISY},
+        a_max0=config["a_max0"],
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/readings_table.py"
+
+
+rule figure_readings:
+    input:
+        f"{OUT}/reproduction/readings/readings.nc",
+    output:
+        png=report(f"{OUT}/reproduction/readings/fig_readings.png", caption="../report/readings_figure.rst",
+                   category="Reproduction"),
+        pdf=f"{OUT}/reproduction/readings/fig_readings.pdf",
+    log:
+        f"{OUT}/logs/reproduction/figure_readings.log",
+    params:
+        plotting=PLOTTING,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/figure_readings.py"
+
+
+rule reproduction:
+    input:
+        READINGS_TABLE,
+        READINGS_FIGURE,
+
+
+# --- the device calibration (a separate target: snakemake -j2 calibration) ------------------------
+
+rule calibration_fs:
+    output:
+        CAL_FS,
+    log:
+        f"{OUT}/logs/reproduction/calibration/fs.log",
+    benchmark:
+        f"{OUT}/benchmarks/reproduction/calibration/fs.tsv"
+    params:
+        scenarios=[scenario("FS", level) for level in LEVELS],
+        realisations=CAL["coarse_realisations"],
+        frequency_grid=CAL["coarse_frequency_grid"],
+        amplitude_grid=config["amplitude_grid"],
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=SIM_MEM_MB,
+        runtime=30,
+    script:
+        "../scripts/calibration_fs.py"
+
+
+rule calibration_device:
+    input:
+        fs=CAL_FS,
+    output:
+        f"{OUT}/reproduction/calibration/coarse/device{{device}}.nc",
+    log:
+        f"{OUT}/logs/reproduction/calibration/device{{device}}.log",
+    benchmark:
+        f"{OUT}/benchmarks/reproduction/calibration/device{{device}}.tsv"
+    wildcard_constraints:
+        device="[0-9]+",
+    params:
+        scenario=calibration_base(),
+        anchorage=lambda w: CAL_DEVICES[int(w.device)],
+        levels=LEVELS,
+        realisations=CAL["coarse_realisations"],
+        frequency_grid=CAL["coarse_frequency_grid"],
+        amplitude_grid=config["amplitude_grid"],
+        a_max0=config["a_max0"],
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=SIM_MEM_MB,
+        runtime=60,
+    script:
+        "../scripts/calibration_device.py"
+
+
+rule calibration_grid:
+    input:
+        [f"{OUT}/reproduction/calibration/coarse/device{i}.nc" for i in range(len(CAL_DEVICES))],
+    output:
+        nc=f"{OUT}/reproduction/calibration/grid.nc",
+        png=report(f"{OUT}/reproduction/calibration/fig_calibration.png", caption="../report/calibration.rst",
+                   category="Reproduction"),
+        pdf=f"{OUT}/reproduction/calibration/fig_calibration.pdf",
+    log:
+        f"{OUT}/logs/reproduction/calibration/grid.log",
+    params:
+        design=CAL_DESIGN,
+        reading=config["noise"],
+        bookkeeping=study.source_fingerprint(["calibration.py", "claims.py", "study.py", "tables.py"]),
+        plotting=PLOTTING,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/calibration_grid.py"
+
+
+rule calibration_refine_spectrum:
+    input:
+        grid=f"{OUT}/reproduction/calibration/grid.nc",
+    output:
+        f"{OUT}/reproduction/calibration/refine/c{{rank}}_{{strategy}}_{{level}}.nc",
+    log:
+        f"{OUT}/logs/reproduction/calibration/refine_c{{rank}}_{{strategy}}_{{level}}.log",
+    benchmark:
+        f"{OUT}/benchmarks/reproduction/calibration/refine_c{{rank}}_{{strategy}}_{{level}}.tsv"
+    wildcard_constraints:
+        rank="[0-9]+",
+    params:
+        scenario=calibration_base(),
+        rank=lambda w: int(w.rank),
+        strategy=lambda w: w.strategy,
+        level=lambda w: w.level,
+        noise_level=lambda w: LEVELS[w.level],
+        realisations=config["realisations"],
+        frequency_grid=config["frequency_grid"],
+        amplitude_grid=config["amplitude_grid"],
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=SIM_MEM_MB,
+        runtime=CHUNK_RUNTIME * max(1, -(-config["realisations"] // config["realisations_per_job"])),
+    script:
+        "../scripts/calibration_refine_spectrum.py"
+
+
+rule calibration_refine:
+    input:
+        grid=f"{OUT}/reproduction/calibration/grid.nc",
+        fs=fs_spectra_of_the_study(),
+        spectra=CAL_REFINE,
+    output:
+        nc=f"{OUT}/reproduction/calibration/candidates.nc",
+        md=f"{OUT}/reproduction/calibration/calibration.md",
+    log:
+        f"{OUT}/logs/reproduction/calibration/refine.log",
+    params:
+        block=config["block"],
+        candidates=CAL["candidates"],
+        levels=LEVELS,
+        a_max0=config["a_max0"],
+        reading=config["noise"],
+        bookkeeping=study.source_fingerprint(["calibration.py", "claims.py", "study.py", "tables.py"]),
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/calibration_refine.py"
+
+
+rule calibration:
+    input:
+        f"{OUT}/reproduction/calibration/grid.nc",
+        f"{OUT}/reproduction/calibration/candidates.nc",
+        f"{OUT}/reproduction/calibration/calibration.md",

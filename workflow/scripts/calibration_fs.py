@@ -1,0 +1,14 @@
+"""Device calibration, screening: the FS reference spectra on the coarse grid with few realisations."""
+import numba
+
+from rockstudy import io, study
+from rockstudy.spectra import spectrum
+
+study.log_to(snakemake.log[0])
+numba.set_num_threads(snakemake.threads)
+p = snakemake.params
+for spec, path in zip(p.scenarios, snakemake.output):
+    ds = spectrum(study.scenario_from_dict(spec), study.frequency_ratios(p.frequency_grid),
+                  realisations=range(p.realisations if spec["noise_level"] > 0 else 1),
+                  grid=study.amplitude_grid(p.amplitude_grid))
+    io.write_netcdf(ds, path)

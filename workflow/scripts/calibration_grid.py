@@ -1,0 +1,12 @@
+"""Device calibration: the screened grid (J_OS maps, residuals, ranking share) and its figure."""
+from rockstudy import calibration, io, plotting, study
+
+study.log_to(snakemake.log[0])
+p = snakemake.params
+design = calibration.CalibrationDesign(**p.design)
+tables = [io.read_netcdf(f) for f in snakemake.input]
+grid = calibration.grid_dataset(design, tables, {"compute_time_s": sum(t.attrs["compute_time_s"] for t in tables),
+                                                 "noise_reading": str(p.reading)})
+io.write_netcdf(grid, snakemake.output.nc)
+best, _ = calibration.best_devices(grid, 1)[0]
+plotting.save_figure(plotting.figure_calibration(grid, best), snakemake.output.png, snakemake.output.pdf)

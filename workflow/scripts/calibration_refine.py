@@ -1,0 +1,17 @@
+"""Device calibration: the best screened devices with the study's full settings - 12 residuals, K_max, D."""
+from rockstudy import calibration, io, study
+
+study.log_to(snakemake.log[0])
+p = snakemake.params
+grid = io.read_netcdf(snakemake.input.grid)
+best = calibration.best_devices(grid, p.candidates)
+fs = [io.read_netcdf(f) for f in snakemake.input.fs]
+spectra = [io.read_netcdf(f) for f in snakemake.input.spectra]
+tables = [calibration.device_table(fs, [ds for ds in spectra if ds.attrs["calibration_rank"] == rank],
+                                   dict(p.levels), p.a_max0) for rank in range(len(best))]
+runtime = grid.attrs["compute_time_s"] + sum(t.attrs["compute_time_s"] for t in tables)
+cands = calibration.candidates_dataset(study.block_from_dict(p.block), [d for d, _ in best], tables,
+                                       [rms for _, rms in best],
+                                       {"compute_time_s": runtime, "noise_reading": str(p.reading)})
+io.write_netcdf(cands, snakemake.output.nc)
+io.write_text(calibration.calibration_markdown(grid, cands, runtime), snakemake.output.md)
