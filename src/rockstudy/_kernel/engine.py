@@ -32,6 +32,7 @@ from .layout import (
     I_KIND,
     I_KMAX,
     I_KMIN,
+    I_KNOTS,
     I_P,
     I_RDT,
     I_RTOL,
@@ -125,12 +126,17 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     track_fracture = strategy != FS and (kmax > 0.0 or cdamp > 0.0)
     # end the run once it provably cannot overturn any more (outcome runs, continuous control only)
     energy_bound = P[I_BOUND] != 0.0 and not sampled and not want_history and not want_log
+    # opt-in: while rocking, let Dormand–Prince steps span record knots (the records are linear
+    # between knots, so Ẍg only has kinks there; error control sizes the steps). Not with the CS02
+    # switch on Ẍg = 0 while the excitation lasts: its locator needs Ẍg linear within a step.
+    across_knots = P[I_KNOTS] != 0.0 and not (continuous_switching and strategy == CS02)
 
-    # state
+    # state (counters start as np.int64(0) and flags as comparisons: a literal 0 or True would make
+    # numba compile every callee once more for the literal type, for nothing)
     t = 0.0
     th = P[I_TH0]
     thd = P[I_THD0]
-    h_on = True
+    h_on = t == 0.0   # True; written as a comparison, so that numba types it bool, not Literal[True]
     spring = np.ones(2)   # intact flags by corner (LEFT works for θ > 0, RIGHT for θ < 0)
     damper = np.ones(2)
     frac = np.full(4, np.nan)
@@ -148,21 +154,21 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     max_abs = abs(th)
 
     # sampled controller: decision k is taken at k·T_s and acts from k·T_s + Δτ
-    k_sample = 0
+    k_sample = np.int64(0)
     pend_t, pend_v = maps.queue_new(delay, Ts)
     nbuf = pend_t.shape[0]
-    p_head = 0
-    p_count = 0
+    p_head = np.int64(0)
+    p_count = np.int64(0)
 
     impacts = np.empty(16 if want_log else 0)
-    n_imp = 0
-    n_imp_log = 0
+    n_imp = np.int64(0)
+    n_imp_log = np.int64(0)
     uplifts = np.empty(16 if want_log else 0)
-    n_up = 0
+    n_up = np.int64(0)
     rests = np.empty(16 if want_log else 0)
-    n_rest = 0
+    n_rest = np.int64(0)
     H = np.empty((256 if want_history else 0, 5))
-    nh = 0
+    nh = np.int64(0)
 
     if not sampled:
         xg0 = ground_acceleration(0.0, P, rec)
@@ -173,7 +179,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
 
     K = np.zeros((7, 2))
     h = min(FIRST_STEP, hmax)
-    n_events = 0
+    n_events = np.int64(0)
     x_hint = 0.0
     f0_ok = False       # FSAL derivative still valid across a known-time event that changed nothing
     f0_saved = 0.0
@@ -186,11 +192,12 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
         t_next = t_stop
         if h_on and h_end < t_next:
             t_next = max(h_end, t)
-        if h_on and kind == RECORD:
+        knots = not (across_knots and mode == MODE_ROCK)  # REST/HOLD exits need Ẍg linear per piece
+        if knots and h_on and kind == RECORD:
             tk = _next_knot(t, P[I_RDT])
             if tk < t_next:
                 t_next = tk
-        if nvert > 0 and t < v_end:
+        if knots and nvert > 0 and t < v_end:
             tk = _next_knot(t, P[I_VDT])
             if tk < t_next:
                 t_next = tk

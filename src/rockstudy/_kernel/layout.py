@@ -39,7 +39,8 @@ I_HMAX = 25      # largest step [s]
 I_SINA = 26      # sin α [-]
 I_COSA = 27      # cos α [-]
 I_BOUND = 28     # 1: end runs that provably cannot overturn any more (energy bound), 0: integrate on
-NPAR = 29
+I_KNOTS = 29     # 1: let steps span record knots while rocking (opt-in, changes the numerics), 0: stop at each
+NPAR = 30
 
 # ---- how a run ended ---------------------------------------------------------------------
 ST_REST, ST_OVER, ST_TLIM, ST_ELIMIT, ST_BOUND = 0, 1, 2, 3, 4
@@ -65,3 +66,10 @@ KernelResult = namedtuple("KernelResult", [
     "fracture_times",    # [s] spring L, spring R, damper L, damper R; NaN if intact
     "history",           # n × 5: t, θ, θ̇, κ, Ẍg (on request)
 ])
+
+
+def writable(a):
+    """``a`` itself when writable, else a copy: the compiled entry points are typed for writable
+    arrays (a read-only record, e.g. a frozen :class:`~rockstudy.noise.NoisyRecord`'s, would make
+    numba compile the whole engine a second time)."""
+    return a if a.flags.writeable else a.copy()

@@ -85,6 +85,11 @@ def uplift_floor(vert, unit_peak):
     return 0.0
 
 
+_NO = np.zeros(2, dtype=np.bool_)
+"""(want_history, want_log) of outcome runs: read from an array, they are typed bool as in the calls
+from Python, so the engine is compiled once, not once more for Literal[False]."""
+
+
 # ---- outcomes and thresholds ----------------------------------------------------------------
 @njit(cache=True)
 def outcome_kernel(P, rec, vert, amplitude_ratio, unit_peak):
@@ -93,7 +98,7 @@ def outcome_kernel(P, rec, vert, amplitude_ratio, unit_peak):
         return NO_UPLIFT
     Q = P.copy()
     Q[I_AMP] = amplitude_ratio * P[I_G] * math.tan(P[I_ALPHA])
-    res = simulate_kernel(Q, rec, vert, False, False)
+    res = simulate_kernel(Q, rec, vert, _NO[0], _NO[1])
     if res.status == ST_ELIMIT:
         return UNDETERMINED
     if res.status == ST_OVER:
