@@ -16,7 +16,7 @@ Integration: Dormand–Prince 5(4) with error control (rtol, atol), first-same-a
 the CS01 switch (θ̇ = 0) and the CS02 switch (Ẍg = 0), by the Illinois method on the
 interpolant. Known-time events are never stepped over: the end of the excitation, record knots,
 controller sample and actuation instants. Three modes: REST, ROCK and HOLD (the CS01 Filippov
-sliding state, MODEL-NOTES §1). See ``docs/model.md``.
+sliding state, docs/model.md, "CS01 sliding"). See ``docs/model.md``.
 """
 from ..constants import MAX_EVENTS, NEGLIGIBLE_STEP
 from ..control import CS01, CS02, FS, PASSIVE, stiffness_on

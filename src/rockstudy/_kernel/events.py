@@ -67,7 +67,7 @@ def locate(hi, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec):
 @njit(cache=True)
 def exit_value(mode, t, th, side, kap_max_eff, kap_min_eff, h_on, P, rec, vert):
     """> 0 when the block leaves REST (uplift, |Ẍg| > (g + Ÿg)·tanα) or HOLD (either side of the
-    CS01 sliding surface, MODEL-NOTES §1)."""
+    CS01 sliding surface, docs/model.md, "CS01 sliding")."""
     xg = ground_acceleration(t, P, rec) if h_on else 0.0
     yg = vertical_acceleration(t, P, vert)
     if mode == MODE_REST:

@@ -27,7 +27,7 @@ def sign(x):
 
 @njit(cache=True)
 def apex_decision(th, side, kap_max_eff, kap_min_eff, xg, yg, P):
-    """CS01 at θ̇ = 0, θ ≠ 0 (MODEL-NOTES §1): compare θ̈ under K_max and under K_min.
+    """CS01 at θ̇ = 0, θ ≠ 0 (docs/model.md, "CS01 sliding"): compare θ̈ under K_max and under K_min.
 
     s·a_max >= 0: TURN_OUT (K_max); else s·a_min <= 0: TURN_BACK (K_min); else HOLD (Filippov
     sliding, the device holds the block with a stiffness between the two).
