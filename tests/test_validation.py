@@ -116,36 +116,6 @@ def test_a_max0_rule_in_g_and_ratios(blc06):
         v.check_a_max0("a_max0", 1.2, blc06.alpha, 4.5)
 
 
-# --- atomic writes follow the umask --------------------------------------------------------------
-@pytest.mark.parametrize("umask,mode", [(0o022, 0o644), (0o077, 0o600), (0o002, 0o664)])
-def test_every_writer_follows_the_umask(tmp_path, umask, mode):
-    import matplotlib.pyplot as plt
-
-    from rockstudy.plotting import save_figure
-    old = os.umask(umask)
-    try:
-        ds = xr.Dataset({"x": ("t", np.arange(3.0))})
-        paths = [io.write_netcdf(ds, tmp_path / "a.nc"), io.write_text("a,b\n", tmp_path / "a.csv"),
-                 io.write_text("| a |\n", tmp_path / "a.md")]
-        paths += save_figure(plt.figure(), tmp_path / "a.png", tmp_path / "a.pdf")
-    finally:
-        os.umask(old)
-    for p in paths:
-        assert os.stat(p).st_mode & 0o777 == mode, p
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "a.md", "a.nc", "a.pdf", "a.png"]
-
-
-def test_failed_write_keeps_the_old_file_and_leaves_no_part(tmp_path):
-    target = io.write_text("old", tmp_path / "t.md")
-
-    def boom(tmp):
-        Path(tmp).write_text("half")
-        raise RuntimeError("disk full")
-    with pytest.raises(RuntimeError):
-        io.atomic_write(target, boom)
-    assert target.read_text() == "old" and [p.name for p in tmp_path.iterdir()] == ["t.md"]
-
-
 # --- the config check ----------------------------------------------------------------------------
 def config_error(config):
     """None when the schema and check_study accept ``config``, else the message."""
