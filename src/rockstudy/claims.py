@@ -21,8 +21,7 @@ import numpy as np
 import xarray as xr
 
 from . import __version__
-
-PAPER = "Use of overturning spectra in the performance evaluation of on-off control strategies for rocking objects"
+from .constants import PAPER
 
 PAPER_TABLE1 = {
     ("no_noise", "FS"): (-2.01, -5.43, -6.28),

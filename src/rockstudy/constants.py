@@ -74,3 +74,6 @@ def rest_velocity(p: float, alpha: float) -> float:
         Slenderness angle. [rad]
     """
     return REST_VELOCITY_FACTOR * p * alpha
+
+PAPER = "Use of overturning spectra in the performance evaluation of on-off control strategies for rocking objects"
+"""Title of the paper every dataset cites (its ``paper`` attribute)."""

@@ -9,14 +9,12 @@ import numpy as np
 import xarray as xr
 
 from . import __version__
+from .constants import PAPER
 from .excitation import excitation_duration
 from .noise import NOISE_DT, baseline_samples, level_key, noisy_record
 from .scenario import Scenario
 from .simulate import simulate
 from .spectra import convergence
-
-PAPER = "Use of overturning spectra in the performance evaluation of on-off control strategies for rocking objects"
-
 
 MISSING_MEANINGS = {
     "threshold": "NaN: no overturning found up to the scan's top (grid_amplitude_stop) in any realisation",

@@ -18,6 +18,7 @@ import xarray as xr
 
 from . import __version__
 from . import _kernel as kn
+from .constants import PAPER
 from .excitation import GroundMotion, modulated_peak
 from .outcome import OUTCOME_MEANINGS, Outcome
 from .scenario import Scenario
@@ -25,7 +26,6 @@ from .simulate import pack_parameters, simulate
 
 log = logging.getLogger("rockstudy")
 
-PAPER = "Use of overturning spectra in the performance evaluation of on-off control strategies for rocking objects"
 PAPER_EQUATIONS = "Eqs. 1-17 (model), Eq. 23 (excitation), Figs. 5-8 (spectra)"
 
 

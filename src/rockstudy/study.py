@@ -21,7 +21,6 @@ from . import validation as v
 from .anchorage import Anchorage
 from .block import BLOCK_PRESETS, Block
 from .control import Control
-from .datasets import PAPER  # noqa: F401  (kept for callers of study.PAPER)
 from .excitation import excitation_duration
 from .noise import reading_from_dict
 from .scenario import Scenario
