@@ -42,6 +42,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from . import validation as v
 from .records import STANDARD_GRAVITY, Record
 
 SYNTHETIC_KEY = 13
@@ -49,12 +50,6 @@ SYNTHETIC_KEY = 13
 
 MODEL_REFERENCE = ("Kanai-Tajimi filtered white noise (Kanai 1957, Tajimi 1960) with the Clough-Penzien "
                    "high-pass filter (Clough and Penzien 1975), Saragoni-Hart envelope (Saragoni and Hart 1974)")
-
-
-def _positive(owner: str, name: str, value, unit: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not (math.isfinite(value) and value > 0):
-        raise ValueError(f"{owner}.{name} must be a positive finite number [{unit}], got {value!r}")
-    return float(value)
 
 
 @dataclass(frozen=True)
@@ -98,7 +93,7 @@ class GroundMotionModel:
                  "filter_damping": "-", "peak_time": "s", "envelope_shape": "-", "duration": "s", "dt": "s",
                  "pga": "m/s^2"}
         for name, unit in units.items():
-            object.__setattr__(self, name, _positive("GroundMotionModel", name, getattr(self, name), unit))
+            object.__setattr__(self, name, v.check_positive(f"GroundMotionModel.{name}", getattr(self, name), unit))
         if self.filter_frequency >= self.ground_frequency:
             raise ValueError(f"GroundMotionModel.filter_frequency ({self.filter_frequency}) must be below "
                              f"ground_frequency ({self.ground_frequency}) [rad/s]")
@@ -208,12 +203,12 @@ class SuiteRanges:
     def __post_init__(self):
         for name in ("ground_frequency_hz", "ground_damping", "peak_time"):
             lo, hi = getattr(self, name)
-            _positive("SuiteRanges", name, lo, "see docstring")
+            v.check_positive(f"SuiteRanges.{name}", lo)
             if hi < lo:
                 raise ValueError(f"SuiteRanges.{name} must be (low, high) with low <= high, got {(lo, hi)!r}")
             object.__setattr__(self, name, (float(lo), float(hi)))
         for name in ("envelope_shape", "filter_ratio", "duration", "dt", "pga"):
-            _positive("SuiteRanges", name, getattr(self, name), "see docstring")
+            v.check_positive(f"SuiteRanges.{name}", getattr(self, name))
         if self.filter_ratio >= 1:
             raise ValueError(f"SuiteRanges.filter_ratio must be below 1, got {self.filter_ratio!r}")
 
