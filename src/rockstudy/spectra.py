@@ -22,7 +22,7 @@ from .constants import PAPER
 from .excitation import GroundMotion, modulated_peak
 from .outcome import OUTCOME_MEANINGS, Outcome
 from .scenario import Scenario
-from .simulate import pack_parameters, simulate
+from .simulate import kernel_record, pack_parameters, simulate
 
 log = logging.getLogger("rockstudy")
 
@@ -111,8 +111,9 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
         P = pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
                             overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
                             energy_bound=energy_bound, step_across_knots=step_across_knots)
-        thr, lo, n_sim, n_und = kn.threshold_kernel(P, kn.writable(motion.record), kn.writable(motion.vertical),
-                                                    values, float(grid.resolution), float(peak))
+        thr, lo, n_sim, n_und = kn.threshold_kernel(P, kn.writable(kernel_record(scenario.control, motion)),
+                                                    kn.writable(motion.vertical), values, float(grid.resolution),
+                                                    float(peak))
     elif engine == "reference":
         if step_across_knots:
             raise ValueError("step_across_knots=True needs engine='fast', got engine='reference'")
@@ -150,7 +151,7 @@ def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: boo
                                         overturn_criterion=scenario.overturn_criterion,
                                         free_time=scenario.free_time, energy_bound=energy_bound,
                                         step_across_knots=step_across_knots))
-            recs.append(motion.record)
+            recs.append(kernel_record(scenario.control, motion))
             peaks.append(_unit_peak(scenario, rec))
             e_ratio.append(1.0 if rec is None else rec.energy_ratio)
             p_ratio.append(1.0 if rec is None else rec.pga_ratio)

@@ -3,6 +3,11 @@ excitation, record knots, controller samples and actuation instants) the block i
 or ROCKs under Dormand–Prince steps; each accepted step is searched for state events, the
 earliest is located and its map applied.
 
+The equation of motion, impacts, uplift and the REST/HOLD exits read the driving Ẍg
+(``ground_acceleration``); the control law's decisions (CS02's sign of Ẍg, its Ẍg = 0 switch,
+sampled decisions) read Ẍg as the controller senses it (``sensed_acceleration``, equal to the
+driving Ẍg without a sensor; :mod:`rockstudy.sensor`).
+
 The model and every reading of the paper are in ``docs/model.md``.
 """
 from __future__ import annotations
@@ -17,7 +22,7 @@ from ..control import CS01, CS02, FS, PASSIVE, stiffness_on
 from ..excitation import RECORD
 from . import dopri, maps
 from .events import locate, scan_exit
-from .ground import ground_acceleration, vertical_acceleration
+from .ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from .layout import (
     I_ALPHA,
     I_ATOL,
@@ -171,7 +176,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     nh = np.int64(0)
 
     if not sampled:
-        xg0 = ground_acceleration(0.0, P, rec)
+        xg0 = sensed_acceleration(0.0, P, rec)
         kap_on = stiffness_on(strategy, th, thd, xg0)
         hint = sign(thd)
     need_apex_decision = continuous_switching and mode == MODE_ROCK and thd == 0.0 and th != 0.0 \
@@ -244,7 +249,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
                     if want_log:
                         uplifts, n_up = _push(uplifts, n_up, t)
                     if not sampled:
-                        kap_on = stiffness_on(strategy, side, 0.0, xg)
+                        kap_on = stiffness_on(strategy, side, 0.0, sensed_acceleration(t, P, rec) if h_on else 0.0)
                     hint = side
                 else:  # leaves the sliding surface, outward or back (never HOLD again here)
                     yg = vertical_acceleration(t, P, vert)
@@ -270,7 +275,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
                         need_apex_decision = True
             if sampled:
                 while k_sample * Ts <= t + TIME_TOLERANCE:  # controller samples due
-                    xg = ground_acceleration(t, P, rec) if h_on else 0.0
+                    xg = sensed_acceleration(t, P, rec) if h_on else 0.0
                     p_count = maps.queue_push(pend_t, pend_v, p_head, p_count, k_sample * Ts + delay,
                                               stiffness_on(strategy, th, thd, xg))
                     k_sample += 1
@@ -313,9 +318,9 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
                 H, nh = _push_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
         f0_ok = False
         if use_xg_event:
-            xs = ground_acceleration(t, P, rec)
+            xs = sensed_acceleration(t, P, rec)
             if xs == 0.0:
-                xs = ground_acceleration(t + 1e-9, P, rec)
+                xs = sensed_acceleration(t + 1e-9, P, rec)
             x_hint = sign(xs)
         if thd != 0.0:
             hint = sign(thd)
@@ -381,7 +386,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
                 if s >= 0.0:
                     best = s
             if not negligible and use_xg_event and x_hint != 0.0:
-                if x_hint * ground_acceleration(t + hh, P, rec) <= 0.0:
+                if x_hint * sensed_acceleration(t + hh, P, rec) <= 0.0:
                     s = locate(min(best, 1.0), hh, y0, y1, K, 0.0, 0.0, x_hint, 0.0, t, P, rec)
                     if s >= 0.0:
                         best = s
@@ -458,14 +463,14 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
                     rests, n_rest = _push(rests, n_rest, t)
             hint = sign(thd) if thd != 0.0 else side
             if not sampled and mode == MODE_ROCK:
-                kap_on = stiffness_on(strategy, side, hint, xg)
+                kap_on = stiffness_on(strategy, side, hint, sensed_acceleration(t, P, rec) if h_on else 0.0)
             continue
         if use_thd_event and hint * thd <= 0.0:
             need_apex_decision = True
             thd = 0.0
             continue
         if use_xg_event:
-            xg_after = ground_acceleration(t + 1e-9, P, rec)
+            xg_after = sensed_acceleration(t + 1e-9, P, rec)
             kap_on = stiffness_on(strategy, side, 0.0, xg_after if xg_after != 0.0 else -x_hint)
             continue
 
