@@ -221,3 +221,32 @@ def test_every_dataset_records_the_sensor(blc06):
         sc = Scenario(blc06, Anchorage(), Control("CS02", sensor_band=band), noise_level=0.01, seed=1, noise=NONE)
         ds = spectrum(sc, [2.0], realisations=[0], grid=grid, progress_chunks=1)
         assert ds.attrs["control_sensor_band_hz"] == attr
+
+
+# ---- command line ------------------------------------------------------------------------------------
+def test_cli_sensor_band_reaches_the_controller(tmp_path, capsys, blc06):
+    import json
+
+    import xarray as xr
+
+    from rockstudy.cli import main
+    main(["threshold", "--strategy", "CS02", "--frequency-ratio", "2", "--noise-level", "0.05", "--realisation", "1",
+          "--noise-rescale", "none", "--max-amplitude-ratio", "3", "--sensor-band", "5"])
+    out = json.loads(capsys.readouterr().out)
+    lib = threshold(Scenario(blc06, control=Control("CS02", sensor_band=5.0), noise_level=0.05, noise=NONE), 2.0,
+                    realisation=1, grid=AmplitudeGrid(stop=3.0))
+    assert out["sensor_band_hz"] == 5.0 and out["amplitude_ratio"] == lib["amplitude_ratio"]
+    main(["spectrum", "--strategy", "CS02", "--frequency-start", "2", "--frequency-stop", "2",
+          "--max-amplitude-ratio", "3", "--sensor-band", "10", "--output", str(tmp_path / "s.nc")])
+    with xr.open_dataset(tmp_path / "s.nc") as ds:
+        assert ds.attrs["control_sensor_band_hz"] == 10.0
+
+
+@pytest.mark.parametrize("args", [["--sensor-band", "0"], ["--sensor-band", "-3"], ["--sensor-band", "200"],
+                                  ["--noise-level", "0.05", "--noise-step", "0.01", "--sensor-band", "60"]])
+def test_cli_bad_sensor_band_exits_2_naming_it(args, capsys):
+    from rockstudy.cli import main
+    with pytest.raises(SystemExit) as exc:
+        main(["simulate", "--strategy", "CS02"] + args)
+    assert exc.value.code == 2
+    assert "--sensor-band" in capsys.readouterr().err
