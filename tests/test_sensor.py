@@ -250,3 +250,18 @@ def test_cli_bad_sensor_band_exits_2_naming_it(args, capsys):
         main(["simulate", "--strategy", "CS02"] + args)
     assert exc.value.code == 2
     assert "--sensor-band" in capsys.readouterr().err
+
+
+def test_config_control_sensor_band_is_checked():
+    from pathlib import Path
+
+    import yaml
+
+    from rockstudy import study
+    cfg = yaml.safe_load((Path(__file__).parents[1] / "config.yaml").read_text())
+    assert cfg["control"] == {"sensor_band": None}  # the default: the ideal sensor
+    study.check_study({**cfg, "control": {"sensor_band": 10.0}})
+    with pytest.raises(ValueError, match="control.sensor_band"):
+        study.check_study({**cfg, "control": {"sensor_band": 200.0}})  # the Nyquist frequency of 2.5 ms
+    spec = {"block": cfg["block"], "control": {"strategy": "CS02", "sensor_band": 5.0}}
+    assert study.scenario_from_dict(spec).control.sensor_band == 5.0
