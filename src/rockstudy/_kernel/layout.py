@@ -39,11 +39,10 @@ I_HMAX = 25      # largest step [s]
 I_SINA = 26      # sin α [-]
 I_COSA = 27      # cos α [-]
 I_BOUND = 28     # 1: end runs that provably cannot overturn any more (energy bound), 0: integrate on
-I_KNOTS = 29     # 1: let steps span record knots while rocking (opt-in, changes the numerics), 0: stop at each
-I_SENSE = 30     # 1: the controller reads Ẍg through a sensor (samples after the record in ``rec``), 0: driving Ẍg
-I_SOFF = 31      # index in ``rec`` of the first sensed sample (= number of driving samples) [-]
-I_SDT = 32       # sampling step of the sensed samples (1 without sensor) [s]
-NPAR = 33
+I_SENSE = 29     # 1: the controller reads Ẍg through a sensor (samples after the record in ``rec``), 0: driving Ẍg
+I_SOFF = 30      # index in ``rec`` of the first sensed sample (= number of driving samples) [-]
+I_SDT = 31       # sampling step of the sensed samples (1 without sensor) [s]
+NPAR = 32
 
 # ---- how a run ended ---------------------------------------------------------------------
 ST_REST, ST_OVER, ST_TLIM, ST_ELIMIT, ST_BOUND = 0, 1, 2, 3, 4
