@@ -14,12 +14,19 @@ CASES = [
     ("CS01", "modulated", 2.0, 0.05, 0.1),
     ("CS02", "one-sine", 2.5, 0.01, 0.0),
 ]
+# the same with the controller reading Ẍg through a sensor (rockstudy.sensor): band [Hz] last
+SENSOR_CASES = [
+    ("CS02", "modulated", 2.0, 0.0, 0.0, 5.0),
+    ("CS02", "modulated", 2.0, 0.05, 0.0, 10.0),
+    ("CS02", "modulated", 1.2, 0.10, 0.1, 5.0),
+]
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("strategy,excitation,frequency_ratio,noise,ts", CASES)
-def test_minimum_overturning_amplitude_agrees(blc06, strategy, excitation, frequency_ratio, noise, ts):
-    sc = Scenario(blc06, Anchorage(), Control(strategy, sampling_time=ts), excitation=excitation,
+@pytest.mark.parametrize("strategy,excitation,frequency_ratio,noise,ts,band",
+                         [case + (None,) for case in CASES] + SENSOR_CASES)
+def test_minimum_overturning_amplitude_agrees(blc06, strategy, excitation, frequency_ratio, noise, ts, band):
+    sc = Scenario(blc06, Anchorage(), Control(strategy, sampling_time=ts, sensor_band=band), excitation=excitation,
                   noise_level=noise, seed=5)
     fast = threshold(sc, frequency_ratio, grid=AmplitudeGrid(0.9, 6.0, 0.1, 0.005))
     assert fast["amplitude_ratio"] is not None

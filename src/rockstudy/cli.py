@@ -80,6 +80,10 @@ def _common(p: argparse.ArgumentParser, single_frequency=True):
     p.add_argument("--sampling-time", type=_number("--sampling-time"), default=0.0,
                    help="controller sampling time T_s [s] (0: continuous)")
     p.add_argument("--delay", type=_number("--delay"), default=0.0, help="actuation delay [s] (needs T_s > 0)")
+    p.add_argument("--sensor-band", type=_number("--sensor-band"), default=None, metavar="HZ",
+                   help="the controller reads the ground acceleration through a causal 2nd-order Butterworth "
+                        "low-pass with this cut-off [Hz], below 1/(2 step) of the record it reads (default: "
+                        "it reads the driving acceleration itself)")
     p.add_argument("--kappa-max", type=_number("--kappa-max"), default=1.0, help="4 K_max b^2/(m g R) [-]")
     p.add_argument("--kappa-min", type=_number("--kappa-min"), default=0.0, help="4 K_min b^2/(m g R) [-]")
     p.add_argument("--damping-ratio", type=_number("--damping-ratio"), default=0.05, help="xi [-]")
@@ -91,6 +95,7 @@ def _common(p: argparse.ArgumentParser, single_frequency=True):
 
 
 _LIBRARY_NAMES = (("Control.sampling_time", "--sampling-time"), ("Control.delay", "--delay"),
+                  ("Control.sensor_band", "--sensor-band"),
                   ("Anchorage.kappa_max", "--kappa-max"), ("Anchorage.kappa_min", "--kappa-min"),
                   ("Anchorage.damping_ratio", "--damping-ratio"), ("free_time", "--free-time"),
                   ("sampling_time", "--sampling-time"), ("exceed kappa_max", "exceed --kappa-max"),
@@ -121,21 +126,32 @@ def _check_common(args, single_frequency=True) -> None:
     v.check_nonnegative("--free-time", args.free_time, "s", v.MAX_FREE_TIME)
 
 
-def _scenario(args, parser):
+def _scenario(args, parser, sensor_step=None):
+    """The scenario of the options; ``sensor_step`` [s]: the step of the record the sensor reads
+    (default: the noisy record's, or the analytic excitation's sampling for the sensor)."""
     from .anchorage import Anchorage
     from .control import Control
     from .noise import NoiseReading
+    from .sensor import SENSOR_STEP, check_band
     from .spectra import Scenario
     try:
         noise = NoiseReading(step=args.noise_step, rescale=args.match, level_means=args.noise_level_means,
                              band=args.noise_band, span=args.noise_span)
     except ValueError as exc:
         parser.error(str(exc).replace("NoiseReading.band", "--noise-band").replace("NoiseReading.", "--noise-"))
+    if args.sensor_band is not None:
+        if sensor_step is None:
+            sensor_step = args.noise_step if args.noise_level > 0 else SENSOR_STEP
+        try:
+            check_band(args.sensor_band, sensor_step, "--sensor-band")
+        except ValueError as exc:
+            parser.error(str(exc))
     try:
         return Scenario(BLOCK_PRESETS[args.block],
                         Anchorage(kappa_max=args.kappa_max, kappa_min=args.kappa_min,
                                   damping_ratio=args.damping_ratio),
-                        Control(args.strategy, sampling_time=args.sampling_time, delay=args.delay),
+                        Control(args.strategy, sampling_time=args.sampling_time, delay=args.delay,
+                                sensor_band=args.sensor_band),
                         excitation=args.excitation, noise_level=args.noise_level, seed=args.seed,
                         noise=noise, overturn_criterion=args.overturn_criterion, free_time=args.free_time)
     except ValueError as exc:
@@ -253,7 +269,8 @@ def _cmd_simulate(args, parser):
                strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
                realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
                energy_ratio=1.0 if rec is None else rec.energy_ratio,
-               pga_ratio=1.0 if rec is None else rec.pga_ratio, **scenario.noise.to_attrs())
+               pga_ratio=1.0 if rec is None else rec.pga_ratio, sensor_band_hz=args.sensor_band,
+               **scenario.noise.to_attrs())
     if res is not None and (args.output or args.plot):
         from .datasets import history_dataset
         ds = history_dataset(res, scenario, motion, args.frequency_ratio, args.amplitude_ratio, args.realisation)
@@ -289,7 +306,7 @@ def _cmd_simulate_record(args, parser):
         record = read_record(args.record, args.record_unit)
     except (OSError, ValueError) as exc:
         parser.error(f"argument --record: {exc}")
-    scenario = _scenario(args, parser)
+    scenario = _scenario(args, parser, sensor_step=record.dt)
     motion = record.motion(args.record_scale)
     pga_ratio = motion.peak() / scenario.block.uplift_acceleration
     try:
@@ -315,7 +332,7 @@ def _cmd_simulate_record(args, parser):
                record_unit=record.unit, record_scale=args.record_scale, record_dt_s=record.dt,
                record_npts=int(record.acceleration.size), record_duration_s=record.duration,
                pga_m_s2=motion.peak(), pga_uplift_ratio=pga_ratio, sampling_time_s=args.sampling_time,
-               delay_s=args.delay)
+               delay_s=args.delay, sensor_band_hz=args.sensor_band)
     if args.output or args.plot:
         from .datasets import history_dataset
         ds = history_dataset(res, scenario, motion, math.nan, pga_ratio, 0, dt=min(record.dt, 0.0025))
@@ -376,7 +393,7 @@ def _cmd_threshold(args, parser):
                                     "counted as not overturned; check with --engine reference")
     res.update(strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
                realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
-               **scenario.noise.to_attrs())
+               sensor_band_hz=args.sensor_band, **scenario.noise.to_attrs())
     print(json.dumps(res, indent=2))
 
 

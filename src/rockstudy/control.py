@@ -15,6 +15,11 @@ then holds the block with K_max.
 Timing: with sampling_time T_s > 0 the controller reads theta, theta_dot and Xg_ddot
 at t_k = k·T_s and its decision takes effect at t_k + delay (zero-order hold).
 T_s = 0 is continuous control (then delay must be 0).
+
+Sensing: with sensor_band = None the controller reads the Xg_ddot that drives the block;
+with a band f_c [Hz] it reads it through a causal second-order Butterworth low-pass
+(an accelerometer and controller filter, rockstudy.sensor); the block still feels the
+driving Xg_ddot.
 """
 from __future__ import annotations
 
@@ -41,11 +46,16 @@ class Control:
         Controller sampling time T_s; 0 means continuous control. [s]
     delay : float, default 0
         Actuation delay between a sample and the moment its decision acts. [s]
+    sensor_band : float or None, default None
+        Cut-off f_c of the sensor through which the controller reads Ẍg (a causal second-order
+        Butterworth low-pass of the record, :mod:`rockstudy.sensor`); None: the controller reads
+        the driving Ẍg itself (the ideal sensor). Only CS02 reads Ẍg. [Hz]
     """
 
     strategy: str = "CS01"
     sampling_time: float = 0.0
     delay: float = 0.0
+    sensor_band: float | None = None
 
     def __post_init__(self):
         if self.strategy not in STRATEGIES:
@@ -59,6 +69,12 @@ class Control:
                 "Control.delay > 0 needs a sampling_time > 0: a delay acts on sampled decisions "
                 f"(got sampling_time=0, delay={self.delay})"
             )
+        band = self.sensor_band
+        if band is not None:
+            if isinstance(band, bool) or not (isinstance(band, (int, float)) and math.isfinite(band) and band > 0):
+                raise ValueError(f"Control.sensor_band must be a positive finite number [Hz] or None (the ideal "
+                                 f"sensor), got {band!r}")
+            object.__setattr__(self, "sensor_band", float(band))
 
     @property
     def code(self) -> int:
@@ -66,7 +82,8 @@ class Control:
 
     def to_attrs(self) -> dict:
         return {"control_strategy": self.strategy, "control_sampling_time_s": self.sampling_time,
-                "control_delay_s": self.delay}
+                "control_delay_s": self.delay,
+                "control_sensor_band_hz": "none" if self.sensor_band is None else self.sensor_band}
 
 
 @njit(cache=True)

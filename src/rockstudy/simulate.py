@@ -25,13 +25,14 @@ from .result import (
     STATUS_TIME_LIMIT,
     SimulationResult,
 )
+from .sensor import sensed_samples, sensed_step
 
 ENGINES = ("fast", "reference")
 OVERTURN_CRITERIA = ("flat", "alpha")
 DEFAULT_FREE_TIME = FREE_TIME
 """Free rocking allowed after the excitation before a run stops as "time limit" (``constants.FREE_TIME``). [s]"""
-__all__ = ["simulate", "pack_parameters", "overturn_rotation", "ENGINES", "OVERTURN_CRITERIA", "DEFAULT_FREE_TIME",
-           "FAST_RTOL", "FAST_ATOL"]
+__all__ = ["simulate", "pack_parameters", "kernel_record", "overturn_rotation", "ENGINES", "OVERTURN_CRITERIA",
+           "DEFAULT_FREE_TIME", "FAST_RTOL", "FAST_ATOL"]
 
 
 def overturn_rotation(block: Block, criterion: str) -> float:
@@ -89,7 +90,25 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
         hmax = min(hmax, MAX_STEP_FRACTION * 2 * math.pi / motion.omega)
     P[kn.I_HMAX] = hmax
     P[kn.I_BOUND] = 1.0 if energy_bound else 0.0
+    P[kn.I_SDT] = 1.0
+    if control.sensor_band is not None:  # the sensed samples follow the driving ones (kernel_record)
+        P[kn.I_SENSE] = 1.0
+        P[kn.I_SOFF] = len(motion.record)
+        P[kn.I_SDT] = sensed_step(motion)
     return P
+
+
+def kernel_record(control: Control, motion: GroundMotion) -> np.ndarray:
+    """The samples the kernel reads: the driving record, then (with a sensor) the sensed record. [-]
+
+    Without a sensor (``control.sensor_band`` None) this is ``motion.record`` itself. With one, the
+    unit-amplitude sensed samples of :func:`rockstudy.sensor.sensed_samples` follow the record's
+    (slots ``I_SENSE``, ``I_SOFF``, ``I_SDT`` of :func:`pack_parameters`).
+    """
+    if control.sensor_band is None:
+        return motion.record
+    sensed, _ = sensed_samples(motion, control.sensor_band)
+    return np.concatenate([motion.record, sensed])
 
 
 def _result_from_kernel(out, block: Block, engine: str = "fast") -> SimulationResult:
@@ -159,5 +178,6 @@ def simulate(block: Block, anchorage: Anchorage, control: Control, motion: Groun
                         free_time=free_time, initial_rotation=initial_rotation,
                         initial_velocity=initial_velocity, rest_velocity=rest_velocity,
                         rtol=FAST_RTOL if rtol is None else rtol, atol=FAST_ATOL if atol is None else atol)
-    out = kn.simulate_kernel(P, kn.writable(motion.record), kn.writable(motion.vertical), bool(record_history), True)
+    out = kn.simulate_kernel(P, kn.writable(kernel_record(control, motion)), kn.writable(motion.vertical),
+                             bool(record_history), True)
     return _result_from_kernel(out, block)

@@ -22,7 +22,7 @@ from .constants import PAPER
 from .excitation import GroundMotion, modulated_peak
 from .outcome import OUTCOME_MEANINGS, Outcome
 from .scenario import Scenario
-from .simulate import pack_parameters, simulate
+from .simulate import kernel_record, pack_parameters, simulate
 
 log = logging.getLogger("rockstudy")
 
@@ -108,8 +108,9 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
         P = pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
                             overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
                             energy_bound=energy_bound)
-        thr, lo, n_sim, n_und = kn.threshold_kernel(P, kn.writable(motion.record), kn.writable(motion.vertical),
-                                                    values, float(grid.resolution), float(peak))
+        thr, lo, n_sim, n_und = kn.threshold_kernel(P, kn.writable(kernel_record(scenario.control, motion)),
+                                                    kn.writable(motion.vertical), values, float(grid.resolution),
+                                                    float(peak))
     elif engine == "reference":
         # the same scan as the fast engine's (kn.threshold_kernel), driven from Python
         state, done, n_sim, lower = kn.scan_start(), False, 0, 1.0 / peak
@@ -143,7 +144,7 @@ def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: boo
             rows.append(pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
                                         overturn_criterion=scenario.overturn_criterion,
                                         free_time=scenario.free_time, energy_bound=energy_bound))
-            recs.append(motion.record)
+            recs.append(kernel_record(scenario.control, motion))
             peaks.append(_unit_peak(scenario, rec))
             e_ratio.append(1.0 if rec is None else rec.energy_ratio)
             p_ratio.append(1.0 if rec is None else rec.pga_ratio)

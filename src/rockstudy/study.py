@@ -24,6 +24,7 @@ from .control import Control
 from .excitation import excitation_duration
 from .noise import reading_from_dict
 from .scenario import Scenario
+from .sensor import SENSOR_STEP, check_band
 from .spectra import AmplitudeGrid, frequency_grid
 
 
@@ -237,9 +238,15 @@ def check_study(config: dict) -> None:
                f"{v.MAX_JOBS_PER_SPECTRUM} (Snakemake's DAG would grow too large); use larger jobs")
     v.check_workload("amplitude_grid.step", ag["step"], n_freq, grid_size_points(ag), 0)
     try:
-        reading_from_dict(config["noise"])
+        reading = reading_from_dict(config["noise"])
     except ValueError as exc:
         raise v.InputError(f"noise: {exc}") from None
+    band = config["control"]["sensor_band"]
+    if band is not None:  # the sensor reads the noisy records at noise.step, the analytic excitation at SENSOR_STEP
+        try:
+            check_band(band, max(reading.step, SENSOR_STEP), "control.sensor_band")
+        except ValueError as exc:
+            raise v.InputError(str(exc)) from None
     for name, spec in config["reproduction"]["readings"].items():
         try:
             reading_from_dict(spec)

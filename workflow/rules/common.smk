@@ -26,7 +26,7 @@ def scenario(strategy, level, ts=0.0, delay=0.0):
     return {
         "block": config["block"],
         "anchorage": config["anchorage"],
-        "control": {"strategy": strategy, "sampling_time": float(ts), "delay": float(delay)},
+        "control": {"strategy": strategy, "sampling_time": float(ts), "delay": float(delay), **config["control"]},
         "excitation": config["excitation"],
         "noise_level": LEVELS[level],
         "seed": config["seed"],

@@ -10,6 +10,11 @@ earliest is located and its map applied (:func:`state_event`); the known-time ev
 :func:`known_time_events`, the CS01 apex decision by :func:`apex`. :func:`simulate_kernel` drives
 them and keeps the logs.
 
+The equation of motion, impacts, uplift and the REST/HOLD exits read the driving Ẍg
+(``ground_acceleration``); the control law's decisions (CS02's sign of Ẍg, its Ẍg = 0 switch,
+sampled decisions) read Ẍg as the controller senses it (``sensed_acceleration``, equal to the
+driving Ẍg without a sensor; :mod:`rockstudy.sensor`).
+
 The model and every reading of the paper are in ``docs/model.md``.
 """
 from __future__ import annotations
@@ -24,7 +29,7 @@ from ..control import CS01, CS02, FS, PASSIVE, stiffness_on
 from ..excitation import RECORD
 from . import dopri, maps
 from .events import locate, scan_exit
-from .ground import ground_acceleration, vertical_acceleration
+from .ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from .layout import (
     C_BOUND,
     C_BOUND_SWITCHING,
@@ -162,6 +167,12 @@ def _xg(S, P, rec):
     return ground_acceleration(S[R_T], P, rec) if S[R_H_ON] != 0.0 else 0.0
 
 
+@njit(cache=True, inline="always")
+def _sensed(S, P, rec):
+    """Ẍg as the controller senses it at the state's time while the excitation lasts, else 0. [m/s^2]"""
+    return sensed_acceleration(S[R_T], P, rec) if S[R_H_ON] != 0.0 else 0.0
+
+
 # ---- setup --------------------------------------------------------------------------------
 @njit(cache=True, inline="always")
 def setup(P, vert, want_history, want_log):
@@ -222,7 +233,7 @@ def initial_state(P, C, rec):
     S[R_MAX_ABS] = abs(th)
     strategy = int(P[I_STRAT])
     if C[C_SAMPLED] == 0.0:
-        S[R_KAP_ON] = _flag(stiffness_on(strategy, th, thd, ground_acceleration(0.0, P, rec)))
+        S[R_KAP_ON] = _flag(stiffness_on(strategy, th, thd, sensed_acceleration(0.0, P, rec)))
         S[R_HINT] = sign(thd)
     S[R_APEX] = _flag(C[C_SWITCHING] != 0.0 and S[R_MODE] == MODE_ROCK and thd == 0.0 and th != 0.0
                       and strategy == CS01)
@@ -288,7 +299,7 @@ def ground_phase(S, C, P, rec, vert, t_next):
         S[R_THD] = 0.0
         S[R_MODE] = MODE_ROCK
         if C[C_SAMPLED] == 0.0:
-            S[R_KAP_ON] = _flag(stiffness_on(int(P[I_STRAT]), side, 0.0, xg))
+            S[R_KAP_ON] = _flag(stiffness_on(int(P[I_STRAT]), side, 0.0, _sensed(S, P, rec)))
         S[R_HINT] = side
         return UPLIFTED
     # leaves the sliding surface, outward or back (never HOLD again here)
@@ -322,7 +333,7 @@ def known_time_events(S, C, P, rec, queue_times, queue_values):
         head = int(S[R_Q_HEAD])
         count = int(S[R_Q_COUNT])
         while S[R_K_SAMPLE] * Ts <= t + TIME_TOLERANCE:  # controller samples due
-            on = stiffness_on(strategy, S[R_TH], S[R_THD], _xg(S, P, rec))
+            on = stiffness_on(strategy, S[R_TH], S[R_THD], _sensed(S, P, rec))
             count = maps.queue_push(queue_times, queue_values, head, count, S[R_K_SAMPLE] * Ts + P[I_DELAY], on)
             S[R_K_SAMPLE] += 1
         while count > 0 and queue_times[head] <= t + TIME_TOLERANCE:  # decisions that act now
@@ -410,9 +421,9 @@ def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
     f0_ok = False
     x_hint = S[R_X_HINT]
     if use_xg_event:
-        xs = ground_acceleration(t, P, rec)
+        xs = sensed_acceleration(t, P, rec)
         if xs == 0.0:
-            xs = ground_acceleration(t + 1e-9, P, rec)
+            xs = sensed_acceleration(t + 1e-9, P, rec)
         x_hint = sign(xs)
     hint = S[R_HINT]
     if thd != 0.0:
@@ -481,7 +492,7 @@ def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
             if s >= 0.0:
                 best = s
         if not negligible and use_xg_event and x_hint != 0.0:
-            if x_hint * ground_acceleration(t + hh, P, rec) <= 0.0:
+            if x_hint * sensed_acceleration(t + hh, P, rec) <= 0.0:
                 s = locate(min(best, 1.0), hh, y0, y1, K, 0.0, 0.0, x_hint, 0.0, t, P, rec)
                 if s >= 0.0:
                     best = s
@@ -534,9 +545,9 @@ def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
                 t_next = t_after
                 f0_ok = False
                 if use_xg_event:
-                    xs = ground_acceleration(t, P, rec)
+                    xs = sensed_acceleration(t, P, rec)
                     if xs == 0.0:
-                        xs = ground_acceleration(t + 1e-9, P, rec)
+                        xs = sensed_acceleration(t + 1e-9, P, rec)
                     x_hint = sign(xs)
                 if thd != 0.0:
                     hint = sign(thd)
@@ -584,7 +595,7 @@ def state_event(S, C, P, rec, vert):
         hint = sign(thd) if thd != 0.0 else side
         S[R_HINT] = hint
         if C[C_SAMPLED] == 0.0 and S[R_MODE] == MODE_ROCK:
-            S[R_KAP_ON] = _flag(stiffness_on(int(P[I_STRAT]), side, hint, xg))
+            S[R_KAP_ON] = _flag(stiffness_on(int(P[I_STRAT]), side, hint, _sensed(S, P, rec)))
         if what == maps.UPLIFT:
             return IMPACT_UPLIFT
         if what == maps.REST:
@@ -595,7 +606,7 @@ def state_event(S, C, P, rec, vert):
         S[R_THD] = 0.0
         return NOTHING
     if use_xg_event:
-        xg_after = ground_acceleration(t + 1e-9, P, rec)
+        xg_after = sensed_acceleration(t + 1e-9, P, rec)
         S[R_KAP_ON] = _flag(stiffness_on(int(P[I_STRAT]), side, 0.0, xg_after if xg_after != 0.0 else -S[R_X_HINT]))
     return NOTHING
 

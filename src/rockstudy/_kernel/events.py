@@ -1,6 +1,10 @@
 """Event detection and location: zeros of g = a_θ·θ + a_θ̇·θ̇ + a_x·Ẍg + c on a step's continuous
 extension (impacts, rotation thresholds, the CS01 and CS02 switches), and the exits from REST and
-HOLD found by scanning the ground motion."""
+HOLD found by scanning the ground motion.
+
+The a_x·Ẍg term is the CS02 switch, a decision of the controller: it reads Ẍg as the controller
+senses it (:func:`rockstudy._kernel.ground.sensed_acceleration`). The REST and HOLD exits concern
+the block, so they read the driving Ẍg."""
 from __future__ import annotations
 
 import math
@@ -10,7 +14,7 @@ from numba import njit
 from ..constants import LOCATE_TOLERANCE
 from ..excitation import MODULATED, ONE_SINE
 from .dopri import acceleration, dense
-from .ground import ground_acceleration, vertical_acceleration
+from .ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from .layout import I_ALPHA, I_G, I_KIND, I_OMEGA, MODE_REST
 
 REST_HOLD_SCAN_DIVISIONS = 256.0
@@ -20,11 +24,11 @@ smooth function cannot hide inside 1/256 of a period at the amplitudes that matt
 
 @njit(cache=True)
 def event_value(sig, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec):
-    """g = a_th·θ + a_thd·θ̇ + a_x·Ẍg + c at t + sig·hh (Ẍg only when a_x != 0)."""
+    """g = a_th·θ + a_thd·θ̇ + a_x·Ẍg + c at t + sig·hh (Ẍg as the controller senses it, only when a_x != 0)."""
     a, b = dense(sig, hh, y0, y1, K)
     g = a_th * a + a_thd * b + c
     if a_x != 0.0:
-        g += a_x * ground_acceleration(t + sig * hh, P, rec)
+        g += a_x * sensed_acceleration(t + sig * hh, P, rec)
     return g
 
 

@@ -1,10 +1,15 @@
-"""Ground motion as the compiled engine reads it: Ẍg(t) and Ÿg(t) from the parameter vector."""
+"""Ground motion as the compiled engine reads it: Ẍg(t) and Ÿg(t) from the parameter vector, and Ẍg as
+the controller senses it (:mod:`rockstudy.sensor`).
+
+``rec`` holds the driving record's samples and, when the sensor is on (slot ``I_SENSE``), the
+sensed samples after them, from index ``P[I_SOFF]`` on (an analytic excitation has no driving
+samples, so its sensed samples start at 0)."""
 from __future__ import annotations
 
 from numba import njit
 
 from ..excitation import MODULATED, ONE_SINE, RECORD, interpolate_record, modulated_acceleration, one_sine_acceleration
-from .layout import I_AMP, I_DUR, I_KIND, I_OMEGA, I_RDT, I_VDT
+from .layout import I_AMP, I_DUR, I_KIND, I_OMEGA, I_RDT, I_SDT, I_SENSE, I_SOFF, I_VDT
 
 
 @njit(cache=True)
@@ -20,8 +25,21 @@ def ground_acceleration(t, P, rec):
     if kind == MODULATED:
         return modulated_acceleration(t, amp, P[I_OMEGA], dur)
     if kind == RECORD:
+        if P[I_SENSE] != 0.0:  # the sensed samples follow the driving ones
+            return amp * interpolate_record(t, P[I_RDT], rec[:int(P[I_SOFF])])
         return amp * interpolate_record(t, P[I_RDT], rec)
     return amp  # rectangular pulse on [0, dur]
+
+
+@njit(cache=True)
+def sensed_acceleration(t, P, rec):
+    """Ẍg(t) as the controller reads it: the driving Ẍg without a sensor, else the sensed samples
+    (times a_p) interpolated linearly; zero outside the excitation [0, dur], as Ẍg. [m/s^2]"""
+    if P[I_SENSE] == 0.0:
+        return ground_acceleration(t, P, rec)
+    if t < 0.0 or t > P[I_DUR]:
+        return 0.0
+    return P[I_AMP] * interpolate_record(t, P[I_SDT], rec[int(P[I_SOFF]):])
 
 
 @njit(cache=True)

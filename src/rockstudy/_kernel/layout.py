@@ -39,7 +39,10 @@ I_HMAX = 25      # largest step [s]
 I_SINA = 26      # sin α [-]
 I_COSA = 27      # cos α [-]
 I_BOUND = 28     # 1: end runs that provably cannot overturn any more (energy bound), 0: integrate on
-NPAR = 29
+I_SENSE = 29     # 1: the controller reads Ẍg through a sensor (samples after the record in ``rec``), 0: driving Ẍg
+I_SOFF = 30      # index in ``rec`` of the first sensed sample (= number of driving samples) [-]
+I_SDT = 31       # sampling step of the sensed samples (1 without sensor) [s]
+NPAR = 32
 
 # ---- the run's constants, fixed by the parameters (engine.setup) ---------------------------
 C_KMAX = 0       # κ_max the device applies (0 for FS) [-]

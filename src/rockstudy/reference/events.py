@@ -171,12 +171,12 @@ class TurningPoint(Event):
 
 
 class GroundZero(Event):
-    """Ẍg = 0, where the CS02 law switches (Eq. 17). g = Ẍg(t) [m/s^2].
+    """Ẍg = 0 as the controller reads it, where the CS02 law switches (Eq. 17). g = sensed Ẍg(t) [m/s^2].
 
     Parameters
     ----------
     excitation : Excitation
-        Ẍg(t). [m/s^2]
+        Ẍg(t) and its sensed reading ``excitation.sensed``. [m/s^2]
     ground_sign : {1, -1}
         Sign of Ẍg in the current half-wave; ``direction`` is −ground_sign.
     t0 : float
@@ -191,7 +191,7 @@ class GroundZero(Event):
 
     def value(self, t, y):
         """g(t, y); see the class docstring."""
-        return self.excitation.horizontal(t)
+        return self.excitation.sensed(t)
 
 
 class UpliftFromRest(Event):

@@ -4,6 +4,9 @@
 the reference engine evaluates Ẍg(t) and Ÿg(t) on plain floats, through the same compiled
 formulas as the fast engine (:func:`rockstudy.excitation.one_sine_acceleration`, Eq. 23's
 :func:`rockstudy.excitation.modulated_acceleration`).
+
+The controller may read Ẍg through a sensor (:mod:`rockstudy.sensor`): ``Excitation.sensed`` is
+what it reads (the driving Ẍg itself without a sensor), and CS02's sign of Ẍg is taken from it.
 """
 from __future__ import annotations
 
@@ -12,6 +15,7 @@ import math
 import numpy as np
 
 from ..excitation import ENVELOPE_PEAK, GroundMotion, modulated_acceleration, modulated_duration, one_sine_acceleration
+from ..sensor import sensed_samples
 
 ZERO_GROUND = 1e-9
 """|Ẍg| below this fraction of the peak counts as Ẍg = 0 when reading its sign after a stop. [-]"""
@@ -50,6 +54,29 @@ class PiecewiseLinear:
         return self.factor * (slope * (t - t_i) + values[i])
 
 
+class SensedReading:
+    """Ẍg as the controller's sensor reads it: the sensed samples, linear between them, zero after the
+    end of the excitation (as Ẍg; the controller knows the excitation is over, :mod:`rockstudy.sensor`).
+
+    Parameters
+    ----------
+    samples : PiecewiseLinear
+        The sensed samples times a_p. [m/s^2]
+    end : float
+        End of the horizontal excitation. [s]
+    """
+
+    def __init__(self, samples: PiecewiseLinear, end: float):
+        self.samples = samples
+        self.end = end
+
+    def __call__(self, t: float) -> float:
+        """Sensed Ẍg at t; zero outside [0, end]. [m/s^2]"""
+        if t < 0.0 or t > self.end:
+            return 0.0
+        return self.samples(t)
+
+
 def _no_vertical(t: float) -> float:
     """Ÿg of a motion without a vertical component. [m/s^2]"""
     return 0.0
@@ -58,10 +85,19 @@ def _no_vertical(t: float) -> float:
 class Excitation:
     """Scalar Ẍg(t), Ÿg(t) of a :class:`~rockstudy.excitation.GroundMotion` and its breakpoints.
 
+    Parameters
+    ----------
+    motion : GroundMotion
+        The ground motion the block feels.
+    sensor_band : float or None, default None
+        Cut-off of the controller's sensor (:mod:`rockstudy.sensor`); None: it reads Ẍg itself. [Hz]
+
     Attributes
     ----------
     horizontal, vertical : callable
         Ẍg(t) and Ÿg(t) on one float. [m/s^2]
+    sensed : callable
+        Ẍg(t) as the controller reads it (``horizontal`` itself without a sensor). [m/s^2]
     horizontal_end : float
         Instant after which Ẍg is zero. [s]
     end : float
@@ -77,7 +113,7 @@ class Excitation:
         Scale of |Ẍg| for "Ẍg is zero" (the envelope peak bounds Eq. 23 without sampling it). [m/s^2]
     """
 
-    def __init__(self, motion: GroundMotion):
+    def __init__(self, motion: GroundMotion, sensor_band: float | None = None):
         kind = motion.kind
         self.amplitude = float(motion.amplitude)
         self.omega = float(motion.omega)
@@ -109,6 +145,10 @@ class Excitation:
         knots.extend([self.horizontal_end, vertical_end, self.end])
         self.knots = np.unique(np.asarray([k for k in knots if k > 0.0], dtype=float))
         self.peak = abs(self.amplitude) * ENVELOPE_PEAK if kind == "modulated" else float(motion.peak())
+        self.sensed = self.horizontal
+        if sensor_band is not None:
+            values, step = sensed_samples(motion, sensor_band)
+            self.sensed = SensedReading(PiecewiseLinear(values, step, self.amplitude), self.horizontal_end)
 
     def _one_sine(self, t: float) -> float:
         """One-sine pulse on [0, 2π/ω_p], zero outside. [m/s^2]"""
@@ -132,10 +172,10 @@ class Excitation:
         return float(self.knots[i]) if i < len(self.knots) else math.inf
 
     def sign_after(self, t: float) -> int:
-        """Sign of Ẍg just after t; 0 where Ẍg vanishes identically (after its end). [-]"""
+        """Sign of Ẍg as the controller reads it just after t; 0 after the excitation's end. [-]"""
         if t >= self.horizontal_end:
             return 0
-        value = self.horizontal(t)
+        value = self.sensed(t)
         if abs(value) <= ZERO_GROUND * self.peak:
-            value = self.horizontal(t + ZERO_GROUND * max(1.0, t))
+            value = self.sensed(t + ZERO_GROUND * max(1.0, t))
         return (value > 0.0) - (value < 0.0)

@@ -90,7 +90,7 @@ class ReferenceRun:
         anchored = control.strategy != "FS" and not anchorage.is_inert
         damping_ratio = anchorage.damping_ratio if anchored else 0.0
         self.motion = motion
-        self.excitation = Excitation(motion)
+        self.excitation = Excitation(motion, control.sensor_band)
         self.dynamics = Dynamics(block, float(2.0 * damping_ratio * block.p), self.excitation)  # 2ξp [1/s]
         self.restrainers = Restrainers(anchorage, block, anchored)
         self.controller = Controller(control.strategy if anchored else "FS",
