@@ -8,7 +8,9 @@ block (paper Eqs. 1–17), in numba, in small parts:
 * :mod:`.events`  — event detection/location on the interpolant, REST and HOLD exits;
 * :mod:`.maps`    — impact (Eqs. 14–15), uplift, CS01 apex decision, fracture (Eqs. 8–13),
   the sampled controller's queue;
-* :mod:`.engine`  — the driving loop (paper §3);
+* :mod:`.engine`  — the driving loop (paper §3) over one state record (``R_*`` slots) and the
+  run's constants (``C_*``): ``next_known_time``, ``ground_phase`` (REST/HOLD), ``known_time_events``,
+  ``apex``, ``integrate`` (steps, event search and location), ``state_event`` (the maps);
 * :mod:`.scan`    — outcomes, the one threshold scan, parallel batches.
 
 Integration: Dormand–Prince 5(4) with error control (rtol, atol), first-same-as-last, and the
