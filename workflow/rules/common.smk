@@ -85,17 +85,20 @@ REPRO = config["reproduction"]
 READINGS = REPRO["readings"]
 STUDY_READING = study.reading_from_dict(config["noise"])
 SAME_AS_STUDY = [name for name in READINGS if study.reading_from_dict(READINGS[name]) == STUDY_READING
-                 and REPRO["realisations"] == config["realisations"] and REPRO["strategy"] == "FS"]
+                 and REPRO["realisations"] == config["realisations"] and REPRO["strategy"] in config["strategies"]]
+"""Readings equal to the study's own ``noise:`` reading, with its realisations: the readings study reuses the
+study's gathered spectra for them (same block, seed, grids and realisations, so the same records)."""
 
 
 def reading_spectrum_file(name, level):
+    """The spectrum of reading ``name`` at ``level``: the study's own when the reading is the study's."""
+    if name in SAME_AS_STUDY:
+        return spectrum_files([REPRO["strategy"]], [level])[0]
     return f"{OUT}/reproduction/readings/spectra/{REPRO['strategy']}_{name}_{level}.nc"
 
 
 def fs_spectra_of_the_study():
-    """FS spectra of the study's reading: the readings study's if it has that reading, else the study's."""
-    if SAME_AS_STUDY:
-        return [reading_spectrum_file(SAME_AS_STUDY[0], level) for level in NOISY] + spectrum_files(["FS"], [FREE])
+    """FS spectra of the study's reading at every level (the calibration's references at full settings)."""
     return spectrum_files(["FS"], LEVELS)
 
 
