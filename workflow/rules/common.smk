@@ -117,9 +117,9 @@ CLAIMS = [f"{OUT}/reproduction/{name}" for name in ("claims.md", "claims.nc", "c
                                                      "table1_vs_paper.csv")]
 CLAIMS_BOOKKEEPING = study.source_fingerprint(["claims.py", "study.py", "tables.py", "utility.py"])
 CAL = config["calibration"]
-CAL_DESIGN = {"kappa_max": CAL["kappa_max"], "damping_ratio": CAL["damping_ratio"],
-              "ultimate_rotation": CAL["ultimate_rotation"], "kappa_min": CAL["kappa_min"]}
-CAL_DEVICES = calibration.CalibrationDesign(**CAL_DESIGN).devices()
+CAL_DESIGN = {key: CAL[key] for key in ("kappa_max", "damping_ratio", "ultimate_rotation_ratio", "kappa_min_ratio")}
+CAL_ALPHA = study.block_from_dict(config["block"]).alpha  # theta_u = ratio * alpha
+CAL_DEVICES = calibration.CalibrationDesign(**CAL_DESIGN).devices(CAL_ALPHA)
 CAL_FS = [f"{OUT}/reproduction/calibration/coarse/FS_{level}.nc" for level in LEVELS]
 CAL_REFINE = [f"{OUT}/reproduction/calibration/refine/c{rank}_{s}_{level}.nc"
               for rank in range(CAL["candidates"]) for s in ("CS01", "CS02") for level in LEVELS]
