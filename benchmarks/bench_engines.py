@@ -8,9 +8,9 @@ measured switched off ("old") and on ("new") side by side:
 
 * ``energy bound``: outcome runs (threshold scans, maps) end once the block provably cannot
   overturn any more (docs/model.md). Histories and ``simulate()`` never use it.
-* ``knots``: the opt-in ``step_across_knots`` (default off; not bit-identical, docs/model.md): steps
-  span the knots of noisy records while the block rocks. Measured with the energy bound on, beside
-  the default (bound on, knots clipped); the ratio default/knots is printed.
+  Under sampled control (T_s > 0) the bound is the weaker half-cycle bound (docs/model.md, "Early
+  stop under sampled control"); "old" there means no early stop at all, as before it existed.
+  (An opt-in ``step_across_knots`` was measured here in issue 11 at 6-12x slower and removed.)
 
 "simulated seconds" are those of the full run (to rest or the time limit), so that the rate of an
 outcome run that stops early counts the motion it no longer needs to integrate.
@@ -52,8 +52,8 @@ def median_time(fn, repeats):
 def bench_engines(repeats_fast, repeats_ref, reference=True):
     print("engine comparison (CPU time per simulation, median); outcome runs with the energy bound off / on")
     print(f"{'case':44s} {'fast [ms]':>10s} {'ref [ms]':>10s} {'ratio':>7s} {'sim s/CPU s':>12s} "
-          f"{'outcome old/new [ms]':>21s} {'sim s/CPU s old/new':>20s} {'knots [ms]':>10s} {'ratio':>6s}")
-    ratios, rates, rates_old, rates_new, rates_knots = [], [], [], [], []
+          f"{'outcome old/new [ms]':>21s} {'sim s/CPU s old/new':>20s}")
+    ratios, rates, rates_old, rates_new = [], [], [], []
     for strategy, exc, fr, ar, noise, ts in CASES:
         sc = Scenario(BLOCK, Anchorage(), Control(strategy, sampling_time=ts), excitation=exc, noise_level=noise)
         motion, _ = sc.motion(fr, ar, 0)
@@ -67,27 +67,22 @@ def bench_engines(repeats_fast, repeats_ref, reference=True):
             ratios.append(tr / tf)
         rates.append(res.end_time / tf)
         outcome = {}
-        for key, bound, knots in (("old", False, False), ("new", True, False), ("knots", True, True)):
-            P = pack_parameters(sc.block, sc.anchorage, sc.control, motion, energy_bound=bound,
-                                step_across_knots=knots)
+        for key, bound in (("old", False), ("new", True)):
+            P = pack_parameters(sc.block, sc.anchorage, sc.control, motion, energy_bound=bound)
             kn.simulate_kernel(P, motion.record, motion.vertical, False, False)
             outcome[key] = median_time(
                 lambda P=P, motion=motion: kn.simulate_kernel(P, motion.record, motion.vertical, False, False),
                 repeats_fast)
         rates_old.append(res.end_time / outcome["old"])
         rates_new.append(res.end_time / outcome["new"])
-        rates_knots.append(res.end_time / outcome["knots"])
         label = f"{strategy} {exc} w/p={fr} a={ar} r={noise} Ts={ts}"
         print(f"{label:44s} {tf*1e3:10.3f} {tr*1e3:10.1f} {tr/tf:7.0f} {res.end_time/tf:12.0f} "
-              f"{outcome['old']*1e3:10.3f}/{outcome['new']*1e3:<10.3f} {rates_old[-1]:9.0f}/{rates_new[-1]:<10.0f} "
-              f"{outcome['knots']*1e3:10.3f} {outcome['new']/outcome['knots']:6.2f}")
+              f"{outcome['old']*1e3:10.3f}/{outcome['new']*1e3:<10.3f} {rates_old[-1]:9.0f}/{rates_new[-1]:<10.0f}")
     if ratios:
         print(f"median speed-up fast/reference: {statistics.median(ratios):.0f}x (target >= 300x)")
     print(f"median simulated seconds per CPU second (fast, simulate()): {statistics.median(rates):.0f}")
     print("median simulated seconds per CPU second (outcome runs): energy bound off "
-          f"{statistics.median(rates_old):.0f}, on {statistics.median(rates_new):.0f} (target >= 20000); "
-          f"energy bound on + step_across_knots {statistics.median(rates_knots):.0f}")
-    print("(step_across_knots only changes the runs on noisy records, rows with r > 0 and not CS02)")
+          f"{statistics.median(rates_old):.0f}, on {statistics.median(rates_new):.0f} (target >= 20000)")
 
 
 def bench_spectra(n_realisations):
@@ -103,27 +98,20 @@ def bench_spectra(n_realisations):
         n = int(ds.n_simulations.sum())
         print(f"noise-free CS01 spectrum, {len(freqs)} frequencies, energy bound {'on ' if bound else 'off'}: "
               f"{t:.1f} s, {n} simulations, {t/n*1e3:.3f} ms/sim")
-    sc = Scenario(BLOCK, Anchorage(), Control("CS01"), noise_level=0.05, seed=1)
-    results, times = {}, {}
-    spectrum(sc, freqs[:1], grid=grid, step_across_knots=True)  # compile
-    for key, bound, knots in (("old", False, False), ("new", True, False), ("knots", True, True)):
-        t0 = time.process_time()
-        ds = spectrum(sc, freqs, realisations=range(n_realisations), grid=grid, energy_bound=bound,
-                      step_across_knots=knots)
-        times[key] = t = time.process_time() - t0
-        n = int(ds.n_simulations.sum())
-        results[key] = ds
-        print(f"{n_realisations}-realisation CS01 spectrum at 5% noise, energy bound {'on ' if bound else 'off'}, "
-              f"knots {'spanned' if knots else 'clipped'}: {t:.1f} s CPU, {n} simulations, {t/n*1e3:.3f} ms/sim "
-              "(target: 40 realisations <= 40 s)")
-    same = all(np.array_equal(results["old"][v].values, results["new"][v].values, equal_nan=True)
-               for v in ("threshold_realisation", "last_safe", "n_simulations", "n_undetermined"))
-    print(f"thresholds with and without the energy bound identical: {same}")
-    a, b = results["new"].threshold_realisation.values, results["knots"].threshold_realisation.values
-    d = np.abs(a - b)[np.isfinite(a) & np.isfinite(b)] / grid.resolution
-    print(f"step_across_knots: {times['new'] / times['knots']:.2f}x faster than the default; thresholds changed "
-          f"{int((d > 0).sum())} of {a.size} (max {d.max():.3f} scan resolutions), "
-          f"NaN flips {int((np.isnan(a) != np.isnan(b)).sum())}")
+    for ts, target in ((0.0, " (target: 40 realisations <= 40 s)"), (0.1, "")):
+        sc = Scenario(BLOCK, Anchorage(), Control("CS01", sampling_time=ts), noise_level=0.05, seed=1)
+        results, times = {}, {}
+        for bound in (False, True):
+            t0 = time.process_time()
+            ds = spectrum(sc, freqs, realisations=range(n_realisations), grid=grid, energy_bound=bound)
+            times[bound] = t = time.process_time() - t0
+            n = int(ds.n_simulations.sum())
+            results[bound] = ds
+            print(f"{n_realisations}-realisation CS01 T_s={ts:g} s spectrum at 5% noise, energy bound "
+                  f"{'on ' if bound else 'off'}: {t:.1f} s CPU, {n} simulations, {t/n*1e3:.3f} ms/sim{target}")
+        same = all(np.array_equal(results[False][v].values, results[True][v].values, equal_nan=True)
+                   for v in ("threshold_realisation", "last_safe", "n_simulations", "n_undetermined"))
+        print(f"  bound on/off: {times[False] / times[True]:.2f}x less CPU; thresholds identical: {same}")
     # the same simulations one call at a time from Python (compiled first: not timed)
     k = 0
     threshold(sc, float(freqs[0]), realisation=k, grid=grid)
@@ -131,7 +119,7 @@ def bench_spectra(n_realisations):
     for fr in freqs[::6]:
         threshold(sc, float(fr), realisation=k, grid=grid)
     t_single = time.perf_counter() - t0
-    ds = results["new"]
+    ds = results[True]
     n_single = int(ds.n_simulations.sel(realisation=k).values[::6].sum())
     print(f"single threshold calls: {t_single/n_single*1e3:.3f} ms/sim")
 

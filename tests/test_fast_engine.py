@@ -176,13 +176,13 @@ def test_energy_bound_never_changes_an_outcome(blc06):
     rng = np.random.default_rng(2026)
     records = [(noisy_record("modulated", fr * blc06.p, 0.05, k, 7), fr * blc06.p)
                for k, fr in enumerate((1.5, 3.0, 4.5))]
-    n_cases, n_stopped, strategies = 2000, 0, ("FS", "PASSIVE", "CS01", "CS02")
+    n_cases, n_stopped, n_stopped_sampled, strategies = 2000, 0, 0, ("FS", "PASSIVE", "CS01", "CS02")
     for i in range(n_cases):
         strategy = strategies[i % 4]
         sampling = (0.0, 0.0, 0.01, 0.05)[(i // 4) % 4]
-        delay = 0.0 if sampling == 0 else float(rng.choice([0, 0.02]))
+        delay = 0.0 if sampling == 0 else float(rng.choice([0, 0.02, 0.2]))
         control = Control(strategy, sampling_time=sampling, delay=delay)
-        kmax = float(rng.uniform(0.1, 3.0))
+        kmax = float(rng.uniform(0.1, 3.0 if i % 7 else 10.0))
         anchorage = Anchorage(kappa_max=kmax, kappa_min=float(rng.uniform(0, kmax)),
                               damping_ratio=float(rng.uniform(0, 0.1)),
                               spring_ultimate_rotation=float(rng.uniform(0.3, 1.2) * blc06.alpha),
@@ -207,7 +207,66 @@ def test_energy_bound_never_changes_an_outcome(blc06):
         assert (cut.n_impacts > 0) == (full.n_impacts > 0) or cut.status != kn.ST_OVER
         if cut.status == kn.ST_BOUND:
             n_stopped += 1
-            assert sampling == 0 and full.status in (kn.ST_REST, kn.ST_TLIM) and cut.end_time <= full.end_time
+            n_stopped_sampled += sampling > 0
+            assert full.status in (kn.ST_REST, kn.ST_TLIM) and cut.end_time <= full.end_time
         else:  # not stopped early: the very same run
             assert (cut.status, cut.end_time, cut.n_impacts) == (full.status, full.end_time, full.n_impacts)
     assert n_stopped > n_cases // 8  # the bound does act
+    assert n_stopped_sampled > n_cases // 40  # ... under sampled control too
+
+
+def _pumping_device_peak(block, kappa_high, theta, theta_dot, n_half_cycles=40):
+    """Largest |θ| of free rocking under the worst device: K = κ_hi exactly while the block returns
+    (sin θ·θ̇ < 0), 0 while it moves out; undamped; impacts by Eq. (14). Independent of the engine:
+    scipy's DOP853 on Eq. (1) written out here, one half-excursion at a time."""
+    from scipy.integrate import solve_ivp
+
+    p, a, e = block.p, block.alpha, block.e
+
+    def half(y, side, kappa, events):
+        def rhs(t, z):
+            return [z[1], -p * p * (side * math.sin(a - side * z[0]) + kappa * math.sin(z[0]))]
+        for ev in events:
+            ev.terminal = True
+        return solve_ivp(rhs, (0, 100), y, method="DOP853", rtol=1e-11, atol=1e-13, events=events).y[:, -1]
+
+    side = math.copysign(1.0, theta if theta != 0 else theta_dot)
+    peak = abs(theta)
+    y = [theta, theta_dot]
+    for _ in range(n_half_cycles):
+        if side * y[1] > 0:  # outward, spring off, until the apex or |θ| = α
+            y = list(half(y, side, 0.0, [lambda t, z, s=side: s * z[1], lambda t, z, s=side: s * z[0] - a]))
+            peak = max(peak, abs(y[0]))
+            if side * y[0] >= a - 1e-12:
+                return peak
+        # inward (or at the apex), spring on, until θ = 0
+        y = half(y, side, kappa_high, [lambda t, z: z[0]])
+        side, y = -side, [0.0, y[1] * e]
+        if abs(y[1]) < 1e-9:
+            break
+    return peak
+
+
+def test_switching_bound_against_a_pumping_device(blc06):
+    """From every state the sampled-control bound accepts, the worst device (full stiffness exactly
+    while the block returns) never brings it to |θ| = α; and the bound is needed: from some states the
+    continuous bound (W < 1) accepts, that device does overturn the block."""
+    from rockstudy._kernel import maps
+
+    p, a, e = blc06.p, blc06.alpha, blc06.e
+    rng = np.random.default_rng(11)
+    accepted, pumped_over = 0, 0
+    for _ in range(100):
+        kappa_high = float(rng.choice([0.5, 1.0, 4.0, 10.0]))
+        scale = float(rng.choice([0.3, 1.0]))  # small rocking, where the bound acts, and large
+        theta = float(rng.uniform(-a, a)) * scale
+        theta_dot = float(rng.uniform(-1, 1)) * scale * p * math.sqrt(2 * (1 - math.cos(a - abs(theta))))
+        side = math.copysign(1.0, theta if theta != 0 else theta_dot)
+        peak = _pumping_device_peak(blc06, kappa_high, theta, theta_dot)
+        if maps.cannot_overturn_switching(theta, theta_dot, side, p, a, e, kappa_high):
+            accepted += 1
+            assert peak < a, (kappa_high, theta, theta_dot, peak)
+        elif maps.cannot_overturn(theta, theta_dot, p, a, 0.0) and peak >= a:
+            pumped_over += 1
+    assert accepted >= 15
+    assert pumped_over >= 5

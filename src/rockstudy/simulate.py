@@ -47,14 +47,11 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
                     overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
                     initial_rotation: float = 0.0, initial_velocity: float = 0.0,
                     rest_velocity: float | None = None, rtol: float = FAST_RTOL,
-                    atol: float = FAST_ATOL, energy_bound: bool = False,
-                    step_across_knots: bool = False) -> np.ndarray:
+                    atol: float = FAST_ATOL, energy_bound: bool = False) -> np.ndarray:
     """The kernel's parameter vector (its named slots: :mod:`rockstudy._kernel.layout`).
 
     ``energy_bound`` lets the engine end a run once it provably can no longer overturn (outcome
     runs only: the history and event log after that point are not computed).
-    ``step_across_knots`` lets the integrator's steps span record knots while the block rocks
-    (opt-in, not bit-identical, measured slower on noisy records; docs/model.md).
     """
     if not (free_time >= 0 and math.isfinite(free_time)):
         raise ValueError(f"free_time must be a finite number >= 0 [s], got {free_time!r}")
@@ -92,7 +89,6 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
         hmax = min(hmax, MAX_STEP_FRACTION * 2 * math.pi / motion.omega)
     P[kn.I_HMAX] = hmax
     P[kn.I_BOUND] = 1.0 if energy_bound else 0.0
-    P[kn.I_KNOTS] = 1.0 if step_across_knots else 0.0
     return P
 
 
@@ -124,8 +120,7 @@ def simulate(block: Block, anchorage: Anchorage, control: Control, motion: Groun
              engine: str = "fast", overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
              initial_rotation: float = 0.0, initial_velocity: float = 0.0,
              rest_velocity: float | None = None, record_history: bool = False,
-             rtol: float | None = None, atol: float | None = None,
-             step_across_knots: bool = False) -> SimulationResult:
+             rtol: float | None = None, atol: float | None = None) -> SimulationResult:
     """Simulate the block under a ground motion with the chosen anchorage control.
 
     Parameters
@@ -146,16 +141,9 @@ def simulate(block: Block, anchorage: Anchorage, control: Control, motion: Groun
         Return time histories of θ, θ̇, κ and Ẍg.
     rtol, atol : float, optional
         Integration tolerances (engine defaults when None).
-    step_across_knots : bool
-        Fast engine only, opt-in: let the Dormand–Prince steps span the knots of a sampled record
-        while the block rocks instead of stopping at each (records are linear between knots; error
-        control sizes the steps). Not bit-identical to the default and, measured, slower on noisy
-        records at the default tolerance (docs/model.md). Default False.
     """
     if engine not in ENGINES:
         raise ValueError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")
-    if step_across_knots and engine != "fast":
-        raise ValueError(f"step_across_knots=True needs engine='fast', got engine={engine!r}")
     if engine == "reference":
         from .reference import simulate_reference
         kw = {}
@@ -170,7 +158,6 @@ def simulate(block: Block, anchorage: Anchorage, control: Control, motion: Groun
     P = pack_parameters(block, anchorage, control, motion, overturn_criterion=overturn_criterion,
                         free_time=free_time, initial_rotation=initial_rotation,
                         initial_velocity=initial_velocity, rest_velocity=rest_velocity,
-                        rtol=FAST_RTOL if rtol is None else rtol, atol=FAST_ATOL if atol is None else atol,
-                        step_across_knots=step_across_knots)
+                        rtol=FAST_RTOL if rtol is None else rtol, atol=FAST_ATOL if atol is None else atol)
     out = kn.simulate_kernel(P, kn.writable(motion.record), kn.writable(motion.vertical), bool(record_history), True)
     return _result_from_kernel(out, block)

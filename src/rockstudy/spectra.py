@@ -88,15 +88,12 @@ def _reference_outcome(scenario: Scenario, motion: GroundMotion, amplitude_ratio
 
 
 def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 0,
-              grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast", energy_bound: bool = True,
-              step_across_knots: bool = False) -> dict:
+              grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast", energy_bound: bool = True) -> dict:
     """Minimum overturning amplitude ratio a_p/(g·tanα) at one frequency ratio.
 
     ``energy_bound`` (fast engine) ends each run once it provably cannot overturn any more
     (docs/model.md); it never changes an outcome, only the time spent (False: integrate every run
-    to rest or the time limit, as before). ``step_across_knots`` (fast engine, opt-in, default
-    False) lets the steps span record knots (:func:`rockstudy.simulate.simulate`): not bit-identical
-    to the default and, measured, slower on noisy records (docs/model.md).
+    to rest or the time limit, as before).
 
     Returns a dict with ``amplitude_ratio`` (None when nothing on the grid overturns),
     ``last_safe_amplitude_ratio``, ``n_simulations``, the bound scanned, and the noise record's
@@ -110,12 +107,10 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     if engine == "fast":
         P = pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
                             overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
-                            energy_bound=energy_bound, step_across_knots=step_across_knots)
+                            energy_bound=energy_bound)
         thr, lo, n_sim, n_und = kn.threshold_kernel(P, kn.writable(motion.record), kn.writable(motion.vertical),
                                                     values, float(grid.resolution), float(peak))
     elif engine == "reference":
-        if step_across_knots:
-            raise ValueError("step_across_knots=True needs engine='fast', got engine='reference'")
         # the same scan as the fast engine's (kn.threshold_kernel), driven from Python
         state, done, n_sim, lower = kn.scan_start(), False, 0, 1.0 / peak
         while not done:
@@ -139,8 +134,7 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     }
 
 
-def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: bool = True,
-           step_across_knots: bool = False):
+def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: bool = True):
     """Parameter rows and concatenated records for every (realisation, frequency) case."""
     rows, recs, peaks, e_ratio, p_ratio = [], [], [], [], []
     for k in realisations:
@@ -148,8 +142,7 @@ def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: boo
             motion, rec = scenario.motion(float(f), 1.0, int(k))
             rows.append(pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
                                         overturn_criterion=scenario.overturn_criterion,
-                                        free_time=scenario.free_time, energy_bound=energy_bound,
-                                        step_across_knots=step_across_knots))
+                                        free_time=scenario.free_time, energy_bound=energy_bound))
             recs.append(motion.record)
             peaks.append(_unit_peak(scenario, rec))
             e_ratio.append(1.0 if rec is None else rec.energy_ratio)
@@ -176,8 +169,7 @@ def _run_chunked(fn, n_cases: int, label: str, n_chunks: int):
 
 
 def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: AmplitudeGrid = AmplitudeGrid(),
-             with_map: bool = False, progress_chunks: int = 10, energy_bound: bool = True,
-             step_across_knots: bool = False) -> xr.Dataset:
+             with_map: bool = False, progress_chunks: int = 10, energy_bound: bool = True) -> xr.Dataset:
     """Overturning spectrum: the threshold at each frequency for each noise realisation.
 
     Parameters
@@ -192,9 +184,6 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
         Also compute the outcome at every (frequency, amplitude) grid point.
     energy_bound : bool
         End runs that provably cannot overturn any more (see :func:`threshold`).
-    step_across_knots : bool
-        Opt-in, default False: let the steps span record knots (see :func:`threshold`); the
-        dataset's ``step_across_knots`` attribute says so when True.
 
     Returns
     -------
@@ -213,8 +202,7 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     if scenario.noise_level == 0 and len(realisations) > 1:
         realisations = realisations[:1]  # without noise every realisation is the same record
     values = grid.values()
-    Pm, recs, off, lens, peaks, e_ratio, p_ratio = _cases(scenario, freqs, realisations, energy_bound,
-                                                          step_across_knots)
+    Pm, recs, off, lens, peaks, e_ratio, p_ratio = _cases(scenario, freqs, realisations, energy_bound)
     n = len(Pm)
     label = f"spectrum {scenario.control.strategy} noise={scenario.noise_level:g} Ts={scenario.control.sampling_time:g}"
     t0 = time.perf_counter()
@@ -244,8 +232,6 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
                           "flag_meanings": " ".join(OUTCOME_MEANINGS)})
         ds = ds.assign_coords(amplitude_ratio=("amplitude_ratio", values,
                                                {"units": "1", "long_name": "amplitude ratio a_p/(g tan(alpha))"}))
-    if step_across_knots:  # only then, so that default results keep their attributes bit for bit
-        ds.attrs["step_across_knots"] = 1
     ds.attrs["compute_time_s"] = time.perf_counter() - t0
     return ds
 

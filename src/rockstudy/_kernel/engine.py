@@ -32,7 +32,6 @@ from .layout import (
     I_KIND,
     I_KMAX,
     I_KMIN,
-    I_KNOTS,
     I_P,
     I_RDT,
     I_RTOL,
@@ -125,11 +124,9 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     t_stop = exc_end + P[I_FREE]
     track_fracture = strategy != FS and (kmax > 0.0 or cdamp > 0.0)
     # end the run once it provably cannot overturn any more (outcome runs, continuous control only)
-    energy_bound = P[I_BOUND] != 0.0 and not sampled and not want_history and not want_log
-    # opt-in: while rocking, let Dormand–Prince steps span record knots (the records are linear
-    # between knots, so Ẍg only has kinks there; error control sizes the steps). Not with the CS02
-    # switch on Ẍg = 0 while the excitation lasts: its locator needs Ẍg linear within a step.
-    across_knots = P[I_KNOTS] != 0.0 and not (continuous_switching and strategy == CS02)
+    energy_bound = P[I_BOUND] != 0.0 and not want_history and not want_log
+    # with sampled control a stale K_max can give energy back: a weaker bound over half-cycles
+    switching_bound = sampled and kmax != kmin
 
     # state (counters start as np.int64(0) and flags as comparisons: a literal 0 or True would make
     # numba compile every callee once more for the literal type, for nothing)
@@ -192,12 +189,11 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
         t_next = t_stop
         if h_on and h_end < t_next:
             t_next = max(h_end, t)
-        knots = not (across_knots and mode == MODE_ROCK)  # REST/HOLD exits need Ẍg linear per piece
-        if knots and h_on and kind == RECORD:
+        if h_on and kind == RECORD:  # Ẍg is linear between knots: steps end at each
             tk = _next_knot(t, P[I_RDT])
             if tk < t_next:
                 t_next = tk
-        if knots and nvert > 0 and t < v_end:
+        if nvert > 0 and t < v_end:
             tk = _next_knot(t, P[I_VDT])
             if tk < t_next:
                 t_next = tk
@@ -283,9 +279,14 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
             continue  # a record knot changes nothing; other events were applied above
 
         # ---------------- ROCK: below the overturning energy after the excitation? ----------------
-        if energy_bound and t >= exc_end and maps.cannot_overturn(th, thd, P[I_P], alpha, kmin * spring[sidx]):
-            status = ST_BOUND
-            break
+        if energy_bound and t >= exc_end:
+            if switching_bound:
+                stop = maps.cannot_overturn_switching(th, thd, side, P[I_P], alpha, e, kmax)
+            else:
+                stop = maps.cannot_overturn(th, thd, P[I_P], alpha, kmin * spring[sidx])
+            if stop:
+                status = ST_BOUND
+                break
 
         # ---------------- ROCK: apex decision (CS01 switch at θ̇ = 0) ----------------
         if need_apex_decision:

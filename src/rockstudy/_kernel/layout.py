@@ -39,8 +39,7 @@ I_HMAX = 25      # largest step [s]
 I_SINA = 26      # sin α [-]
 I_COSA = 27      # cos α [-]
 I_BOUND = 28     # 1: end runs that provably cannot overturn any more (energy bound), 0: integrate on
-I_KNOTS = 29     # 1: let steps span record knots while rocking (opt-in, changes the numerics), 0: stop at each
-NPAR = 30
+NPAR = 29
 
 # ---- how a run ended ---------------------------------------------------------------------
 ST_REST, ST_OVER, ST_TLIM, ST_ELIMIT, ST_BOUND = 0, 1, 2, 3, 4

@@ -109,6 +109,49 @@ def cannot_overturn(th, thd, p, alpha, kappa_low):
     return abs(th) <= alpha and normalised_energy(th, thd, p, alpha, kappa_low) < 1.0 - ENERGY_MARGIN
 
 
+@njit(cache=True)
+def cannot_overturn_switching(th, thd, side, p, alpha, e, kappa_high):
+    """True when a block free of excitation can provably never reach |θ| = α again, whatever the
+    device does: any stiffness history κ(t) in [0, κ_hi] (sampled and delayed on-off control).
+
+    A stale decision can keep κ_hi while the block returns and so give back energy; the bound
+    is over half-cycles (proof in docs/model.md, "Early stop under sampled control"). With
+    g(θ) = cos(α − θ) − cos α and S(θ) = 2·sin²(θ/2): outward, E = θ̇²/(2p²) + cos(α − |θ|) cannot
+    grow, so the peak θ_a has g(θ_a) <= E − cos α; inward, E + κ_hi·S(θ) cannot grow; an impact
+    multiplies the kinetic part u = E − cos α by e². So u at the next impact is at most
+    u₁ = e²·(E − cos α + κ_hi·S(θ_a)), and if F(u) = e²·(u + κ_hi·S(θ_a(u))) <= u at u* >= u₁, every
+    later u stays <= u* (F increases) and every peak stays below θ_a(u*) < α.
+
+    Parameters
+    ----------
+    th, thd : float
+        θ [rad] and θ̇ [rad/s].
+    side : {+1.0, -1.0}
+        Pivoting side. [-]
+    p, alpha : float
+        Frequency parameter [rad/s] and slenderness [rad].
+    e : float
+        Coefficient of restitution of Eq. (14). [-]
+    kappa_high : float
+        Largest stiffness the device can apply, κ_max (0 for FS). [-]
+    """
+    if abs(th) > alpha:
+        return False
+    energy = normalised_energy(th, thd, p, alpha, 0.0)
+    cos_a = math.cos(alpha)
+    if side * thd > 0.0:  # outward: the peak of this excursion
+        if not energy < 1.0 - ENERGY_MARGIN:
+            return False
+        peak = alpha - math.acos(energy)
+    else:  # inward, or at the apex
+        peak = abs(th)
+    u_star = e * e * (energy - cos_a + 2.0 * kappa_high * math.sin(0.5 * peak) ** 2) + ENERGY_MARGIN
+    if not cos_a + u_star < 1.0 - ENERGY_MARGIN:
+        return False
+    peak_star = alpha - math.acos(cos_a + u_star)
+    return e * e * (u_star + 2.0 * kappa_high * math.sin(0.5 * peak_star) ** 2) <= u_star - ENERGY_MARGIN
+
+
 # ---- the sampled controller: decisions wait in a ring buffer until they act -------------------
 @njit(cache=True)
 def queue_new(delay, sampling_time):
