@@ -45,7 +45,7 @@ def rhs(t, th, thd, side, kap, cd, h_on, P, rec, vert):
     return acceleration(th, thd, side, kap, cd, xg, yg, P)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
     """One Dormand–Prince step of size ``hh`` from (θ, θ̇) = (y0, y1) with θ̈ = f0 at t.
 

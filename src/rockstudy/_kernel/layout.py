@@ -41,6 +41,46 @@ I_COSA = 27      # cos α [-]
 I_BOUND = 28     # 1: end runs that provably cannot overturn any more (energy bound), 0: integrate on
 NPAR = 29
 
+# ---- the run's constants, fixed by the parameters (engine.setup) ---------------------------
+C_KMAX = 0       # κ_max the device applies (0 for FS) [-]
+C_KMIN = 1       # κ_min (κ_max for PASSIVE, 0 for FS) [-]
+C_CD = 2         # damper coefficient 2ξp (0 for FS) [1/s]
+C_EXC_END = 3    # end of the excitation, horizontal or vertical [s]
+C_T_STOP = 4     # end of the run: the excitation plus the free time [s]
+C_V_END = 5      # end of the vertical record [s]
+C_SAMPLED = 6    # 1: sampled control (T_s > 0)
+C_SWITCHING = 7  # 1: continuous CS01/CS02 control that switches (κ_max != κ_min)
+C_FRACTURE = 8   # 1: elements that can break (not FS, some stiffness or damping)
+C_BOUND = 9      # 1: outcome run that may stop below the overturning energy (docs/model.md)
+C_BOUND_SWITCHING = 10  # 1: ... with the half-cycle bound of sampled switching control
+NCONST = 11
+
+# ---- the run's state record: every quantity the driving loop changes (engine.py) ------------
+R_T = 0          # time t [s]
+R_TH = 1         # θ [rad]
+R_THD = 2        # θ̇ [rad/s]
+R_SIDE = 3       # pivoting side s (±1) [-]
+R_MODE = 4       # MODE_REST, MODE_ROCK or MODE_HOLD
+R_KAP_ON = 5     # device state: 1 → κ_max, 0 → κ_min
+R_HINT = 6       # sign θ̇ will have right after the current instant (CS01 switch event) [-]
+R_H_ON = 7       # 1 while the horizontal excitation lasts
+R_T_OVER = 8     # overturning time, NaN until then [s]
+R_MAX_ABS = 9    # largest |θ| so far [rad]
+R_N_IMPACTS = 10  # impacts so far
+R_N_EVENTS = 11  # located events so far (capped by MAX_EVENTS)
+R_APEX = 12      # 1: a CS01 apex decision is due before the next step
+R_F0_OK = 13     # 1: the derivative R_F0 is still valid at t (FSAL across a known-time event)
+R_F0 = 14        # θ̈ at the end of the last accepted step [rad/s^2]
+R_H = 15         # next trial step [s]
+R_X_HINT = 16    # sign of Ẍg over the current step (CS02 switch event) [-]
+R_K_SAMPLE = 17  # index of the next controller sample
+R_Q_HEAD = 18    # sampled control: first pending decision in the queue
+R_Q_COUNT = 19   # sampled control: pending decisions
+R_SPRING = 20    # intact flags of the springs, by corner (LEFT, RIGHT): 2 slots
+R_DAMPER = 22    # intact flags of the dampers: 2 slots
+R_FRAC = 24      # fracture times: spring L, R, damper L, R (NaN: intact): 4 slots [s]
+NSTATE = 28
+
 # ---- how a run ended ---------------------------------------------------------------------
 ST_REST, ST_OVER, ST_TLIM, ST_ELIMIT, ST_BOUND = 0, 1, 2, 3, 4
 """At rest after the excitation; overturned; time limit; event cap; below the overturning energy
