@@ -198,6 +198,7 @@ def test_other_errors():
 
 # --- the readings of the noise model (issue 9) ---------------------------------------------------
 from rockstudy.noise import DEFAULT_READING, NoiseReading, reading_from_dict, rescale_both  # noqa: E402
+from rockstudy.validation import InputError  # noqa: E402
 
 
 def _old_contaminate(baseline, dt, level, rng, match):
@@ -345,6 +346,16 @@ def test_rescale_both_hand_worked():
     np.testing.assert_allclose(out, [1.2, s, -s], rtol=1e-14)
     # below the peak already: plain energy rescaling
     np.testing.assert_allclose(rescale_both(np.array([1.0, 1.0]), 1.0, 0.5, 5.0), [0.5, 0.5])
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(step=0.0), "NoiseReading.step = 0 s is not allowed"), (dict(step=math.nan), "NoiseReading.step"),
+    (dict(step=True), "NoiseReading.step"), (dict(band=-1.0), "NoiseReading.band = -1 Hz is not allowed"),
+    (dict(span=-1.0), "NoiseReading.span = -1 s is not allowed"), (dict(span=math.inf), "NoiseReading.span")])
+def test_reading_numbers_go_through_the_validation_layer(kwargs, message):
+    # the numeric fields are checked by rockstudy.validation (InputError, its message form), not a private copy
+    with pytest.raises(InputError, match=message):
+        NoiseReading(**kwargs)
 
 
 @pytest.mark.parametrize("kwargs, name", [

@@ -67,13 +67,17 @@ def table1_of(cs01_vs_fs, cs02_vs_fs, cs01_nn=(0, 0, 0), cs02_nn=(0, 0, 0)):
                       coords={"reference": refs, "strategy": strategies, "noise_level": levels})
 
 
+def paper_device():
+    paper = claims.PAPER_TABLE1
+    return table1_of(paper[("fs_same_noise", "CS01")], paper[("fs_same_noise", "CS02")],
+                     paper[("no_noise", "CS01")], paper[("no_noise", "CS02")])
+
+
 def test_calibration_grid_scores_ranks_and_shares():
-    design = calibration.CalibrationDesign(kappa_max=(1.0, 2.0), damping_ratio=(0.05,), ultimate_rotation=(None,))
-    paper = {k: v for k, v in claims.PAPER_TABLE1.items()}
-    exact = table1_of(paper[("fs_same_noise", "CS01")], paper[("fs_same_noise", "CS02")],
-                      paper[("no_noise", "CS01")], paper[("no_noise", "CS02")])
+    design = calibration.CalibrationDesign(kappa_max=(1.0, 2.0), damping_ratio=(0.05,))
+    exact = paper_device()
     reversed_ranking = table1_of((10, 10, 10), (20, 20, -1))
-    grid = calibration.grid_dataset(design, [reversed_ranking, exact])
+    grid = calibration.grid_dataset(design, [reversed_ranking, exact], BLC06.alpha)
     assert float(grid["rms_residual"].sel(kappa_max=2.0).squeeze()) == pytest.approx(0.0, abs=1e-12)
     (best, rms), = calibration.best_devices(grid, 1)
     assert best["kappa_max"] == 2.0 and best["spring_ultimate_rotation"] is None and rms == pytest.approx(0.0)
@@ -82,6 +86,48 @@ def test_calibration_grid_scores_ranks_and_shares():
     assert calibration.conclusions_hold(calibration.rows_of(exact)).all()
     assert not calibration.conclusions_hold(calibration.rows_of(reversed_ranking)).any()
     assert calibration.score(calibration.rows_of(exact)) == (0.0, 0.0)
+
+
+@pytest.mark.parametrize("where", [0, 5, 11, 13, 23])
+def test_best_device_is_found_on_every_axis_of_the_grid(where):
+    # 3 theta_u/alpha x 2 kappa_min/kappa_max x 2 kappa_max x 2 xi: only device `where` matches the paper;
+    # the grid must hand back exactly that device (axes not mixed up between devices() and the grid)
+    design = calibration.CalibrationDesign(kappa_max=(1.0, 4.0), damping_ratio=(0.05, 0.2),
+                                           ultimate_rotation_ratio=(0.5, 1.0, 1.5), kappa_min_ratio=(0.0, 0.25))
+    devices = design.devices(BLC06.alpha)
+    tables = [paper_device() if i == where else table1_of((10, 10, 10), (5, 5, 5)) for i in range(len(devices))]
+    grid = calibration.grid_dataset(design, tables, BLC06.alpha)
+    assert grid["rms_residual"].shape == (3, 2, 2, 2)
+    (best, rms), (second, _) = calibration.best_devices(grid, 2)
+    assert best == devices[where] and rms == pytest.approx(0.0, abs=1e-12) and second != best
+    assert int((grid["rms_residual"] < 1e-9).sum()) == 1
+    md = calibration.calibration_markdown(grid)
+    assert "positive at all three levels" in md and ": 1 of 24." in md  # only the paper's device has CS02 > 0
+    np.testing.assert_allclose(float(calibration.row_distance(grid, "CS02", "no_noise").min()), 0.0, atol=1e-12)
+
+
+def test_row_distance_hand_worked():
+    design = calibration.CalibrationDesign(kappa_max=(1.0,), damping_ratio=(0.05,))
+    paper = claims.PAPER_TABLE1[("no_noise", "CS02")]
+    off = table1_of((0, 0, 0), (0, 0, 0), cs02_nn=[p + d for p, d in zip(paper, (1.0, -2.0, 2.0))])
+    grid = calibration.grid_dataset(design, [off], BLC06.alpha)
+    assert float(calibration.row_distance(grid, "CS02", "no_noise").squeeze()) == pytest.approx(math.sqrt(3.0))
+
+
+def test_figure_calibration_draws_the_slice_of_the_best_device():
+    import matplotlib
+    matplotlib.use("Agg")
+    from rockstudy import plotting
+    design = calibration.CalibrationDesign(kappa_max=(1.0, 4.0), damping_ratio=(0.05, 0.2),
+                                           ultimate_rotation_ratio=(1.0, 1.5), kappa_min_ratio=(0.0, 0.25))
+    devices = design.devices(BLC06.alpha)
+    tables = [table1_of((i, i, i), (i / 2, i / 2, i / 2)) for i in range(len(devices))]
+    grid = calibration.grid_dataset(design, tables, BLC06.alpha)
+    fig = plotting.figure_calibration(grid, devices[13])  # theta_u = 1.5 alpha, kappa_min = 0.25 kappa_max
+    assert "1.5" in fig._suptitle.get_text() and "0.25" in fig._suptitle.get_text()
+    mesh = fig.axes[0].collections[0]  # CS01 vs FS at R001: the values i of devices 12..15
+    np.testing.assert_allclose(np.sort(np.asarray(mesh.get_array()).ravel()), [12, 13, 14, 15])
+    matplotlib.pyplot.close(fig)
 
 
 def test_physical_device_for_blc06():
@@ -98,20 +144,31 @@ def test_physical_device_for_blc06():
     (dict(kappa_max=(), damping_ratio=(0.05,)), "kappa_max"),
     (dict(kappa_max=(1.0, 1.0), damping_ratio=(0.05,)), "kappa_max"),
     (dict(kappa_max=(1.0,), damping_ratio=(-0.1,)), "damping_ratio"),
-    (dict(kappa_max=(1.0,), damping_ratio=(0.05,), ultimate_rotation=(2.0,)), "ultimate_rotation"),
-    (dict(kappa_max=(0.5,), damping_ratio=(0.05,), kappa_min=1.0), "kappa_max")])
+    (dict(kappa_max=(1.0,), damping_ratio=(0.05,), ultimate_rotation_ratio=(0.0,)), "ultimate_rotation_ratio"),
+    (dict(kappa_max=(1.0,), damping_ratio=(0.05,), ultimate_rotation_ratio=(None,)), "ultimate_rotation_ratio"),
+    (dict(kappa_max=(1.0,), damping_ratio=(0.05,), kappa_min_ratio=(1.5,)), "kappa_min_ratio"),
+    (dict(kappa_max=(1.0,), damping_ratio=(0.05,), kappa_min_ratio=(-0.1,)), "kappa_min_ratio")])
 def test_design_errors_name_the_field(kwargs, name):
     with pytest.raises(ValueError, match=name):
         calibration.CalibrationDesign(**kwargs)
 
 
-def test_design_devices_order():
-    d = calibration.CalibrationDesign(kappa_max=(1.0, 2.0), damping_ratio=(0.0, 0.1), ultimate_rotation=(None, 0.5))
-    devices = d.devices()
-    assert len(devices) == 8
+def test_design_devices_hand_worked():
+    d = calibration.CalibrationDesign(kappa_max=(1.0, 2.0), damping_ratio=(0.0, 0.1),
+                                      ultimate_rotation_ratio=(1.0, 2.0), kappa_min_ratio=(0.0, 0.25))
+    devices = d.devices(0.3)
+    assert d.shape == (2, 2, 2, 2) and len(devices) == 16
     assert devices[0] == {"kappa_max": 1.0, "kappa_min": 0.0, "damping_ratio": 0.0, "spring_ultimate_rotation": None,
-                          "damper_ultimate_rotation": None}
-    assert devices[-1]["spring_ultimate_rotation"] == 0.5 and devices[-1]["kappa_max"] == 2.0
+                          "damper_ultimate_rotation": None}  # theta_u = alpha: the library default
+    theta = pytest.approx(0.6)  # 2 alpha
+    assert devices[-1] == {"kappa_max": 2.0, "kappa_min": 0.5, "damping_ratio": 0.1,
+                           "spring_ultimate_rotation": theta, "damper_ultimate_rotation": theta}
+    assert devices[5] == {"kappa_max": 1.0, "kappa_min": 0.25, "damping_ratio": 0.1, "spring_ultimate_rotation": None,
+                          "damper_ultimate_rotation": None}  # C order: (theta 0, kappa_min 1, kappa_max 0, xi 1)
+    for dev in devices:
+        Anchorage(**dev)
+    with pytest.raises(ValueError, match="theta_u"):  # 2 x 0.9 rad > pi/2
+        d.devices(0.9)
 
 
 def test_check_study_names_bad_readings_and_designs():
@@ -128,8 +185,12 @@ def test_check_study_names_bad_readings_and_designs():
     with pytest.raises(ValueError, match="reproduction.readings.wide.*Nyquist"):
         study.check_study(bad)
     bad = copy.deepcopy(config)
-    bad["calibration"]["kappa_min"] = 1.0
-    with pytest.raises(ValueError, match="calibration: CalibrationDesign.kappa_max"):
+    bad["calibration"]["kappa_min_ratio"] = [0.0, 2.0]
+    with pytest.raises(ValueError, match="calibration: CalibrationDesign.kappa_min_ratio"):
+        study.check_study(bad)
+    bad = copy.deepcopy(config)
+    bad["calibration"]["ultimate_rotation_ratio"] = [1.0, 7.0]  # 7 alpha > pi/2 for BLC06
+    with pytest.raises(ValueError, match="calibration: .*theta_u"):
         study.check_study(bad)
     bad = copy.deepcopy(config)
     bad["noise"]["band"] = 300.0

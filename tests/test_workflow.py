@@ -60,6 +60,28 @@ def test_lint_is_clean(tmp_path):
     assert res.returncode == 0 and "Congratulations" in res.stdout + res.stderr, res.stdout + res.stderr
 
 
+def reading_jobs(stdout: str) -> set:
+    """The readings whose spectra a dry run would compute (``reading=<name>`` of the reading_spectrum jobs)."""
+    return set(re.findall(r"wildcards: strategy=\w+, reading=(\w+), level=", stdout))
+
+
+@pytest.mark.parametrize("change, computed", [
+    (lambda c: None, {"rescale_none"}),  # step2p5ms is the tiny study's own reading: reused
+    (lambda c: c["noise"].update(rescale="none"), {"step2p5ms"}),  # now rescale_none is the study's
+    (lambda c: c["reproduction"].update(realisations=3), {"step2p5ms", "rescale_none"}),  # other records
+    (lambda c: c["noise"].update(span=1.0), {"step2p5ms", "rescale_none"}),  # no reading equals the study's
+])
+def test_readings_study_reuses_the_study_spectra_of_its_own_reading(tmp_path, change, computed):
+    config = tiny_config()
+    change(config)
+    res = run_with(config, tmp_path, "reproduction", "--config", "results_dir=out")
+    assert res.returncode == 0, res.stderr + res.stdout
+    assert reading_jobs(res.stdout) == computed
+    reused = {"step2p5ms", "rescale_none"} - computed
+    if reused:  # the readings table reads the study's gathered spectrum instead
+        assert re.search(r"rule readings_table:\n\s+input: [^\n]*out/spectra/FS_R005\.nc", res.stdout), res.stdout
+
+
 TINY = ("--configfile", str(TEST_CONFIG), "--replace-workflow-config")
 
 
@@ -133,6 +155,29 @@ def test_interrupted_j1_run_resumes_to_the_same_numbers_as_j2(tiny_run, tmp_path
             a.attrs.pop("compute_time_s", None)
             b.attrs.pop("compute_time_s", None)
             xr.testing.assert_identical(a, b)
+
+
+@pytest.mark.slow
+def test_reused_study_spectrum_equals_the_readings_study_own(tmp_path):
+    """The study's gathered FS spectrum (two chunks of one realisation) that the readings study now reuses
+    is bit for bit the spectrum the readings study would compute itself in one job, and the readings
+    table's J_OS is the one of that spectrum."""
+    import xarray as xr
+
+    from rockstudy import readings
+
+    out = tmp_path / "out"
+    own = out / "reproduction" / "readings" / "spectra" / "FS_step2p5ms_R005.nc"
+    res = snakemake("-j2", *TINY, "--config", f"results_dir={out}", "realisations_per_job=1", "--",
+                    "reproduction", str(own), workdir=tmp_path)
+    assert res.returncode == 0, res.stderr[-5000:]
+    with xr.open_dataset(own) as a, xr.open_dataset(out / "spectra" / "FS_R005.nc") as b:
+        for name in ("threshold", "threshold_realisation", "energy_ratio", "pga_ratio", "n_undetermined"):
+            assert a[name].values.tobytes() == b[name].values.tobytes(), name
+        with xr.open_dataset(out / "spectra" / "FS_R000.nc") as ref, \
+                xr.open_dataset(out / "reproduction" / "readings" / "readings.nc") as table:
+            j, _ = readings.jos_against(a, ref, 1.0)
+            assert float(table["j_os"].sel(reading="step2p5ms", noise_level="R005")) == j
 
 
 if __name__ == "__main__":

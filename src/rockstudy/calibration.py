@@ -1,7 +1,7 @@
 """The device calibration (issue 9): which anchorage brings the CS01 and CS02 rows of Table 1 to the paper's.
 
 The paper publishes no device parameters. With the study's noise reading, a grid of devices
-(κ_max × ξ × θ_u, θ_u = θ_K,u = θ_D,u; κ_min fixed) is screened on a coarse frequency grid with
+(θ_u/α × κ_min/κ_max × κ_max × ξ, θ_u = θ_K,u = θ_D,u) is screened on a coarse frequency grid with
 few realisations, then the best candidates are recomputed with the study's full settings.
 Each device gives 12 numbers: J_OS of CS01 and CS02 against the same strategy without noise
 and against FS with the same noise, at R001, R005, R010 (Table 1, Eq. 21); the score is the
@@ -28,47 +28,86 @@ REFERENCES = ("no_noise", "fs_same_noise")
 class CalibrationDesign:
     """The devices screened: every combination of the listed values.
 
+    The two axes beyond κ_max and ξ are given relative to what they modify, so that every
+    combination is a valid device of the model (Eqs. 8–13, 16–17): the "off" stiffness as a share
+    of the "on" stiffness (a real variable-stiffness device keeps some stiffness when released;
+    κ_min ≤ κ_max always holds), and the ultimate rotation of springs and dampers as a multiple of
+    the block's slenderness α (Eqs. 8–11 break the elements at θ_u; the paper's anchorage breaks
+    near uplift-to-overturning, θ_u ~ α).
+
     Parameters
     ----------
     kappa_max : tuple of float
         κ_max = 4·K_max·b²/(m·g·R) values. [-]
     damping_ratio : tuple of float
         ξ values (3·D·b²/(m·R²) = 2ξp). [-]
-    ultimate_rotation : tuple of float or None
-        θ_u = θ_K,u = θ_D,u values; None: α. [rad]
-    kappa_min : float, default 0.0
-        κ_min of every device. [-]
+    ultimate_rotation_ratio : tuple of float, default (1.0,)
+        θ_u/α values with θ_u = θ_K,u = θ_D,u; 1 is the library default θ_u = α. [-]
+    kappa_min_ratio : tuple of float, default (0.0,)
+        κ_min/κ_max values in [0, 1]; 0 releases the spring completely ("off" = no spring). [-]
     """
 
     kappa_max: tuple
     damping_ratio: tuple
-    ultimate_rotation: tuple = (None,)
-    kappa_min: float = 0.0
+    ultimate_rotation_ratio: tuple = (1.0,)
+    kappa_min_ratio: tuple = (0.0,)
 
     def __post_init__(self):
-        for name in ("kappa_max", "damping_ratio", "ultimate_rotation"):
+        for name in ("kappa_max", "damping_ratio", "ultimate_rotation_ratio", "kappa_min_ratio"):
             values = tuple(getattr(self, name))
             if not values or len(set(values)) != len(values):
                 raise ValueError(f"CalibrationDesign.{name} must be a non-empty list of distinct values, "
                                  f"got {values!r}")
-            object.__setattr__(self, name, values)
+            for x in values:
+                if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x):
+                    raise ValueError(f"CalibrationDesign.{name} values must be finite numbers, got {x!r}")
+            object.__setattr__(self, name, tuple(float(x) for x in values))
         for k in self.kappa_max:
-            if not (k >= self.kappa_min and math.isfinite(k)):
-                raise ValueError(f"CalibrationDesign.kappa_max values must be finite and >= kappa_min "
-                                 f"({self.kappa_min}), got {k!r}")
+            if k < 0:
+                raise ValueError(f"CalibrationDesign.kappa_max values must be >= 0, got {k!r}")
         for xi in self.damping_ratio:
-            if not (xi >= 0 and math.isfinite(xi)):
-                raise ValueError(f"CalibrationDesign.damping_ratio values must be finite and >= 0, got {xi!r}")
-        for th in self.ultimate_rotation:
-            if th is not None and not (0 < th <= math.pi / 2):
-                raise ValueError(f"CalibrationDesign.ultimate_rotation values must be None or in (0, pi/2] rad, "
-                                 f"got {th!r}")
+            if xi < 0:
+                raise ValueError(f"CalibrationDesign.damping_ratio values must be >= 0, got {xi!r}")
+        for r in self.kappa_min_ratio:
+            if not 0 <= r <= 1:
+                raise ValueError(f"CalibrationDesign.kappa_min_ratio values (kappa_min/kappa_max) must lie in "
+                                 f"[0, 1], got {r!r}")
+        for r in self.ultimate_rotation_ratio:
+            if not r > 0:
+                raise ValueError(f"CalibrationDesign.ultimate_rotation_ratio values (theta_u/alpha) must be > 0, "
+                                 f"got {r!r}")
 
-    def devices(self) -> list[dict]:
-        """The anchorage dicts (keys of ``Anchorage``), ultimate rotation outermost, then κ_max, then ξ."""
-        return [{"kappa_max": float(k), "kappa_min": float(self.kappa_min), "damping_ratio": float(xi),
-                 "spring_ultimate_rotation": th, "damper_ultimate_rotation": th}
-                for th in self.ultimate_rotation for k in self.kappa_max for xi in self.damping_ratio]
+    @property
+    def shape(self) -> tuple:
+        """Grid shape (θ_u/α, κ_min/κ_max, κ_max, ξ)."""
+        return (len(self.ultimate_rotation_ratio), len(self.kappa_min_ratio), len(self.kappa_max),
+                len(self.damping_ratio))
+
+    def devices(self, alpha: float) -> list[dict]:
+        """The anchorage dicts (keys of ``Anchorage``) for a block of slenderness ``alpha`` [rad].
+
+        Order: θ_u/α outermost, then κ_min/κ_max, κ_max, ξ (C order of :attr:`shape`).
+        """
+        return [device(k, xi, r_th, r_k, alpha) for r_th in self.ultimate_rotation_ratio
+                for r_k in self.kappa_min_ratio for k in self.kappa_max for xi in self.damping_ratio]
+
+
+def device(kappa_max: float, damping_ratio: float, ultimate_rotation_ratio: float, kappa_min_ratio: float,
+           alpha: float) -> dict:
+    """One anchorage dict: κ_min = ratio·κ_max, θ_K,u = θ_D,u = ratio·α (None, i.e. α, for a ratio of 1).
+
+    Raises
+    ------
+    ValueError
+        If θ_u = ratio·α exceeds π/2 rad (Eqs. 8–11 need an element that can break before the block lies flat).
+    """
+    theta = None if ultimate_rotation_ratio == 1.0 else float(ultimate_rotation_ratio) * float(alpha)
+    if theta is not None and theta > math.pi / 2:
+        raise ValueError(f"calibration ultimate_rotation_ratio = {ultimate_rotation_ratio!r} gives theta_u = "
+                         f"{theta:.4g} rad for alpha = {alpha:.4g} rad; allowed is theta_u <= pi/2")
+    return {"kappa_max": float(kappa_max), "kappa_min": float(kappa_min_ratio) * float(kappa_max),
+            "damping_ratio": float(damping_ratio), "spring_ultimate_rotation": theta,
+            "damper_ultimate_rotation": theta}
 
 
 def paper_rows() -> np.ndarray:
@@ -96,23 +135,29 @@ def conclusions_hold(rows: np.ndarray) -> np.ndarray:
     return (vs_fs[0] > vs_fs[1]) & (vs_fs[1] > 0)
 
 
-def grid_dataset(design: CalibrationDesign, tables, attrs: dict | None = None) -> xr.Dataset:
+GRID_AXES = ("ultimate_rotation_ratio", "kappa_min_ratio", "kappa_max", "damping_ratio")
+"""The device axes of a calibration grid, outermost first (the order of :meth:`CalibrationDesign.devices`)."""
+
+
+def grid_dataset(design: CalibrationDesign, tables, alpha: float, attrs: dict | None = None) -> xr.Dataset:
     """The screened grid: J_OS, residuals, score and the share of devices keeping the paper's ranking.
 
-    ``tables`` are Table 1 datasets, one per device in the order of ``design.devices()``.
+    ``tables`` are Table 1 datasets, one per device in the order of ``design.devices(alpha)``;
+    ``alpha`` is the block's slenderness [rad] (θ_u = ratio·α).
     """
-    shape = (len(design.ultimate_rotation), len(design.kappa_max), len(design.damping_ratio))
+    shape = design.shape
+    nd = len(shape)
     rows = np.array([rows_of(t) for t in tables]).reshape(shape + (2, 2, 3))
-    rows = np.moveaxis(rows, (3, 4, 5), (0, 1, 2))  # (strategy, reference, level, theta, kappa, xi)
+    rows = np.moveaxis(rows, (nd, nd + 1, nd + 2), (0, 1, 2))  # (strategy, reference, level, *device axes)
     paper = paper_rows()
-    resid = rows - paper[:, :, :, None, None, None]
+    resid = rows - paper.reshape(paper.shape + (1,) * nd)
     rms = np.sqrt(np.mean(resid.reshape(12, -1) ** 2, axis=0)).reshape(shape)
     worst = np.max(np.abs(resid.reshape(12, -1)), axis=0).reshape(shape)
     vs_fs = rows[:, REFERENCES.index("fs_same_noise")]
-    holds = (vs_fs[0] > vs_fs[1]) & (vs_fs[1] > 0)  # (level, theta, kappa, xi)
-    theta = [math.nan if th is None else th for th in design.ultimate_rotation]
-    dims = ("strategy", "reference", "noise_level", "ultimate_rotation", "kappa_max", "damping_ratio")
+    holds = (vs_fs[0] > vs_fs[1]) & (vs_fs[1] > 0)  # (level, *device axes)
+    dims = ("strategy", "reference", "noise_level") + GRID_AXES
     pct = {"units": "percent"}
+    theta = [r * float(alpha) for r in design.ultimate_rotation_ratio]
     return xr.Dataset(
         {"j_os": (dims, rows, {**pct, "long_name": "J_OS (Eq. 21) of the device"}),
          "paper": (dims[:3], paper, {**pct, "long_name": "the paper's Table 1"}),
@@ -124,27 +169,41 @@ def grid_dataset(design: CalibrationDesign, tables, attrs: dict | None = None) -
          "ranking_share": ("noise_level", holds.reshape(3, -1).mean(axis=1),
                            {"units": "1", "long_name": "share of the screened devices where CS01 > CS02 > 0 vs FS"})},
         coords={"strategy": list(STRATEGIES), "reference": list(REFERENCES), "noise_level": list(PAPER_LEVELS),
-                "ultimate_rotation": ("ultimate_rotation", theta,
-                                      {"units": "rad", "long_name": "theta_K,u = theta_D,u (NaN: alpha)"}),
+                "ultimate_rotation_ratio": ("ultimate_rotation_ratio", list(design.ultimate_rotation_ratio),
+                                            {"units": "1", "long_name": "theta_K,u / alpha = theta_D,u / alpha"}),
+                "ultimate_rotation": ("ultimate_rotation_ratio", theta,
+                                      {"units": "rad", "long_name": "theta_K,u = theta_D,u"}),
+                "kappa_min_ratio": ("kappa_min_ratio", list(design.kappa_min_ratio),
+                                    {"units": "1", "long_name": "kappa_min / kappa_max"}),
                 "kappa_max": ("kappa_max", list(design.kappa_max), {"units": "1", "long_name": "4 K_max b^2/(m g R)"}),
                 "damping_ratio": ("damping_ratio", list(design.damping_ratio), {"units": "1", "long_name": "xi"})},
         attrs={"title": "Device calibration: J_OS of CS01 and CS02 over the screened anchorages", "paper": PAPER,
-               "rockstudy_version": __version__, "kappa_min": design.kappa_min, **(attrs or {})})
+               "rockstudy_version": __version__, "block_alpha": float(alpha), **(attrs or {})})
+
+
+def device_at(grid: xr.Dataset, index: tuple) -> dict:
+    """The anchorage dict of the grid point ``index`` (positions along :data:`GRID_AXES`)."""
+    values = [float(grid[axis].values[i]) for axis, i in zip(GRID_AXES, index)]
+    r_th, r_k, k, xi = values
+    return device(k, xi, r_th, r_k, float(grid.attrs["block_alpha"]))
+
+
+def ordered(values: np.ndarray) -> list[tuple]:
+    """Grid indices sorted by ``values`` ascending (NaN last, ties in C order)."""
+    flat = np.argsort(np.where(np.isnan(values), np.inf, values), axis=None, kind="stable")
+    return [tuple(int(i) for i in np.unravel_index(f, values.shape)) for f in flat]
 
 
 def best_devices(grid: xr.Dataset, n: int) -> list[tuple[dict, float]]:
     """The ``n`` devices with the smallest RMS residual: (anchorage dict, RMS residual [%]), best first."""
-    rms = grid["rms_residual"]
-    flat = np.argsort(np.where(np.isnan(rms.values), np.inf, rms.values), axis=None, kind="stable")[:n]
-    out = []
-    for index in flat:
-        i, j, k = np.unravel_index(index, rms.shape)
-        th = float(grid["ultimate_rotation"].values[i])
-        th = None if math.isnan(th) else th
-        out.append(({"kappa_max": float(grid["kappa_max"].values[j]), "kappa_min": float(grid.attrs["kappa_min"]),
-                    "damping_ratio": float(grid["damping_ratio"].values[k]), "spring_ultimate_rotation": th,
-                    "damper_ultimate_rotation": th}, float(rms.values[i, j, k])))
-    return out
+    rms = grid["rms_residual"].transpose(*GRID_AXES).values
+    return [(device_at(grid, index), float(rms[index])) for index in ordered(rms)[:n]]
+
+
+def row_distance(grid: xr.Dataset, strategy: str, reference: str) -> xr.DataArray:
+    """RMS over the three levels of one row of Table 1 (e.g. CS02 against no noise) to the paper's. [points]"""
+    resid = grid["residual"].sel(strategy=strategy, reference=reference)
+    return np.sqrt((resid ** 2).mean("noise_level", skipna=False))
 
 
 def physical(block: Block, anchorage: Anchorage) -> dict:
@@ -190,26 +249,32 @@ def calibration_markdown(grid: xr.Dataset, candidates: xr.Dataset | None = None,
         f"{lv} {100 * float(v):.0f} %" for lv, v in zip(grid["noise_level"].values, grid["ranking_share"].values))
         + f" (of {int(grid['rms_residual'].size)} devices).")
     out.append("")
-    rms = grid["rms_residual"]
-    out += ["## Screening (coarse)", "", "| theta_u [rad] | kappa_max | xi | RMS residual | max abs residual | "
-            "CS02 vs no noise R001/R005/R010 |", "|---|---|---|---|---|---|"]
-    order = np.argsort(np.where(np.isnan(rms.values), np.inf, rms.values), axis=None, kind="stable")
-    for index in order:
-        i, j, k = np.unravel_index(index, rms.shape)
-        th = float(grid["ultimate_rotation"].values[i])
-        sel = dict(ultimate_rotation=i, kappa_max=j, damping_ratio=k)
+    rms = grid["rms_residual"].transpose(*GRID_AXES).values
+    cs02_row = row_distance(grid, "CS02", "no_noise").transpose(*GRID_AXES).values
+    positive = (grid["j_os"].sel(strategy="CS02", reference="no_noise") > 0).all("noise_level")
+    out += ["## Screening (coarse)", "",
+            f"Devices whose CS02 row against no noise is positive at all three levels (the paper: "
+            f"{', '.join(f'{v:+.2f}' for v in grid['paper'].sel(strategy='CS02', reference='no_noise').values)} %): "
+            f"{int(positive.sum())} of {int(positive.size)}.", ""]
+    head = "| theta_u/alpha | kappa_min/kappa_max | kappa_max | xi | RMS residual | max abs residual | " \
+           "CS02 vs no noise R001/R005/R010 | its RMS to the paper's |"
+    out += [head, "|---|---|---|---|---|---|---|---|"]
+    for index in ordered(rms):
+        sel = dict(zip(GRID_AXES, index))
         cs02 = grid["j_os"].isel(**sel).sel(strategy="CS02", reference="no_noise").values
-        out.append(f"| {'alpha' if math.isnan(th) else f'{th:.3f}'} | {float(grid['kappa_max'][j]):g} | "
-                   f"{float(grid['damping_ratio'][k]):g} | {float(rms.values[i, j, k]):.2f} | "
-                   f"{float(grid['max_abs_residual'].values[i, j, k]):.2f} | "
-                   + "/".join(f"{v:+.2f}" for v in cs02) + " |")
+        axes = [float(grid[a].values[i]) for a, i in sel.items()]
+        out.append("| " + " | ".join(f"{x:g}" for x in axes) + f" | {float(rms[index]):.2f} | "
+                   f"{float(grid['max_abs_residual'].isel(**sel)):.2f} | " + "/".join(f"{v:+.2f}" for v in cs02)
+                   + f" | {float(cs02_row[index]):.2f} |")
     if candidates is not None:
         out += ["", "## Candidates with the study's full settings", ""]
         for c in candidates["candidate"].values:
             t = candidates.sel(candidate=c)
-            out.append(f"### Candidate {int(c)}: kappa_max = {float(t['kappa_max']):g}, xi = "
-                       f"{float(t['damping_ratio']):g}, theta_u = {float(t['theta_K_u_rad']):.3f} rad "
-                       f"(K_max = {float(t['K_max_N_per_m']) / 1000:.1f} kN/m, D = "
+            out.append(f"### Candidate {int(c)}: kappa_max = {float(t['kappa_max']):g}, kappa_min = "
+                       f"{float(t['kappa_min']):g}, xi = {float(t['damping_ratio']):g}, theta_u = "
+                       f"{float(t['theta_K_u_rad']):.3f} rad "
+                       f"(K_max = {float(t['K_max_N_per_m']) / 1000:.1f} kN/m, K_min = "
+                       f"{float(t['K_min_N_per_m']) / 1000:.1f} kN/m, D = "
                        f"{float(t['D_N_s_per_m']) / 1000:.2f} kN s/m for this block)")
             out.append(f"RMS residual {float(t['rms_residual']):.2f}, max {float(t['max_abs_residual']):.2f} points "
                        f"(coarse screening: {float(t['coarse_rms_residual']):.2f}).")

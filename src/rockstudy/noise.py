@@ -38,6 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import validation as v
 from .constants import NOISE_DT
 from .excitation import GroundMotion, analytic, excitation_duration
 
@@ -77,12 +78,6 @@ def _check_match(match, name: str = "match") -> str:
     return match
 
 
-def _check_positive(name: str, value, unit: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not (math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be a positive finite number [{unit}], got {value!r}")
-    return float(value)
-
-
 @dataclass(frozen=True)
 class NoiseReading:
     """One reading of the paper's noise model (§5): how a noisy record is made from a baseline.
@@ -118,21 +113,18 @@ class NoiseReading:
     span: float = 0.0
 
     def __post_init__(self):
-        object.__setattr__(self, "step", _check_positive("NoiseReading.step", self.step, "s"))
+        object.__setattr__(self, "step", v.check_positive("NoiseReading.step", self.step, "s"))
         _check_match(self.rescale, "NoiseReading.rescale")
         if self.level_means not in LEVEL_MEANINGS:
             raise ValueError(f"NoiseReading.level_means must be one of {', '.join(map(repr, LEVEL_MEANINGS))}, "
                              f"got {self.level_means!r}")
         if self.band is not None:
-            band = _check_positive("NoiseReading.band", self.band, "Hz")
+            band = v.check_positive("NoiseReading.band", self.band, "Hz")
             if band >= self.nyquist:
                 raise ValueError(f"NoiseReading.band must be below the Nyquist frequency 1/(2 step) = "
                                  f"{self.nyquist:g} Hz, got {self.band!r} (use None for white noise)")
             object.__setattr__(self, "band", band)
-        span = self.span
-        if isinstance(span, bool) or not isinstance(span, numbers.Real) or not (math.isfinite(span) and span >= 0):
-            raise ValueError(f"NoiseReading.span must be a finite number >= 0 [s], got {span!r}")
-        object.__setattr__(self, "span", float(span))
+        object.__setattr__(self, "span", v.check_nonnegative("NoiseReading.span", self.span, "s"))
 
     @property
     def nyquist(self) -> float:
@@ -253,8 +245,8 @@ def baseline_samples(kind: str, omega: float, dt: float = NOISE_DT) -> tuple[np.
     dt : float
         The sampling step. [s]
     """
-    omega = _check_positive("omega", omega, "rad/s")
-    dt = _check_positive("dt", dt, "s")
+    omega = v.check_positive("omega", omega, "rad/s")
+    dt = v.check_positive("dt", dt, "s")
     duration = excitation_duration(kind, omega)
     n = sample_count(duration, dt)
     t = np.arange(n + 1) * dt
@@ -383,7 +375,7 @@ def contaminate(baseline, dt: float, level: float, rng: np.random.Generator,
     b = np.array(baseline, dtype=float)
     if b.ndim != 1 or b.size < 2 or not np.all(np.isfinite(b)):
         raise ValueError("baseline must be a 1-D array of at least 2 finite samples")
-    dt = _check_positive("dt", dt, "s")
+    dt = v.check_positive("dt", dt, "s")
     level = _check_level(level)
     reading = NoiseReading(rescale=_check_match(match)) if reading is None else reading
     extra_samples = _check_nonnegative_int("extra_samples", extra_samples)

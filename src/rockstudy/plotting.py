@@ -299,9 +299,20 @@ def figure_calibration(grid, best: dict | None = None):
     """J_OS of CS01 and CS02 against FS over kappa_max x xi (one panel per strategy and noise level).
 
     ``grid`` is a calibration grid dataset (:func:`rockstudy.calibration.grid_dataset`) with
-    ``j_os`` over (strategy, reference, noise_level, kappa_max, damping_ratio); the paper's value of
-    each panel is in its title, and the device closest to the paper is marked with a star.
+    ``j_os`` over (strategy, reference, noise_level, ultimate_rotation_ratio, kappa_min_ratio,
+    kappa_max, damping_ratio). The maps are drawn at the θ_u/α and κ_min/κ_max of ``best`` (an
+    anchorage dict, marked with a star; without it, at the first values of the design); the
+    paper's value of each panel is in its title.
     """
+    at = {"ultimate_rotation_ratio": 0, "kappa_min_ratio": 0}
+    if best is not None:
+        theta = best["spring_ultimate_rotation"]
+        ratio = 1.0 if theta is None else theta / float(grid.attrs["block_alpha"])
+        at["ultimate_rotation_ratio"] = int(np.argmin(np.abs(grid["ultimate_rotation_ratio"].values - ratio)))
+        k_ratio = best["kappa_min"] / best["kappa_max"] if best["kappa_max"] > 0 else 0.0
+        at["kappa_min_ratio"] = int(np.argmin(np.abs(grid["kappa_min_ratio"].values - k_ratio)))
+    where = (rf"$\theta_u/\alpha$ = {float(grid['ultimate_rotation_ratio'][at['ultimate_rotation_ratio']]):g}, "
+             rf"$\kappa_{{min}}/\kappa_{{max}}$ = {float(grid['kappa_min_ratio'][at['kappa_min_ratio']]):g}")
     levels = list(grid["noise_level"].values)
     strategies = list(grid["strategy"].values)
     fig, axes = plt.subplots(len(strategies), len(levels), figsize=(3.6 * len(levels), 3.0 * len(strategies)),
@@ -310,20 +321,20 @@ def figure_calibration(grid, best: dict | None = None):
     for i, s in enumerate(strategies):
         for j, level in enumerate(levels):
             ax = axes[i, j]
-            z = grid["j_os"].sel(strategy=s, reference="fs_same_noise", noise_level=level).isel(
-                ultimate_rotation=0).values  # the first theta_u of the design (alpha by default)
+            z = grid["j_os"].sel(strategy=s, reference="fs_same_noise", noise_level=level).isel(**at).transpose(
+                "kappa_max", "damping_ratio").values
             mesh = ax.pcolormesh(kx, xi, z.T, shading="nearest", cmap="viridis")
-            cs = ax.contour(kx, xi, z.T, levels=[float(grid["paper"].sel(strategy=s, reference="fs_same_noise",
-                                                                         noise_level=level))],
-                            colors="w", linewidths=1.2)
-            ax.clabel(cs, fmt="paper %.1f", fontsize=6)
+            paper = float(grid["paper"].sel(strategy=s, reference="fs_same_noise", noise_level=level))
+            if min(z.shape) >= 2 and np.nanmin(z) < paper < np.nanmax(z):  # a contour needs a 2 x 2 grid
+                cs = ax.contour(kx, xi, z.T, levels=[paper], colors="w", linewidths=1.2)
+                ax.clabel(cs, fmt="paper %.1f", fontsize=6)
             fig.colorbar(mesh, ax=ax, label=r"$J_{OS}$ vs FS [%]")
             if best is not None:
                 ax.plot(best["kappa_max"], best["damping_ratio"], marker="*", ms=12, color="r")
             ax.set_xlabel(r"$\kappa_{max}$ [-]")
             ax.set_ylabel(r"$\xi$ [-]")
-            paper = float(grid["paper"].sel(strategy=s, reference="fs_same_noise", noise_level=level))
             ax.set_title(f"{s} vs FS, {level} (paper {paper:+.1f} %)", fontsize=9)
+    fig.suptitle(where, fontsize=9)
     return fig
 
 

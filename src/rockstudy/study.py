@@ -255,7 +255,9 @@ def check_study(config: dict) -> None:
     from .calibration import CalibrationDesign
     cal = config["calibration"]
     try:
-        CalibrationDesign(cal["kappa_max"], cal["damping_ratio"], cal["ultimate_rotation"], cal["kappa_min"])
+        design = CalibrationDesign(cal["kappa_max"], cal["damping_ratio"], cal["ultimate_rotation_ratio"],
+                                   cal["kappa_min_ratio"])
+        design.devices(block.alpha)
     except ValueError as exc:
         raise v.InputError(f"calibration: {exc}") from None
 

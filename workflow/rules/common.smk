@@ -85,17 +85,20 @@ REPRO = config["reproduction"]
 READINGS = REPRO["readings"]
 STUDY_READING = study.reading_from_dict(config["noise"])
 SAME_AS_STUDY = [name for name in READINGS if study.reading_from_dict(READINGS[name]) == STUDY_READING
-                 and REPRO["realisations"] == config["realisations"] and REPRO["strategy"] == "FS"]
+                 and REPRO["realisations"] == config["realisations"] and REPRO["strategy"] in config["strategies"]]
+"""Readings equal to the study's own ``noise:`` reading, with its realisations: the readings study reuses the
+study's gathered spectra for them (same block, seed, grids and realisations, so the same records)."""
 
 
 def reading_spectrum_file(name, level):
+    """The spectrum of reading ``name`` at ``level``: the study's own when the reading is the study's."""
+    if name in SAME_AS_STUDY:
+        return spectrum_files([REPRO["strategy"]], [level])[0]
     return f"{OUT}/reproduction/readings/spectra/{REPRO['strategy']}_{name}_{level}.nc"
 
 
 def fs_spectra_of_the_study():
-    """FS spectra of the study's reading: the readings study's if it has that reading, else the study's."""
-    if SAME_AS_STUDY:
-        return [reading_spectrum_file(SAME_AS_STUDY[0], level) for level in NOISY] + spectrum_files(["FS"], [FREE])
+    """FS spectra of the study's reading at every level (the calibration's references at full settings)."""
     return spectrum_files(["FS"], LEVELS)
 
 
@@ -114,9 +117,9 @@ CLAIMS = [f"{OUT}/reproduction/{name}" for name in ("claims.md", "claims.nc", "c
                                                      "table1_vs_paper.csv")]
 CLAIMS_BOOKKEEPING = study.source_fingerprint(["claims.py", "study.py", "tables.py", "utility.py"])
 CAL = config["calibration"]
-CAL_DESIGN = {"kappa_max": CAL["kappa_max"], "damping_ratio": CAL["damping_ratio"],
-              "ultimate_rotation": CAL["ultimate_rotation"], "kappa_min": CAL["kappa_min"]}
-CAL_DEVICES = calibration.CalibrationDesign(**CAL_DESIGN).devices()
+CAL_DESIGN = {key: CAL[key] for key in ("kappa_max", "damping_ratio", "ultimate_rotation_ratio", "kappa_min_ratio")}
+CAL_ALPHA = study.block_from_dict(config["block"]).alpha  # theta_u = ratio * alpha
+CAL_DEVICES = calibration.CalibrationDesign(**CAL_DESIGN).devices(CAL_ALPHA)
 CAL_FS = [f"{OUT}/reproduction/calibration/coarse/FS_{level}.nc" for level in LEVELS]
 CAL_REFINE = [f"{OUT}/reproduction/calibration/refine/c{rank}_{s}_{level}.nc"
               for rank in range(CAL["candidates"]) for s in ("CS01", "CS02") for level in LEVELS]

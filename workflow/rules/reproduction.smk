@@ -176,6 +176,7 @@ rule calibration_grid:
         f"{OUT}/logs/reproduction/calibration/grid.log",
     params:
         design=CAL_DESIGN,
+        alpha=CAL_ALPHA,
         reading=config["noise"],
         bookkeeping=study.source_fingerprint(["calibration.py", "claims.py", "study.py", "tables.py"]),
         plotting=PLOTTING,

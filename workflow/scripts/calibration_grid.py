@@ -5,8 +5,8 @@ study.log_to(snakemake.log[0])
 p = snakemake.params
 design = calibration.CalibrationDesign(**p.design)
 tables = [io.read_netcdf(f) for f in snakemake.input]
-grid = calibration.grid_dataset(design, tables, {"compute_time_s": sum(t.attrs["compute_time_s"] for t in tables),
-                                                 "noise_reading": str(p.reading)})
+attrs = {"compute_time_s": sum(t.attrs["compute_time_s"] for t in tables), "noise_reading": str(p.reading)}
+grid = calibration.grid_dataset(design, tables, p.alpha, attrs)
 io.write_netcdf(grid, snakemake.output.nc)
 best, _ = calibration.best_devices(grid, 1)[0]
 plotting.save_figure(plotting.figure_calibration(grid, best), snakemake.output.png, snakemake.output.pdf)
