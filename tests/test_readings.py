@@ -196,3 +196,13 @@ def test_check_study_names_bad_readings_and_designs():
     bad["noise"]["band"] = 300.0
     with pytest.raises(ValueError, match="noise: NoiseReading.band"):
         study.check_study(bad)
+
+
+def test_device_spectra_apply_the_configs_control_options_to_every_strategy():
+    """The calibration's spectra use the study's ``control:`` keys (the sensor) for CS01 and CS02."""
+    spec = {"block": {"preset": "BLC06"}, "excitation": "modulated", "seed": 1, "overturn_criterion": "flat",
+            "free_time": 5.0, "control_options": {"sensor_band": 5.0}}
+    grid = AmplitudeGrid(start=0.9, stop=1.5, step=0.3, resolution=0.3)
+    out = calibration.device_spectra(spec, {"kappa_max": 1.0}, ["CS01", "CS02"], {"R000": 0.0}, [2.0], 1, grid)
+    assert [ds.attrs["control_sensor_band_hz"] for ds in out] == [5.0, 5.0]
+    assert [ds.attrs["control_strategy"] for ds in out] == ["CS01", "CS02"]

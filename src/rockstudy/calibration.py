@@ -297,14 +297,17 @@ def device_spectra(scenario_spec: dict, anchorage: dict, strategies, levels: dic
     """Spectra of one device for each strategy and noise level (the noise-free level with one realisation).
 
     ``scenario_spec`` is a :func:`rockstudy.study.scenario_from_dict` dict without ``anchorage``,
-    ``control`` and ``noise_level``; ``grid`` an :class:`rockstudy.spectra.AmplitudeGrid`.
+    ``control`` and ``noise_level``, optionally with ``control_options`` (the config's ``control:``
+    keys, e.g. the sensor, applied to every strategy); ``grid`` an :class:`rockstudy.spectra.AmplitudeGrid`.
     """
     from .spectra import spectrum
     from .study import scenario_from_dict
+    spec = {k: v for k, v in scenario_spec.items() if k != "control_options"}
+    options = dict(scenario_spec.get("control_options") or {})
     out = []
     for s in strategies:
         for level in levels.values():
-            sc = scenario_from_dict({**scenario_spec, "anchorage": anchorage, "control": {"strategy": s},
+            sc = scenario_from_dict({**spec, "anchorage": anchorage, "control": {"strategy": s, **options},
                                      "noise_level": float(level)})
             out.append(spectrum(sc, frequency_ratios, realisations=range(realisations if level > 0 else 1),
                                 grid=grid, progress_chunks=2))

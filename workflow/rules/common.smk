@@ -127,4 +127,5 @@ CAL_REFINE = [f"{OUT}/reproduction/calibration/refine/c{rank}_{s}_{level}.nc"
 
 def calibration_base():
     spec = scenario("FS", FREE)
-    return {k: v for k, v in spec.items() if k not in ("anchorage", "control", "noise_level")}
+    base = {k: v for k, v in spec.items() if k not in ("anchorage", "control", "noise_level")}
+    return {**base, "control_options": dict(config["control"])}  # the sensor, for every strategy

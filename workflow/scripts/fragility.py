@@ -14,7 +14,8 @@ suite = {"records": "files given in the config"}
 if p.synthetic is not None:
     suite = {"records": "synthetic", "synthetic_model": MODEL_REFERENCE, "synthetic_seed": p.synthetic["seed"],
              **ranges_from_dict(p.synthetic).to_attrs()}
-ds = fragility_dataset(scenario.block, scenario.anchorage, [Control(s) for s in p.strategies], records,
+controls = [Control(s, sensor_band=scenario.control.sensor_band) for s in p.strategies]
+ds = fragility_dataset(scenario.block, scenario.anchorage, controls, records,
                        frequency_grid(**p.intensity_levels), measure=p.intensity_measure, n_boot=p.bootstrap,
                        seed=p.seed, overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
                        record_attrs=suite)
