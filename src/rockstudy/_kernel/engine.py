@@ -174,7 +174,7 @@ def _sensed(S, P, rec):
 
 
 # ---- setup --------------------------------------------------------------------------------
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def setup(P, vert, want_history, want_log):
     """The run's constants ``C`` (``C_*`` slots): the device the strategy uses, the time limits and
     the flags that select the events and the early stop."""
@@ -209,7 +209,7 @@ def setup(P, vert, want_history, want_log):
     return C
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def initial_state(P, C, rec):
     """The state record ``S`` (``R_*`` slots) at t = 0."""
     S = np.zeros(NSTATE)
@@ -271,7 +271,7 @@ def next_known_time(S, C, P, vert, queue_times):
     return t_next
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def ground_phase(S, C, P, rec, vert, t_next):
     """REST or HOLD up to ``t_next``: find the exit (uplift; leaving the CS01 sliding surface) and
     apply it. Returns NOTHING (still there at ``t_next``), UPLIFTED or LEFT_HOLD."""
@@ -312,7 +312,7 @@ def ground_phase(S, C, P, rec, vert, t_next):
     return LEFT_HOLD
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def known_time_events(S, C, P, rec, queue_times, queue_values):
     """Apply what happens at a known-time event: the end of the excitation, controller samples due
     (decision k taken at k·T_s acts from k·T_s + Δτ), decisions that act now. A record knot
@@ -346,7 +346,7 @@ def known_time_events(S, C, P, rec, queue_times, queue_values):
         S[R_F0_OK] = 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def below_overturning_energy(S, C, P):
     """True when the block, free of excitation, provably cannot overturn any more (docs/model.md)."""
     if C[C_BOUND_SWITCHING] != 0.0:
@@ -354,7 +354,7 @@ def below_overturning_energy(S, C, P):
     return maps.cannot_overturn(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], C[C_KMIN] * S[R_SPRING + _working(S)])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def apex(S, C, P, rec, vert):
     """The CS01 switch at θ̇ = 0 (docs/model.md, "CS01 sliding"): turn out with K_max, back with
     K_min, or hold. Returns HELD or NOTHING."""
@@ -382,7 +382,7 @@ def _events_used(S, C, P):
     return switching and (strategy == CS01 or not h_on), switching and strategy == CS02 and h_on
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
     """ROCK: Dormand–Prince steps towards ``t_next``, each accepted step searched for state events
     (impact, overturning rotation, fractures, the CS01/CS02 switches); stops at the earliest,
@@ -565,7 +565,7 @@ def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
     return result, H, nh
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def state_event(S, C, P, rec, vert):
     """Apply the maps of a located state event: fracture (Eqs. 8–11), overturning, impact
     (Eqs. 14–15: rebound, rest or uplift), the CS01 switch at θ̇ = 0 (an apex decision is due) and
