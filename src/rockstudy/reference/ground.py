@@ -14,7 +14,14 @@ import math
 
 import numpy as np
 
-from ..excitation import ENVELOPE_PEAK, GroundMotion, modulated_acceleration, modulated_duration, one_sine_acceleration
+from ..excitation import (
+    ENVELOPE_PEAK,
+    GroundMotion,
+    interpolate_record,
+    modulated_acceleration,
+    modulated_duration,
+    one_sine_acceleration,
+)
 from ..sensor import sensed_samples
 
 ZERO_GROUND = 1e-9
@@ -38,20 +45,17 @@ class PiecewiseLinear:
     """
 
     def __init__(self, samples, dt: float, factor: float = 1.0):
-        self.values = [float(v) for v in samples]
-        self.dt = dt
+        self.values = np.array(samples, dtype=float)
+        self.dt = float(dt)
         self.factor = factor
         self.last = (len(self.values) - 1) * dt  # time of the last sample [s]
 
     def __call__(self, t: float) -> float:
-        """Interpolated value at t; zero before 0 and after the last sample. [m/s^2]"""
+        """Interpolated value at t (the fast engine's ``excitation.interpolate_record``); zero before 0
+        and after the last sample. [m/s^2]"""
         if t < 0.0 or t > self.last:
             return 0.0
-        values, dt = self.values, self.dt
-        i = min(int(t / dt), len(values) - 2)
-        t_i = i * dt
-        slope = (values[i + 1] - values[i]) / dt
-        return self.factor * (slope * (t - t_i) + values[i])
+        return self.factor * interpolate_record(float(t), self.dt, self.values)
 
 
 class SensedReading:
