@@ -573,8 +573,14 @@ def state_event(S, C, P, rec, vert):
     t = S[R_T]
     side = S[R_SIDE]
     if C[C_FRACTURE] != 0.0:
-        maps.fracture(side, S[R_TH], t, S[R_SPRING:R_SPRING + 2], S[R_DAMPER:R_DAMPER + 2], S[R_FRAC:R_FRAC + 4],
-                      P[I_TKU], P[I_TDU])
+        # only when a working element reaches its ultimate rotation (maps.fracture's own test), so
+        # that the other events do not pay for the element views
+        sidx = _working(S)
+        reach = side * S[R_TH]
+        if (S[R_SPRING + sidx] > 0.0 and reach >= P[I_TKU] - ROTATION_TOLERANCE) or \
+                (S[R_DAMPER + sidx] > 0.0 and reach >= P[I_TDU] - ROTATION_TOLERANCE):
+            maps.fracture(side, S[R_TH], t, S[R_SPRING:R_SPRING + 2], S[R_DAMPER:R_DAMPER + 2],
+                          S[R_FRAC:R_FRAC + 4], P[I_TKU], P[I_TDU])
     th = S[R_TH]
     thd = S[R_THD]
     if side * th >= P[I_TOVER] - ROTATION_TOLERANCE:
