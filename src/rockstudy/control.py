@@ -28,6 +28,8 @@ from dataclasses import dataclass
 
 from numba import njit
 
+from .validation import check_positive
+
 STRATEGIES = ("FS", "PASSIVE", "CS01", "CS02")
 STRATEGY_CODE = {name: i for i, name in enumerate(STRATEGIES)}
 """Integer code of each strategy, the one the compiled engine reads."""
@@ -69,12 +71,9 @@ class Control:
                 "Control.delay > 0 needs a sampling_time > 0: a delay acts on sampled decisions "
                 f"(got sampling_time=0, delay={self.delay})"
             )
-        band = self.sensor_band
-        if band is not None:
-            if isinstance(band, bool) or not (isinstance(band, (int, float)) and math.isfinite(band) and band > 0):
-                raise ValueError(f"Control.sensor_band must be a positive finite number [Hz] or None (the ideal "
-                                 f"sensor), got {band!r}")
-            object.__setattr__(self, "sensor_band", float(band))
+        if self.sensor_band is not None:  # the Nyquist limit depends on the record: rockstudy.sensor.check_band
+            band = check_positive("Control.sensor_band", self.sensor_band, "Hz", why="or None, the ideal sensor")
+            object.__setattr__(self, "sensor_band", band)
 
     @property
     def code(self) -> int:

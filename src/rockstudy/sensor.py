@@ -32,11 +32,11 @@ does with the ideal sensor (the filter's decaying tail after T is not read).
 from __future__ import annotations
 
 import math
-import numbers
 
 import numpy as np
 from scipy.signal import lfilter
 
+from . import validation as v
 from .constants import NOISE_DT
 from .excitation import EXCITATIONS, GroundMotion, analytic
 from .noise import sample_count
@@ -60,13 +60,10 @@ def check_band(band, step: float, name: str = "sensor_band") -> float:
     name : str
         How the caller names ``band`` in the error message.
     """
-    if isinstance(band, bool) or not isinstance(band, numbers.Real) or not (math.isfinite(band) and band > 0):
-        raise ValueError(f"{name} must be a positive finite number [Hz] or None (the ideal sensor), got {band!r}")
-    nyquist = 0.5 / step
-    if band >= nyquist:
-        raise ValueError(f"{name} must be below the Nyquist frequency 1/(2 step) = {nyquist:g} Hz of the record it "
-                         f"reads (step {step:g} s), got {band!r} (use None for the ideal sensor)")
-    return float(band)
+    band = v.check_positive(name, band, "Hz", why="or None, the ideal sensor")
+    return v.check_range(name, band, high=0.5 / step, unit="Hz", high_open=True,
+                         why=f"the Nyquist frequency 1/(2 step) of the record it reads, step {step:g} s; "
+                             "None is the ideal sensor")
 
 
 def butterworth_coefficients(band: float, step: float) -> tuple[np.ndarray, np.ndarray]:
