@@ -173,6 +173,13 @@ def _sensed(S, P, rec):
     return sensed_acceleration(S[R_T], P, rec) if S[R_H_ON] != 0.0 else 0.0
 
 
+@njit(cache=True, inline="always")
+def _turn(S, turn):
+    """Apply a CS01 apex decision that leaves θ̇ = 0: K_max and outward, or K_min and back."""
+    S[R_KAP_ON] = _flag(turn == maps.TURN_OUT)
+    S[R_HINT] = S[R_SIDE] if S[R_KAP_ON] != 0.0 else -S[R_SIDE]
+
+
 # ---- setup --------------------------------------------------------------------------------
 @njit(cache=True)
 def setup(P, vert, want_history, want_log):
@@ -304,9 +311,7 @@ def ground_phase(S, C, P, rec, vert, t_next):
         return UPLIFTED
     # leaves the sliding surface, outward or back (never HOLD again here)
     yg = vertical_acceleration(t_exit, P, vert)
-    turn = maps.apex_decision(S[R_TH], side, kap_max_eff, kap_min_eff, xg, yg, P)
-    S[R_KAP_ON] = _flag(turn == maps.TURN_OUT)
-    S[R_HINT] = side if S[R_KAP_ON] != 0.0 else -side
+    _turn(S, maps.apex_decision(S[R_TH], side, kap_max_eff, kap_min_eff, xg, yg, P))
     S[R_MODE] = MODE_ROCK
     S[R_THD] = 0.0
     return LEFT_HOLD
@@ -368,8 +373,7 @@ def apex(S, C, P, rec, vert):
     if turn == maps.HOLD:
         S[R_MODE] = MODE_HOLD
         return HELD
-    S[R_KAP_ON] = _flag(turn == maps.TURN_OUT)
-    S[R_HINT] = side if S[R_KAP_ON] != 0.0 else -side
+    _turn(S, turn)
     return NOTHING
 
 
@@ -380,6 +384,24 @@ def _events_used(S, C, P):
     strategy = int(P[I_STRAT])
     h_on = S[R_H_ON] != 0.0
     return switching and (strategy == CS01 or not h_on), switching and strategy == CS02 and h_on
+
+
+@njit(cache=True, inline="always")
+def _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec):
+    """What a run of steps from t starts with: the sign of the sensed Ẍg (CS02 switch event), the
+    sign θ̇ will have (CS01 switch event), and a first step kept inside the excursion after θ = 0.
+    Returns (x_hint, hint, h)."""
+    if use_xg_event:
+        xs = sensed_acceleration(t, P, rec)
+        if xs == 0.0:
+            xs = sensed_acceleration(t + 1e-9, P, rec)
+        x_hint = sign(xs)
+    if thd != 0.0:
+        hint = sign(thd)
+    # after an impact or uplift (θ = 0) keep the first step inside the excursion
+    if th == 0.0 and side * f0 < 0.0 and side * thd > 0.0:
+        h = min(h, 0.5 * abs(thd / f0))
+    return x_hint, hint, h
 
 
 @njit(cache=True)
@@ -419,19 +441,7 @@ def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
         if want_history:
             H, nh = _push_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
     f0_ok = False
-    x_hint = S[R_X_HINT]
-    if use_xg_event:
-        xs = sensed_acceleration(t, P, rec)
-        if xs == 0.0:
-            xs = sensed_acceleration(t + 1e-9, P, rec)
-        x_hint = sign(xs)
-    hint = S[R_HINT]
-    if thd != 0.0:
-        hint = sign(thd)
-    h = S[R_H]
-    # after an impact or uplift (θ = 0) keep the first step inside the excursion
-    if th == 0.0 and side * f0 < 0.0 and side * thd > 0.0:
-        h = min(h, 0.5 * abs(thd / f0))
+    x_hint, hint, h = _segment_start(t, th, thd, f0, side, use_xg_event, S[R_X_HINT], S[R_HINT], S[R_H], P, rec)
     max_abs = S[R_MAX_ABS]
     result = STEPPED
     while t < t_next:
@@ -544,15 +554,7 @@ def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
             if t_after > t:
                 t_next = t_after
                 f0_ok = False
-                if use_xg_event:
-                    xs = sensed_acceleration(t, P, rec)
-                    if xs == 0.0:
-                        xs = sensed_acceleration(t + 1e-9, P, rec)
-                    x_hint = sign(xs)
-                if thd != 0.0:
-                    hint = sign(thd)
-                if th == 0.0 and side * f0 < 0.0 and side * thd > 0.0:
-                    h = min(h, 0.5 * abs(thd / f0))
+                x_hint, hint, h = _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec)
     S[R_T] = t
     S[R_TH] = th
     S[R_THD] = thd
