@@ -42,43 +42,23 @@ class PiecewiseLinear:
         Sampling step. [s]
     factor : float, default 1
         Scale applied to every value (a record's amplitude a_p). [m/s^2]
+    end : float, optional
+        Zero after this time too (the sensed Ẍg after the end of the excitation: the controller
+        knows the excitation is over, :mod:`rockstudy.sensor`). [s]
     """
 
-    def __init__(self, samples, dt: float, factor: float = 1.0):
+    def __init__(self, samples, dt: float, factor: float = 1.0, end: float = math.inf):
         self.values = np.array(samples, dtype=float)
         self.dt = float(dt)
         self.factor = factor
-        self.last = (len(self.values) - 1) * dt  # time of the last sample [s]
+        self.last = min((len(self.values) - 1) * dt, end)  # zero after this time [s]
 
     def __call__(self, t: float) -> float:
         """Interpolated value at t (the fast engine's ``excitation.interpolate_record``); zero before 0
-        and after the last sample. [m/s^2]"""
+        and after the last sample (or ``end``). [m/s^2]"""
         if t < 0.0 or t > self.last:
             return 0.0
         return self.factor * interpolate_record(float(t), self.dt, self.values)
-
-
-class SensedReading:
-    """Ẍg as the controller's sensor reads it: the sensed samples, linear between them, zero after the
-    end of the excitation (as Ẍg; the controller knows the excitation is over, :mod:`rockstudy.sensor`).
-
-    Parameters
-    ----------
-    samples : PiecewiseLinear
-        The sensed samples times a_p. [m/s^2]
-    end : float
-        End of the horizontal excitation. [s]
-    """
-
-    def __init__(self, samples: PiecewiseLinear, end: float):
-        self.samples = samples
-        self.end = end
-
-    def __call__(self, t: float) -> float:
-        """Sensed Ẍg at t; zero outside [0, end]. [m/s^2]"""
-        if t < 0.0 or t > self.end:
-            return 0.0
-        return self.samples(t)
 
 
 def _no_vertical(t: float) -> float:
@@ -152,7 +132,7 @@ class Excitation:
         self.sensed = self.horizontal
         if sensor_band is not None:
             values, step = sensed_samples(motion, sensor_band)
-            self.sensed = SensedReading(PiecewiseLinear(values, step, self.amplitude), self.horizontal_end)
+            self.sensed = PiecewiseLinear(values, step, self.amplitude, end=self.horizontal_end)
 
     def _one_sine(self, t: float) -> float:
         """One-sine pulse on [0, 2π/ω_p], zero outside. [m/s^2]"""
