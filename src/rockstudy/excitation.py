@@ -12,6 +12,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
+from ._inline import inline_into
+
 EXCITATIONS = ("one-sine", "modulated")
 KIND_CODE = {"one-sine": 0, "modulated": 1, "record": 2, "rectangular": 3}
 """Integer code of each kind of ground motion, the one the compiled engine reads."""
@@ -72,7 +74,7 @@ def modulated_acceleration(t, amplitude, omega, duration):
     return 90.0 * s * s * (s - 1.0) ** 6 * amplitude * math.sin(omega * (t - duration))
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("ground_acceleration"))
 def interpolate_record(t, dt, samples):
     """Linear interpolation of ``samples`` taken at i·dt, for t >= 0; the last sample after the end. [-]
 

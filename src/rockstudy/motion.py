@@ -17,8 +17,10 @@ import math
 
 from numba import njit
 
+from ._inline import inline_into
 
-@njit(cache=True)
+
+@njit(cache=True, inline=inline_into("acceleration"))
 def angular_acceleration(theta, theta_dot, side, kappa, damping, ground_acceleration, vertical_acceleration,
                          p, gravity, sin_alpha, cos_alpha):
     """θ̈ of Eq. (1) with Eqs. (2)–(7). [rad/s^2]

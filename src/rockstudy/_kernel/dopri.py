@@ -7,6 +7,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .._inline import inline_into
 from ..motion import angular_acceleration
 from .ground import ground_acceleration, vertical_acceleration
 from .layout import I_COSA, I_G, I_P, I_SINA
@@ -31,13 +32,13 @@ DENSE = np.array([
 ])
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("rhs"))
 def acceleration(th, thd, side, kap, cd, xg, yg, P):
     """θ̈ of Eqs. (1)–(7) with the block's constants from ``P``. [rad/s^2]"""
     return angular_acceleration(th, thd, side, kap, cd, xg, yg, P[I_P], P[I_G], P[I_SINA], P[I_COSA])
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("step"))
 def rhs(t, th, thd, side, kap, cd, h_on, P, rec, vert):
     """θ̈ at time t (Ẍg only while the horizontal excitation is on). [rad/s^2]"""
     xg = ground_acceleration(t, P, rec) if h_on else 0.0
@@ -45,39 +46,49 @@ def rhs(t, th, thd, side, kap, cd, h_on, P, rec, vert):
     return acceleration(th, thd, side, kap, cd, xg, yg, P)
 
 
+# the stages 2-7 as a table: row s - 1 holds stage s's coefficients of k_1 ... k_(s-1) (zeros are
+# skipped, as in the written-out sums), the last row being the 5th-order weights (FSAL)
+STAGE_TIME = np.array([C2, C3, C4, C5, 1.0, 1.0])
+STAGE = np.array([
+    [A21, 0, 0, 0, 0, 0],
+    [A31, A32, 0, 0, 0, 0],
+    [A41, A42, A43, 0, 0, 0],
+    [A51, A52, A53, A54, 0, 0],
+    [A61, A62, A63, A64, A65, 0],
+    [B1, 0, B3, B4, B5, B6],
+])
+
+
 @njit(cache=True, inline="always")
 def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
     """One Dormand–Prince step of size ``hh`` from (θ, θ̇) = (y0, y1) with θ̈ = f0 at t.
 
     Fills the stages ``K`` (7 × 2; row 6 is the derivative at the step's end, first same as last)
-    and returns the 5th-order solution and the scaled error norm (accept when <= 1).
+    and returns the 5th-order solution and the scaled error norm (accept when <= 1). The stages
+    are one loop over the :data:`STAGE` table, so that the right-hand side is compiled once.
     """
     K[0, 0] = y1
     K[0, 1] = f0
-    a0 = y0 + hh * A21 * K[0, 0]
-    a1 = y1 + hh * A21 * K[0, 1]
-    K[1, 0] = a1
-    K[1, 1] = rhs(t + C2 * hh, a0, a1, side, kap, cd, h_on, P, rec, vert)
-    a0 = y0 + hh * (A31 * K[0, 0] + A32 * K[1, 0])
-    a1 = y1 + hh * (A31 * K[0, 1] + A32 * K[1, 1])
-    K[2, 0] = a1
-    K[2, 1] = rhs(t + C3 * hh, a0, a1, side, kap, cd, h_on, P, rec, vert)
-    a0 = y0 + hh * (A41 * K[0, 0] + A42 * K[1, 0] + A43 * K[2, 0])
-    a1 = y1 + hh * (A41 * K[0, 1] + A42 * K[1, 1] + A43 * K[2, 1])
-    K[3, 0] = a1
-    K[3, 1] = rhs(t + C4 * hh, a0, a1, side, kap, cd, h_on, P, rec, vert)
-    a0 = y0 + hh * (A51 * K[0, 0] + A52 * K[1, 0] + A53 * K[2, 0] + A54 * K[3, 0])
-    a1 = y1 + hh * (A51 * K[0, 1] + A52 * K[1, 1] + A53 * K[2, 1] + A54 * K[3, 1])
-    K[4, 0] = a1
-    K[4, 1] = rhs(t + C5 * hh, a0, a1, side, kap, cd, h_on, P, rec, vert)
-    a0 = y0 + hh * (A61 * K[0, 0] + A62 * K[1, 0] + A63 * K[2, 0] + A64 * K[3, 0] + A65 * K[4, 0])
-    a1 = y1 + hh * (A61 * K[0, 1] + A62 * K[1, 1] + A63 * K[2, 1] + A64 * K[3, 1] + A65 * K[4, 1])
-    K[5, 0] = a1
-    K[5, 1] = rhs(t + hh, a0, a1, side, kap, cd, h_on, P, rec, vert)
-    n0 = y0 + hh * (B1 * K[0, 0] + B3 * K[2, 0] + B4 * K[3, 0] + B5 * K[4, 0] + B6 * K[5, 0])
-    n1 = y1 + hh * (B1 * K[0, 1] + B3 * K[2, 1] + B4 * K[3, 1] + B5 * K[4, 1] + B6 * K[5, 1])
-    K[6, 0] = n1
-    K[6, 1] = rhs(t + hh, n0, n1, side, kap, cd, h_on, P, rec, vert)
+    n0 = y0
+    n1 = y1
+    for s in range(1, 7):
+        if s == 1:
+            a0 = y0 + hh * A21 * K[0, 0]
+            a1 = y1 + hh * A21 * K[0, 1]
+        else:
+            c0 = STAGE[s - 1, 0] * K[0, 0]
+            c1 = STAGE[s - 1, 0] * K[0, 1]
+            for j in range(1, s):
+                w = STAGE[s - 1, j]
+                if w != 0.0:
+                    c0 = c0 + w * K[j, 0]
+                    c1 = c1 + w * K[j, 1]
+            a0 = y0 + hh * c0
+            a1 = y1 + hh * c1
+        K[s, 0] = a1
+        K[s, 1] = rhs(t + STAGE_TIME[s - 1] * hh, a0, a1, side, kap, cd, h_on, P, rec, vert)
+        n0 = a0
+        n1 = a1
     e0 = hh * (E1 * K[0, 0] + E3 * K[2, 0] + E4 * K[3, 0] + E5 * K[4, 0] + E6 * K[5, 0] + E7 * K[6, 0])
     e1 = hh * (E1 * K[0, 1] + E3 * K[2, 1] + E4 * K[3, 1] + E5 * K[4, 1] + E6 * K[5, 1] + E7 * K[6, 1])
     s0 = atol + rtol * max(abs(y0), abs(n0))
@@ -86,7 +97,7 @@ def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
     return n0, n1, err
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("event_value"))
 def dense(sig, h, y0, y1, K):
     """State (θ, θ̇) at t0 + sig·h from the continuous extension of the step."""
     s1 = sig

@@ -24,6 +24,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .._inline import inline_into
 from ..constants import FIRST_STEP, IMPACT_TOLERANCE, MAX_EVENTS, NEGLIGIBLE_STEP, ROTATION_TOLERANCE, TIME_TOLERANCE
 from ..control import CS01, CS02, FS, PASSIVE, stiffness_on
 from ..excitation import RECORD
@@ -278,7 +279,7 @@ def next_known_time(S, C, P, vert, queue_times):
     return t_next
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("simulate_kernel"))
 def ground_phase(S, C, P, rec, vert, t_next):
     """REST or HOLD up to ``t_next``: find the exit (uplift; leaving the CS01 sliding surface) and
     apply it. Returns NOTHING (still there at ``t_next``), UPLIFTED or LEFT_HOLD."""
@@ -317,7 +318,7 @@ def ground_phase(S, C, P, rec, vert, t_next):
     return LEFT_HOLD
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("simulate_kernel"))
 def known_time_events(S, C, P, rec, queue_times, queue_values):
     """Apply what happens at a known-time event: the end of the excitation, controller samples due
     (decision k taken at k·T_s acts from k·T_s + Δτ), decisions that act now. A record knot
@@ -351,7 +352,7 @@ def known_time_events(S, C, P, rec, queue_times, queue_values):
         S[R_F0_OK] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("simulate_kernel"))
 def below_overturning_energy(S, C, P):
     """True when the block, free of excitation, provably cannot overturn any more (docs/model.md)."""
     if C[C_BOUND_SWITCHING] != 0.0:
@@ -359,7 +360,7 @@ def below_overturning_energy(S, C, P):
     return maps.cannot_overturn(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], C[C_KMIN] * S[R_SPRING + _working(S)])
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("simulate_kernel"))
 def apex(S, C, P, rec, vert):
     """The CS01 switch at θ̇ = 0 (docs/model.md, "CS01 sliding"): turn out with K_max, back with
     K_min, or hold. Returns HELD or NOTHING."""
@@ -404,7 +405,7 @@ def _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec):
     return x_hint, hint, h
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("simulate_kernel"))
 def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
     """ROCK: Dormand–Prince steps towards ``t_next``, each accepted step searched for state events
     (impact, overturning rotation, fractures, the CS01/CS02 switches); stops at the earliest,
@@ -567,7 +568,7 @@ def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
     return result, H, nh
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("simulate_kernel"))
 def state_event(S, C, P, rec, vert):
     """Apply the maps of a located state event: fracture (Eqs. 8–11), overturning, impact
     (Eqs. 14–15: rebound, rest or uplift), the CS01 switch at θ̇ = 0 (an apex decision is due) and

@@ -11,6 +11,7 @@ import math
 
 from numba import njit
 
+from .._inline import inline_into
 from ..constants import LOCATE_TOLERANCE
 from ..excitation import MODULATED, ONE_SINE
 from .dopri import acceleration, dense
@@ -22,7 +23,7 @@ REST_HOLD_SCAN_DIVISIONS = 256.0
 smooth function cannot hide inside 1/256 of a period at the amplitudes that matter)."""
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("locate"))
 def event_value(sig, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec):
     """g = a_th·θ + a_thd·θ̇ + a_x·Ẍg + c at t + sig·hh (Ẍg as the controller senses it, only when a_x != 0)."""
     a, b = dense(sig, hh, y0, y1, K)

@@ -8,11 +8,12 @@ from __future__ import annotations
 
 from numba import njit
 
+from .._inline import inline_into
 from ..excitation import MODULATED, ONE_SINE, RECORD, interpolate_record, modulated_acceleration, one_sine_acceleration
 from .layout import I_AMP, I_DUR, I_KIND, I_OMEGA, I_RDT, I_SDT, I_SENSE, I_SOFF, I_VDT
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("rhs", "sensed_acceleration"))
 def ground_acceleration(t, P, rec):
     """Horizontal ground acceleration Ẍg(t) while the excitation lasts, zero outside. [m/s^2]"""
     dur = P[I_DUR]
@@ -31,7 +32,7 @@ def ground_acceleration(t, P, rec):
     return amp  # rectangular pulse on [0, dur]
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("integrate", "_segment_start", "event_value"))
 def sensed_acceleration(t, P, rec):
     """Ẍg(t) as the controller reads it: the driving Ẍg without a sensor, else the sensed samples
     (times a_p) interpolated linearly; zero outside the excitation [0, dur], as Ẍg. [m/s^2]"""
@@ -42,7 +43,7 @@ def sensed_acceleration(t, P, rec):
     return P[I_AMP] * interpolate_record(t, P[I_SDT], rec[int(P[I_SOFF]):])
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("rhs"))
 def vertical_acceleration(t, P, vert):
     """Vertical ground acceleration Ÿg(t), linear between samples, zero outside. [m/s^2]"""
     n = vert.shape[0]

@@ -1,0 +1,26 @@
+"""Selective inlining of compiled functions (numba's ``inline=`` cost model).
+
+A call from one compiled function to another that takes arrays pays more than the call: numba's
+callee increfs and decrefs each array argument, atomically. In the Dormand–Prince step the
+right-hand side is evaluated six times per step and reads the parameter vector and the records, so
+those calls cost a large share of the step. Inlining them everywhere (``inline="always"``) would
+also inline them at a few dozen cold call sites and nearly double numba's compile time; this
+inlines them only into the functions named.
+"""
+from __future__ import annotations
+
+
+def inline_into(*callers: str):
+    """A numba ``inline=`` cost model: inline the function only where it is called from a function
+    named in ``callers`` (numba's untyped inlining; elsewhere it stays an ordinary call).
+
+    Inlining changes no floating-point operation (numba compiles without fast-math), so the
+    results are bitwise the same.
+    """
+    names = frozenset(callers)
+
+    def cost_model(expr, caller_ir, callee_ir):
+        return caller_ir.func_id.func_name in names
+
+    cost_model.__name__ = f"inline_into_{'_'.join(sorted(names))}"
+    return cost_model
