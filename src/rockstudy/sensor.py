@@ -34,7 +34,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.signal import lfilter
 
 from . import validation as v
 from .constants import NOISE_DT
@@ -126,6 +125,10 @@ def sense(values, step: float, band: float) -> np.ndarray:
     x = np.asarray(values, dtype=float)
     if x.ndim != 1:
         raise ValueError(f"values must be a 1-D array of samples, got shape {x.shape}")
+    # imported here, not at the top: scipy.signal takes ~0.8 s to import, every workflow job imports
+    # rockstudy, and only runs with a sensor need it
+    from scipy.signal import lfilter
+
     return lfilter(b, a, x)
 
 
