@@ -1,0 +1,115 @@
+"""Bitwise fingerprint of the fast engine: run many random cases and save every field of each
+:class:`~rockstudy._kernel.layout.KernelResult`, or compare two saved fingerprints bit for bit.
+
+A refactor or speed-up of ``rockstudy._kernel`` that must not change results is checked by
+running ``save`` on the code before and after (e.g. from a ``git worktree`` with ``PYTHONPATH``
+pointed at its ``src``) and then ``compare``:
+
+    NUMBA_NUM_THREADS=1 python benchmarks/kernel_fingerprint.py save before.npz
+    NUMBA_NUM_THREADS=1 python benchmarks/kernel_fingerprint.py save after.npz
+    python benchmarks/kernel_fingerprint.py compare before.npz after.npz
+
+The cases cover every strategy, sampling time, delay, anchorage and overturn criterion, on noisy
+records, the analytic excitations and (``--vertical``) vertical records, with histories and logs
+switched on and off, and (``--sensor``) the controller's sensor. The same seed gives the same
+cases, so two fingerprints of the same code are identical.
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import math
+import sys
+
+import numpy as np
+
+from rockstudy import BLOCK_PRESETS, Anchorage, Control
+from rockstudy import _kernel as kn
+from rockstudy.excitation import GroundMotion, modulated_duration
+from rockstudy.noise import noisy_record, record_motion
+from rockstudy.simulate import kernel_record, pack_parameters
+
+BLC06 = BLOCK_PRESETS["BLC06"]
+
+
+def cases(n: int, seed: int, sensor: bool, vertical: bool):
+    """(P, record, vertical record, want_history, want_log) of ``n`` random runs."""
+    rng = np.random.default_rng(seed)
+    records = [(noisy_record("modulated", fr * BLC06.p, 0.05, k, 7), fr * BLC06.p)
+               for k, fr in enumerate((0.7, 1.5, 3.0, 4.5))]
+    for i in range(n):
+        strategy = ("FS", "PASSIVE", "CS01", "CS02")[i % 4]
+        sampling = (0.0, 0.0, 0.01, 0.1)[(i // 4) % 4]
+        delay = 0.0 if sampling == 0 else float(rng.choice([0, 0.02, 0.06]))
+        band = float(rng.choice([5.0, 20.0, 60.0])) if sensor else None
+        control = Control(strategy, sampling_time=sampling, delay=delay, sensor_band=band)
+        kmax = float(rng.uniform(0.1, 4.0))
+        anchorage = Anchorage(kappa_max=kmax, kappa_min=float(rng.choice([0.0, rng.uniform(0, kmax)])),
+                              damping_ratio=float(rng.uniform(0, 0.1)),
+                              spring_ultimate_rotation=float(rng.uniform(0.3, 1.2) * BLC06.alpha),
+                              damper_ultimate_rotation=float(rng.uniform(0.3, 1.2) * BLC06.alpha))
+        amplitude = float(rng.uniform(1.0, 4.0)) * BLC06.uplift_acceleration
+        if i % 3 == 0:
+            rec, omega = records[int(rng.integers(len(records)))]
+            motion = record_motion(rec, amplitude, omega)
+        else:
+            omega = float(rng.uniform(0.5, 5.0)) * BLC06.p
+            kind = "modulated" if i % 3 == 1 else "one-sine"
+            end = modulated_duration(omega) if kind == "modulated" else 2 * math.pi / omega
+            motion = GroundMotion(kind, amplitude, omega, end)
+        if vertical and i % 2 == 0:  # a vertical record at 5 ms over the first half of the excitation
+            t = np.arange(int(0.5 * motion.duration / 0.005) + 2) * 0.005
+            vert = 0.3 * BLC06.gravity * np.sin(float(rng.uniform(0.5, 5.0)) * omega * t)
+            motion = dataclasses.replace(motion, vertical_dt=0.005, vertical=vert)
+        th0 = float(rng.uniform(-0.5, 0.5) * BLC06.alpha) if i % 11 == 0 else 0.0
+        P = pack_parameters(BLC06, anchorage, control, motion, overturn_criterion="alpha" if i % 5 == 0 else "flat",
+                            free_time=10.0, energy_bound=bool(i % 2), initial_rotation=th0)
+        want_history, want_log = bool((i // 2) % 2), bool((i // 3) % 2)
+        yield P, kn.writable(kernel_record(control, motion)), kn.writable(motion.vertical), want_history, want_log
+
+
+def save(path: str, n: int, seed: int, sensor: bool, vertical: bool) -> None:
+    fields = {}
+    for i, (P, rec, vert, want_history, want_log) in enumerate(cases(n, seed, sensor, vertical)):
+        result = kn.simulate_kernel(P, rec, vert, want_history, want_log)
+        for name, value in zip(kn.KernelResult._fields, result):
+            fields[f"{i}/{name}"] = np.array(value, copy=True)
+    np.savez_compressed(path, **fields)
+    print(f"{n} runs saved to {path}")
+
+
+def compare(a: str, b: str) -> int:
+    x, y = np.load(a), np.load(b)
+    if sorted(x.files) != sorted(y.files):
+        print("the fingerprints hold different runs or fields")
+        return 1
+    runs = sorted({k.split("/")[0] for k in x.files}, key=int)
+    bad = [r for r in runs if any(not np.array_equal(x[k], y[k], equal_nan=True) or x[k].dtype != y[k].dtype
+                                  for k in x.files if k.split("/")[0] == r)]
+    for r in bad[:20]:
+        print(f"run {r} differs")
+    print(f"{len(runs)} runs compared, {len(bad)} differ")
+    return 1 if bad else 0
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    sub = ap.add_subparsers(dest="command", required=True)
+    s = sub.add_parser("save", help="run the cases and save every result field")
+    s.add_argument("path")
+    s.add_argument("-n", type=int, default=1500, help="number of runs (default 1500)")
+    s.add_argument("--seed", type=int, default=77)
+    s.add_argument("--sensor", action="store_true", help="give the controller a sensor (random band)")
+    s.add_argument("--vertical", action="store_true", help="add vertical records to every other run")
+    c = sub.add_parser("compare", help="compare two saved fingerprints bit for bit")
+    c.add_argument("a")
+    c.add_argument("b")
+    args = ap.parse_args(argv)
+    if args.command == "save":
+        save(args.path, args.n, args.seed, args.sensor, args.vertical)
+        return 0
+    return compare(args.a, args.b)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
