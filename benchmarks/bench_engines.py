@@ -12,6 +12,10 @@ measured switched off ("old") and on ("new") side by side:
   stop under sampled control"); "old" there means no early stop at all, as before it existed.
   (An opt-in ``step_across_knots`` was measured here in issue 11 at 6-12x slower and removed.)
 
+The selective inlining of the hot calls (docs/model.md, "What a step costs") is compiled in and
+has no switch: measure it as code before/after, e.g. this script run from a ``git worktree`` of
+the older commit (``PYTHONPATH=<worktree>/src``) and from main, one after the other.
+
 "simulated seconds" are those of the full run (to rest or the time limit), so that the rate of an
 outcome run that stops early counts the motion it no longer needs to integrate.
 """
