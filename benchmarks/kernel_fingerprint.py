@@ -83,9 +83,12 @@ def compare(a: str, b: str) -> int:
     if sorted(x.files) != sorted(y.files):
         print("the fingerprints hold different runs or fields")
         return 1
-    runs = sorted({k.split("/")[0] for k in x.files}, key=int)
+    fields_of = {}
+    for k in x.files:
+        fields_of.setdefault(k.split("/")[0], []).append(k)
+    runs = sorted(fields_of, key=int)
     bad = [r for r in runs if any(not np.array_equal(x[k], y[k], equal_nan=True) or x[k].dtype != y[k].dtype
-                                  for k in x.files if k.split("/")[0] == r)]
+                                  for k in fields_of[r])]
     for r in bad[:20]:
         print(f"run {r} differs")
     print(f"{len(runs)} runs compared, {len(bad)} differ")

@@ -69,12 +69,12 @@ def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
     """
     K[0, 0] = y1
     K[0, 1] = f0
-    n0 = y0
-    n1 = y1
+    a0 = y0
+    a1 = y1
     for s in range(1, 7):
-        if s == 1:
-            a0 = y0 + hh * A21 * K[0, 0]
-            a1 = y1 + hh * A21 * K[0, 1]
+        if s == 1:  # written (h·a21)·k1, not h·(a21·k1): the grouping of the step's first form, for its bits
+            a0 = y0 + hh * STAGE[0, 0] * K[0, 0]
+            a1 = y1 + hh * STAGE[0, 0] * K[0, 1]
         else:
             c0 = STAGE[s - 1, 0] * K[0, 0]
             c1 = STAGE[s - 1, 0] * K[0, 1]
@@ -87,8 +87,8 @@ def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
             a1 = y1 + hh * c1
         K[s, 0] = a1
         K[s, 1] = rhs(t + STAGE_TIME[s - 1] * hh, a0, a1, side, kap, cd, h_on, P, rec, vert)
-        n0 = a0
-        n1 = a1
+    n0 = a0  # the last stage is the 5th-order solution (first same as last)
+    n1 = a1
     e0 = hh * (E1 * K[0, 0] + E3 * K[2, 0] + E4 * K[3, 0] + E5 * K[4, 0] + E6 * K[5, 0] + E7 * K[6, 0])
     e1 = hh * (E1 * K[0, 1] + E3 * K[2, 1] + E4 * K[3, 1] + E5 * K[4, 1] + E6 * K[5, 1] + E7 * K[6, 1])
     s0 = atol + rtol * max(abs(y0), abs(n0))
