@@ -10,7 +10,8 @@
 #      figures; overturning_map and time_history feed their figures directly.
 from snakemake.utils import min_version, validate
 
-from rockstudy import calibration, study
+from rockstudy.studies import device_calibration as calibration
+from rockstudy.studies import parameters, study
 
 min_version("9.0")
 

@@ -29,9 +29,9 @@ import numba
 import numpy as np
 
 from rockstudy import BLOCK_PRESETS, Anchorage, Control
-from rockstudy import _kernel as kn
-from rockstudy.simulate import pack_parameters, simulate
-from rockstudy.spectra import AmplitudeGrid, Scenario, frequency_grid, spectrum, threshold
+from rockstudy.analysis.spectra import AmplitudeGrid, Scenario, frequency_grid, spectrum, threshold
+from rockstudy.engine import _kernel as kn
+from rockstudy.engine.simulate import pack_parameters, simulate
 
 BLOCK = BLOCK_PRESETS["BLC06"]
 CASES = [  # strategy, excitation, frequency ratio, amplitude ratio, noise, T_s

@@ -1,7 +1,7 @@
 """Bitwise fingerprint of the fast engine: run many random cases and save every field of each
-:class:`~rockstudy._kernel.layout.KernelResult`, or compare two saved fingerprints bit for bit.
+:class:`~rockstudy.engine._kernel.layout.KernelResult`, or compare two saved fingerprints bit for bit.
 
-A refactor or speed-up of ``rockstudy._kernel`` that must not change results is checked by
+A refactor or speed-up of ``rockstudy.engine._kernel`` that must not change results is checked by
 running ``save`` on the code before and after (e.g. from a ``git worktree`` with ``PYTHONPATH``
 pointed at its ``src``) and then ``compare``:
 
@@ -24,10 +24,10 @@ import sys
 import numpy as np
 
 from rockstudy import BLOCK_PRESETS, Anchorage, Control
-from rockstudy import _kernel as kn
-from rockstudy.excitation import GroundMotion, modulated_duration
-from rockstudy.noise import noisy_record, record_motion
-from rockstudy.simulate import kernel_record, pack_parameters
+from rockstudy.engine import _kernel as kn
+from rockstudy.engine.simulate import kernel_record, pack_parameters
+from rockstudy.model.excitation import GroundMotion, modulated_duration
+from rockstudy.model.noise import noisy_record, record_motion
 
 BLC06 = BLOCK_PRESETS["BLC06"]
 

@@ -15,10 +15,10 @@ import os
 
 import yaml
 
-from rockstudy import study
-from rockstudy.io import read_netcdf, write_netcdf
-from rockstudy.spectra import spectrum
-from rockstudy.tables import jos_of
+from rockstudy.analysis.spectra import spectrum
+from rockstudy.core.io import read_netcdf, write_netcdf
+from rockstudy.studies import parameters
+from rockstudy.studies.tables import jos_of
 
 
 def spectrum_file(cfg, out, strategy, level, band, n):
@@ -28,8 +28,8 @@ def spectrum_file(cfg, out, strategy, level, band, n):
                 "control": {"strategy": strategy, "sensor_band": band}, "excitation": cfg["excitation"],
                 "noise_level": cfg["noise_levels"][level], "seed": cfg["seed"], "noise": cfg["noise"],
                 "overturn_criterion": cfg["overturn_criterion"], "free_time": cfg["free_time"]}
-        write_netcdf(spectrum(study.scenario_from_dict(spec), study.frequency_ratios(cfg["frequency_grid"]),
-                              realisations=range(n), grid=study.amplitude_grid(cfg["amplitude_grid"]),
+        write_netcdf(spectrum(parameters.scenario_from_dict(spec), parameters.frequency_ratios(cfg["frequency_grid"]),
+                              realisations=range(n), grid=parameters.amplitude_grid(cfg["amplitude_grid"]),
                               progress_chunks=1), path)
     return read_netcdf(path)
 
@@ -44,7 +44,7 @@ def main():
     cfg = yaml.safe_load(open(args.config))
     os.makedirs(args.out, exist_ok=True)
     bands = [None if b == "none" else float(b) for b in args.bands]
-    free = study.noise_free_level(cfg["noise_levels"])
+    free = parameters.noise_free_level(cfg["noise_levels"])
     noisy = [name for name, value in cfg["noise_levels"].items() if value > 0]
     n = args.realisations
     fs = {lvl: spectrum_file(cfg, args.out, "FS", lvl, None, 1 if lvl == free else n) for lvl in [free] + noisy}

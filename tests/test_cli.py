@@ -25,7 +25,7 @@ def test_simulate_prints_json_and_writes_history(tmp_path, capsys):
 
 def test_threshold_matches_library_and_null_above_bound(capsys, blc06):
     from rockstudy import Control
-    from rockstudy.spectra import AmplitudeGrid, Scenario, threshold
+    from rockstudy.analysis.spectra import AmplitudeGrid, Scenario, threshold
     out = run(["threshold", "--strategy", "FS", "--frequency-ratio", "2", "--max-amplitude-ratio", "3"], capsys)
     lib = threshold(Scenario(blc06, control=Control("FS")), 2.0, grid=AmplitudeGrid(stop=3.0))
     assert out["amplitude_ratio"] == lib["amplitude_ratio"]
@@ -72,8 +72,8 @@ def test_jos_rejects_different_grids(tmp_path, capsys):
 
 def test_noise_options_reach_the_records(tmp_path, capsys, blc06):
     from rockstudy import Control
-    from rockstudy.noise import NoiseReading
-    from rockstudy.spectra import AmplitudeGrid, Scenario, threshold
+    from rockstudy.analysis.spectra import AmplitudeGrid, Scenario, threshold
+    from rockstudy.model.noise import NoiseReading
     args = ["threshold", "--strategy", "FS", "--frequency-ratio", "2", "--noise-level", "0.1", "--realisation", "1",
             "--max-amplitude-ratio", "3", "--noise-step", "0.01", "--noise-rescale", "none",
             "--noise-level-means", "rms", "--noise-band", "20", "--noise-span", "0.5"]

@@ -8,8 +8,9 @@ import math
 import numpy as np
 import pytest
 
-from rockstudy._kernel import maps
-from rockstudy.anchorage import (
+from rockstudy.core.constants import ROTATION_TOLERANCE
+from rockstudy.engine._kernel import maps
+from rockstudy.model.anchorage import (
     damper_left_intact,
     damper_right_intact,
     left_working,
@@ -17,8 +18,17 @@ from rockstudy.anchorage import (
     spring_left_intact,
     spring_right_intact,
 )
-from rockstudy.constants import ROTATION_TOLERANCE
-from rockstudy.control import CS01, CS02, FS, PASSIVE, STRATEGIES, STRATEGY_CODE, cs01_is_on, cs02_is_on, stiffness_on
+from rockstudy.model.control import (
+    CS01,
+    CS02,
+    FS,
+    PASSIVE,
+    STRATEGIES,
+    STRATEGY_CODE,
+    cs01_is_on,
+    cs02_is_on,
+    stiffness_on,
+)
 
 TU = 0.2
 
@@ -113,8 +123,8 @@ def test_engine_impact_map_uplifts_when_the_ground_can_lift_the_block():
 
 def _apex(theta, xg, kmax, kmin):
     from rockstudy import BLOCK_PRESETS
-    from rockstudy.excitation import GroundMotion
-    from rockstudy.simulate import pack_parameters
+    from rockstudy.engine.simulate import pack_parameters
+    from rockstudy.model.excitation import GroundMotion
     block = BLOCK_PRESETS["BLC06"]
     P = pack_parameters(block, __import__("rockstudy").Anchorage(), __import__("rockstudy").Control("CS01"),
                         GroundMotion("one-sine", 0.0, 1.0, 1.0))

@@ -13,9 +13,9 @@ import pytest
 
 import oracles
 from rockstudy import BLOCK_PRESETS, Anchorage, Block, Control
-from rockstudy.excitation import GroundMotion, modulated_duration
-from rockstudy.motion import normalised_energy
-from rockstudy.simulate import simulate
+from rockstudy.engine.simulate import simulate
+from rockstudy.model.equation_of_motion import normalised_energy
+from rockstudy.model.excitation import GroundMotion, modulated_duration
 
 BLC06 = BLOCK_PRESETS["BLC06"]
 P, ALPHA = BLC06.p, BLC06.alpha

@@ -6,9 +6,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from rockstudy import datasets, plotting  # noqa: E402
-from rockstudy.control import Control  # noqa: E402
-from rockstudy.spectra import OUTCOME_MEANINGS, Scenario  # noqa: E402
+from rockstudy import plotting  # noqa: E402
+from rockstudy.analysis.spectra import OUTCOME_MEANINGS, Scenario  # noqa: E402
+from rockstudy.model.control import Control  # noqa: E402
+from rockstudy.studies import datasets
 from test_study import BLC06, fake_spectrum  # noqa: E402
 
 

@@ -164,7 +164,7 @@ def test_reused_study_spectrum_equals_the_readings_study_own(tmp_path):
     table's J_OS is the one of that spectrum."""
     import xarray as xr
 
-    from rockstudy import readings
+    from rockstudy.studies import noise_readings as readings
 
     out = tmp_path / "out"
     own = out / "reproduction" / "readings" / "spectra" / "FS_step2p5ms_R005.nc"

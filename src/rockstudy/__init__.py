@@ -3,14 +3,7 @@
 Reproduces "Use of overturning spectra in the performance evaluation of on-off
 control strategies for rocking objects" (see ``docs/model.md``).
 """
-from importlib.metadata import PackageNotFoundError
-from importlib.metadata import version as _version
-
-try:
-    __version__ = _version("rockstudy")
-except PackageNotFoundError:  # running from a source tree without install
-    __version__ = "0.0.0+unknown"
-
+from rockstudy._version import __version__
 
 
 def _numba_cache_dir() -> str:
@@ -43,18 +36,15 @@ def _configure_numba_cache():
 
 _configure_numba_cache()
 
-from .anchorage import Anchorage  # noqa: E402
-from .block import BLOCK_PRESETS, GRAVITY, Block  # noqa: E402
-from .control import STRATEGIES, Control  # noqa: E402
-from .excitation import GroundMotion  # noqa: E402
-from .outcome import Outcome  # noqa: E402
-from .result import SimulationResult  # noqa: E402
-from .scenario import Scenario  # noqa: E402
-
-# the function, not the module: ``rockstudy.simulate(...)``; the module stays importable as
-# ``from rockstudy.simulate import pack_parameters``
-from .simulate import simulate  # noqa: E402
-from .spectra import AmplitudeGrid, frequency_grid, spectrum, threshold  # noqa: E402
+from rockstudy.analysis.scenario import Scenario  # noqa: E402
+from rockstudy.analysis.spectra import AmplitudeGrid, frequency_grid, spectrum, threshold  # noqa: E402
+from rockstudy.engine.outcome import Outcome  # noqa: E402
+from rockstudy.engine.simulate import simulate  # noqa: E402
+from rockstudy.engine.simulation_result import SimulationResult  # noqa: E402
+from rockstudy.model.anchorage import Anchorage  # noqa: E402
+from rockstudy.model.block import BLOCK_PRESETS, GRAVITY, Block  # noqa: E402
+from rockstudy.model.control import STRATEGIES, Control  # noqa: E402
+from rockstudy.model.excitation import GroundMotion  # noqa: E402
 
 __all__ = ["Block", "BLOCK_PRESETS", "GRAVITY", "Anchorage", "Control", "STRATEGIES", "GroundMotion", "Outcome",
            "SimulationResult", "AmplitudeGrid", "Scenario", "frequency_grid", "simulate", "spectrum", "threshold",

@@ -1,7 +1,7 @@
 """Command line: ``rockstudy simulate | threshold | spectrum | jos``.
 
 Every command checks all its arguments before any heavy work (values, limits, output paths; see
-:mod:`rockstudy.validation`) and exits with status 2 and a message naming the argument, the value
+:mod:`rockstudy.core.validation`) and exits with status 2 and a message naming the argument, the value
 and what is allowed. A run that hits the fast engine's event cap ends with an "undetermined"
 result, not a traceback.
 """
@@ -13,9 +13,9 @@ import logging
 import math
 import sys
 
-from . import validation as v
-from .block import BLOCK_PRESETS
-from .control import STRATEGIES
+from rockstudy.core import validation as v
+from rockstudy.model.block import BLOCK_PRESETS
+from rockstudy.model.control import STRATEGIES
 
 EXCITATION_CHOICES = ("one-sine", "modulated")
 SECONDS_PER_SIMULATION = 1e-3
@@ -129,11 +129,11 @@ def _check_common(args, single_frequency=True) -> None:
 def _scenario(args, parser, sensor_step=None):
     """The scenario of the options; ``sensor_step`` [s]: the step of the record the sensor reads
     (default: the noisy record's, or the analytic excitation's sampling for the sensor)."""
-    from .anchorage import Anchorage
-    from .control import Control
-    from .noise import NoiseReading
-    from .sensor import SENSOR_STEP, check_band
-    from .spectra import Scenario
+    from rockstudy.analysis.spectra import Scenario
+    from rockstudy.model.anchorage import Anchorage
+    from rockstudy.model.control import Control
+    from rockstudy.model.noise import NoiseReading
+    from rockstudy.model.sensor import SENSOR_STEP, check_band
     try:
         noise = NoiseReading(step=args.noise_step, rescale=args.match, level_means=args.noise_level_means,
                              band=args.noise_band, span=args.noise_span)
@@ -163,7 +163,7 @@ _GRID_NAMES = ("--min-amplitude-ratio", "--max-amplitude-ratio", "--amplitude-st
 
 def _grid(args, parser):
     """The amplitude scan, and the simulations one threshold may need."""
-    from .spectra import AmplitudeGrid
+    from rockstudy.analysis.spectra import AmplitudeGrid
     try:
         sims = v.check_amplitude_grid(args.min_amplitude_ratio, args.max_amplitude_ratio, args.amplitude_step,
                                       args.resolution, names=_GRID_NAMES)
@@ -189,9 +189,10 @@ def _check_outputs(args, parser) -> None:
 
 
 def _check_time_span(scenario, frequency_ratios, frequency_name) -> None:
-    v.check_time_span(scenario.block, scenario.excitation, frequency_ratios, scenario.free_time,
-                      scenario.control.sampling_time, frequency_name=frequency_name,
-                      free_time_name="--free-time", sampling_name="--sampling-time")
+    from rockstudy.model.excitation import check_time_span
+    check_time_span(scenario.block, scenario.excitation, frequency_ratios, scenario.free_time,
+                    scenario.control.sampling_time, frequency_name=frequency_name,
+                    free_time_name="--free-time", sampling_name="--sampling-time")
 
 
 def _grid_args(p):
@@ -245,7 +246,7 @@ def _cmd_simulate(args, parser):
         return _cmd_simulate_record(args, parser)
     if args.record_unit is not None or args.record_scale != 1.0:
         parser.error("--record-unit and --record-scale need --record FILE")
-    from .simulate import simulate
+    from rockstudy.engine.simulate import simulate
     try:
         _check_common(args)
         v.check_positive("--amplitude-ratio", args.amplitude_ratio, high=v.MAX_AMPLITUDE_RATIO)
@@ -272,14 +273,14 @@ def _cmd_simulate(args, parser):
                pga_ratio=1.0 if rec is None else rec.pga_ratio, sensor_band_hz=args.sensor_band,
                **scenario.noise.to_attrs())
     if res is not None and (args.output or args.plot):
-        from .datasets import history_dataset
+        from rockstudy.studies.datasets import history_dataset
         ds = history_dataset(res, scenario, motion, args.frequency_ratio, args.amplitude_ratio, args.realisation)
         if args.output:
-            from .io import write_netcdf
+            from rockstudy.core.io import write_netcdf
             write_netcdf(ds, args.output)
             out["output"] = args.output
         if args.plot:
-            from .plotting import figure_control_history, save_figure
+            from rockstudy.plotting import figure_control_history, save_figure
             save_figure(figure_control_history(ds, "2-3 style"), args.plot)
             out["plot"] = args.plot
     print(json.dumps(out, indent=2))
@@ -287,8 +288,8 @@ def _cmd_simulate(args, parser):
 
 def _cmd_simulate_record(args, parser):
     """``simulate --record FILE``: one run under a recorded (or synthetic) ground motion."""
-    from .records import read_record, unit_factor
-    from .simulate import simulate
+    from rockstudy.engine.simulate import simulate
+    from rockstudy.model.records import read_record, unit_factor
     if args.noise_level != 0:
         parser.error("argument --noise-level: noise contaminates the analytic excitations; not with --record")
     if args.record_unit is not None:
@@ -334,18 +335,18 @@ def _cmd_simulate_record(args, parser):
                pga_m_s2=motion.peak(), pga_uplift_ratio=pga_ratio, sampling_time_s=args.sampling_time,
                delay_s=args.delay, sensor_band_hz=args.sensor_band)
     if args.output or args.plot:
-        from .datasets import history_dataset
+        from rockstudy.studies.datasets import history_dataset
         ds = history_dataset(res, scenario, motion, math.nan, pga_ratio, 0, dt=min(record.dt, 0.0025))
         ds.attrs.update(record.to_attrs(), excitation="record", record_scale=args.record_scale,
                         excitation_end_s=record.duration,
                         amplitude_ratio_note="PGA/(g tan(alpha)) of the scaled record",
                         title=f"Time history, {args.strategy}, record {record.name}, scale {args.record_scale:g}")
         if args.output:
-            from .io import write_netcdf
+            from rockstudy.core.io import write_netcdf
             write_netcdf(ds, args.output)
             out["output"] = args.output
         if args.plot:
-            from .plotting import figure_control_history, save_figure
+            from rockstudy.plotting import figure_control_history, save_figure
             fig = figure_control_history(ds, "record")
             fig.axes[0].set_title(f"{args.strategy}, record {record.name} x {args.record_scale:g}, "
                                   f"PGA/(g tan(alpha)) = {pga_ratio:.3g} ({res.status})", fontsize=10)
@@ -358,7 +359,7 @@ def _uplift_amplitude_ratio(scenario, frequency_ratio, realisation) -> float:
     """Lowest amplitude ratio at which the ground motion can uplift the block (1 / its unit peak). [-]"""
     import numpy as np
 
-    from .excitation import modulated_peak
+    from rockstudy.model.excitation import modulated_peak
     _, rec = scenario.motion(frequency_ratio, 1.0, realisation)
     if rec is not None:
         peak = float(np.max(np.abs(rec.values)))
@@ -368,7 +369,7 @@ def _uplift_amplitude_ratio(scenario, frequency_ratio, realisation) -> float:
 
 
 def _cmd_threshold(args, parser):
-    from .spectra import threshold
+    from rockstudy.analysis.spectra import threshold
     try:
         _check_common(args)
         scenario = _scenario(args, parser)
@@ -400,10 +401,10 @@ def _cmd_threshold(args, parser):
 def _cmd_spectrum(args, parser):
     import numba
 
-    from .datasets import document_missing
-    from .excitation import excitation_duration
-    from .io import write_netcdf
-    from .spectra import frequency_grid, spectrum
+    from rockstudy.analysis.spectra import frequency_grid, spectrum
+    from rockstudy.core.io import write_netcdf
+    from rockstudy.model.excitation import excitation_duration
+    from rockstudy.studies.datasets import document_missing
     if args.engine != "fast":
         parser.error("argument --engine: spectra run on the fast engine only")
     try:
@@ -439,7 +440,7 @@ def _cmd_spectrum(args, parser):
         n_sims, n_sims * SECONDS_PER_SIMULATION / args.threads, args.threads, SECONDS_PER_SIMULATION)
     ds = document_missing(spectrum(scenario, freqs, realisations=range(n_real), grid=grid, with_map=args.map))
     if args.plot:
-        from .plotting import figure_spectrum, save_figure
+        from rockstudy.plotting import figure_spectrum, save_figure
         save_figure(figure_spectrum(ds, label=args.strategy), args.plot)
     write_netcdf(ds, args.output)
     print(json.dumps({"output": args.output, "frequencies": len(freqs), "realisations": int(ds.sizes["realisation"]),
@@ -449,8 +450,8 @@ def _cmd_spectrum(args, parser):
 def _cmd_jos(args, parser):
     import numpy as np
 
-    from .io import read_netcdf
-    from .tables import jos_of
+    from rockstudy.core.io import read_netcdf
+    from rockstudy.studies.tables import jos_of
     try:
         v.check_positive("--a-max0", args.a_max0, "g")
     except v.InputError as exc:

@@ -17,6 +17,8 @@ import numpy as np  # noqa: E402
 from matplotlib.colors import BoundaryNorm, ListedColormap  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
+from rockstudy.core.io import atomic_write
+
 FREQUENCY_LABEL = r"$\omega_p/p$ [-]"
 AMPLITUDE_LABEL = r"$a_p/(g\,\tan\alpha)$ [-]"
 OUTCOME_COLOURS = {"no_uplift": "#f2f2f2", "safe": "#a6d96a", "overturned_without_impact": "#d7191c",
@@ -252,9 +254,8 @@ def figure_spectrum(ds, label: str | None = None):
 
 
 def save_figure(fig, *paths) -> list[Path]:
-    """Save ``fig`` to each path atomically (format from the suffix; :func:`rockstudy.io.atomic_write`)
+    """Save ``fig`` to each path atomically (format from the suffix; :func:`rockstudy.core.io.atomic_write`)
     and close it."""
-    from .io import atomic_write
     written = []
     for path in map(Path, paths):
         atomic_write(path, partial(fig.savefig, dpi=150, format=path.suffix.lstrip(".")))
@@ -267,7 +268,7 @@ def save_figure(fig, *paths) -> list[Path]:
 def plot_readings(ax, table, closest: str | None = None):
     """FS J_OS against the noise level, one line per noise reading, the paper's values as markers.
 
-    ``table`` is a readings table (:func:`rockstudy.readings.readings_table`); the closest reading
+    ``table`` is a readings table (:func:`rockstudy.studies.noise_readings.readings_table`); the closest reading
     is drawn thicker. Returns the lines drawn.
     """
     x = 100 * np.asarray(table["level_value"].values, dtype=float)
@@ -298,7 +299,7 @@ def figure_readings(table):
 def figure_calibration(grid, best: dict | None = None):
     """J_OS of CS01 and CS02 against FS over kappa_max x xi (one panel per strategy and noise level).
 
-    ``grid`` is a calibration grid dataset (:func:`rockstudy.calibration.grid_dataset`) with
+    ``grid`` is a calibration grid dataset (:func:`rockstudy.studies.device_calibration.grid_dataset`) with
     ``j_os`` over (strategy, reference, noise_level, ultimate_rotation_ratio, kappa_min_ratio,
     kappa_max, damping_ratio). The maps are drawn at the θ_u/α and κ_min/κ_max of ``best`` (an
     anchorage dict, marked with a star; without it, at the first values of the design); the

@@ -4,19 +4,12 @@
 # optional `beyond:` section of the config (without it these rules do not exist).
 
 BEYOND = config.get("beyond")
-# rerun these jobs when the simulation code or the modules of these studies change
-BEYOND_LIBRARY = LIBRARY + study.source_fingerprint(["records.py", "synthetic.py", "fragility.py", "probability.py"])
+# (checked with the rest of the config by rockstudy.studies.study.check_study)
 BEYOND_IN_ALL = []  # the fragility study (about a minute) runs with `all`; the probability surfaces do not
 
 if BEYOND:
     PROB = BEYOND["probability"]
     FRAG = BEYOND["fragility"]
-    for _level in PROB["noise_levels"]:
-        if _level not in LEVELS:
-            raise ValueError(f"beyond.probability.noise_levels: {_level!r} is not one of noise_levels "
-                             f"({', '.join(LEVELS)})")
-    if "FS" not in FRAG["strategies"]:
-        raise ValueError("beyond.fragility.strategies: FS is needed as the reference of the median shift")
     FRAGILITY_FILES = [f"{OUT}/fragility/fragility.nc", f"{OUT}/tables/fragility.csv", f"{OUT}/tables/fragility.md",
                        f"{OUT}/figures/fragility.png", f"{OUT}/figures/fragility.pdf"]
     BEYOND_IN_ALL = FRAGILITY_FILES
@@ -58,7 +51,7 @@ if BEYOND:
             realisations=config["realisations"],
             frequency_grid=PROB["frequency_grid"],
             amplitude_grid=PROB["amplitude_grid"],
-            library=BEYOND_LIBRARY,
+            library=LIBRARY,
         conda:
             "../envs/rockstudy.yaml"
         threads: 1
@@ -78,7 +71,7 @@ if BEYOND:
                 f"{OUT}/logs/records/synthetic.log",
             params:
                 synthetic=FRAG["synthetic"],
-                library=BEYOND_LIBRARY,
+                library=LIBRARY,
             conda:
                 "../envs/rockstudy.yaml"
             threads: 1
@@ -108,7 +101,7 @@ if BEYOND:
             intensity_levels=FRAG["intensity_levels"],
             bootstrap=FRAG["bootstrap"],
             seed=FRAG["seed"],
-            library=BEYOND_LIBRARY,
+            library=LIBRARY,
         conda:
             "../envs/rockstudy.yaml"
         threads: 1

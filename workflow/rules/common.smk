@@ -1,11 +1,12 @@
 # Names, paths and parameter dictionaries shared by the rules.
 OUT = config["results_dir"]
 LEVELS = config["noise_levels"]
-FREE = study.noise_free_level(LEVELS)
+FREE = parameters.noise_free_level(LEVELS)
 NOISY = [name for name in LEVELS if name != FREE]
-LIBRARY = study.source_fingerprint()  # rerun the simulations whenever the library changes
-BOOKKEEPING = study.source_fingerprint(["study.py", "datasets.py", "tables.py"])  # rerun what they assemble
-PLOTTING = study.source_fingerprint(["plotting.py"])  # redraw the figures when plotting.py changes
+# Source fingerprints by layer (rockstudy's subpackages): a job reruns when the code it runs changes.
+LIBRARY = study.source_fingerprint()  # the simulation layers: core, model, engine, analysis
+BOOKKEEPING = study.source_fingerprint("core", "analysis", "studies")  # what assembles datasets and tables
+PLOTTING = study.source_fingerprint("plotting.py")  # redraw the figures when the plotting module changes
 SAMPLING = config["sampling_sweep"]
 DELAY = config["delay_sweep"]
 EX = config["example_point"]
@@ -42,13 +43,13 @@ def scenario(strategy, level, ts=0.0, delay=0.0):
 SIM_MEM_MB = 600
 
 
-CHUNK_RUNTIME = 5 + int(0.15 * config["realisations_per_job"] * len(study.frequency_ratios(config["frequency_grid"]))
+CHUNK_RUNTIME = 5 + int(0.15 * config["realisations_per_job"] * len(parameters.frequency_ratios(config["frequency_grid"]))
                       / 60.0 + 1)
 """Minutes to request for one spectrum chunk: 5 + 0.15 s per (realisation x frequency)."""
 
 
 def chunks(level):
-    return study.realisation_chunks(config["realisations"], config["realisations_per_job"], LEVELS[level] > 0)
+    return parameters.realisation_chunks(config["realisations"], config["realisations_per_job"], LEVELS[level] > 0)
 
 
 def chunk_files(wildcards, ts="0", delay="0"):
@@ -83,8 +84,8 @@ TABLES = [f"{OUT}/tables/{t}.{e}" for t in ("table1", "timing_sampling", "timing
 # Reproducing the paper's numbers (issue 9): readings study, claims checklist, device calibration.
 REPRO = config["reproduction"]
 READINGS = REPRO["readings"]
-STUDY_READING = study.reading_from_dict(config["noise"])
-SAME_AS_STUDY = [name for name in READINGS if study.reading_from_dict(READINGS[name]) == STUDY_READING
+STUDY_READING = parameters.reading_from_dict(config["noise"])
+SAME_AS_STUDY = [name for name in READINGS if parameters.reading_from_dict(READINGS[name]) == STUDY_READING
                  and REPRO["realisations"] == config["realisations"] and REPRO["strategy"] in config["strategies"]]
 """Readings equal to the study's own ``noise:`` reading, with its realisations: the readings study reuses the
 study's gathered spectra for them (same block, seed, grids and realisations, so the same records)."""
@@ -115,10 +116,9 @@ READINGS_TABLE = [f"{OUT}/reproduction/readings/readings.{e}" for e in ("nc", "c
 READINGS_FIGURE = [f"{OUT}/reproduction/readings/fig_readings.{e}" for e in ("png", "pdf")]
 CLAIMS = [f"{OUT}/reproduction/{name}" for name in ("claims.md", "claims.nc", "claims.csv", "table1_vs_paper.nc",
                                                      "table1_vs_paper.csv")]
-CLAIMS_BOOKKEEPING = study.source_fingerprint(["claims.py", "study.py", "tables.py", "utility.py"])
 CAL = config["calibration"]
 CAL_DESIGN = {key: CAL[key] for key in ("kappa_max", "damping_ratio", "ultimate_rotation_ratio", "kappa_min_ratio")}
-CAL_ALPHA = study.block_from_dict(config["block"]).alpha  # theta_u = ratio * alpha
+CAL_ALPHA = parameters.block_from_dict(config["block"]).alpha  # theta_u = ratio * alpha
 CAL_DEVICES = calibration.CalibrationDesign(**CAL_DESIGN).devices(CAL_ALPHA)
 CAL_FS = [f"{OUT}/reproduction/calibration/coarse/FS_{level}.nc" for level in LEVELS]
 CAL_REFINE = [f"{OUT}/reproduction/calibration/refine/c{rank}_{s}_{level}.nc"

@@ -48,7 +48,7 @@ rule claims:
     log:
         f"{OUT}/logs/reproduction/claims.log",
     params:
-        bookkeeping=CLAIMS_BOOKKEEPING,
+        bookkeeping=BOOKKEEPING,
         noise_levels=LEVELS,
         a_max0=config["a_max0"],
         reading=config["noise"],
@@ -73,7 +73,7 @@ rule readings_table:
     log:
         f"{OUT}/logs/reproduction/readings_table.log",
     params:
-        bookkeeping=study.source_fingerprint(["readings.py", "claims.py", "utility.py", "noise.py"]),
+        bookkeeping=BOOKKEEPING,
         spectrum_keys=[(name, level) for name in READINGS for level in NOISY],
         readings=READINGS,
         levels={level: LEVELS[level] for level in NOISY},
@@ -178,7 +178,7 @@ rule calibration_grid:
         design=CAL_DESIGN,
         alpha=CAL_ALPHA,
         reading=config["noise"],
-        bookkeeping=study.source_fingerprint(["calibration.py", "claims.py", "study.py", "tables.py"]),
+        bookkeeping=BOOKKEEPING,
         plotting=PLOTTING,
     conda:
         "../envs/rockstudy.yaml"
@@ -234,7 +234,7 @@ rule calibration_refine:
         levels=LEVELS,
         a_max0=config["a_max0"],
         reading=config["noise"],
-        bookkeeping=study.source_fingerprint(["calibration.py", "claims.py", "study.py", "tables.py"]),
+        bookkeeping=BOOKKEEPING,
     conda:
         "../envs/rockstudy.yaml"
     threads: 1

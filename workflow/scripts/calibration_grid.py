@@ -1,5 +1,8 @@
 """Device calibration: the screened grid (J_OS maps, residuals, ranking share) and its figure."""
-from rockstudy import calibration, io, plotting, study
+from rockstudy import plotting
+from rockstudy.core import io
+from rockstudy.studies import device_calibration as calibration
+from rockstudy.studies import study
 
 study.log_to(snakemake.log[0])
 p = snakemake.params

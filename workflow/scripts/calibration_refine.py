@@ -1,5 +1,7 @@
 """Device calibration: the best screened devices with the study's full settings - 12 residuals, K_max, D."""
-from rockstudy import calibration, io, study
+from rockstudy.core import io
+from rockstudy.studies import device_calibration as calibration
+from rockstudy.studies import parameters, study
 
 study.log_to(snakemake.log[0])
 p = snakemake.params
@@ -10,7 +12,7 @@ spectra = [io.read_netcdf(f) for f in snakemake.input.spectra]
 tables = [calibration.device_table(fs, [ds for ds in spectra if ds.attrs["calibration_rank"] == rank],
                                    dict(p.levels), p.a_max0) for rank in range(len(best))]
 runtime = grid.attrs["compute_time_s"] + sum(t.attrs["compute_time_s"] for t in tables)
-cands = calibration.candidates_dataset(study.block_from_dict(p.block), [d for d, _ in best], tables,
+cands = calibration.candidates_dataset(parameters.block_from_dict(p.block), [d for d, _ in best], tables,
                                        [rms for _, rms in best],
                                        {"compute_time_s": runtime, "noise_reading": str(p.reading)})
 io.write_netcdf(cands, snakemake.output.nc)

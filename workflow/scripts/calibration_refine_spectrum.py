@@ -1,14 +1,16 @@
 """Device calibration: one spectrum of a best screened device with the study's full settings (40 realisations)."""
 import numba
 
-from rockstudy import calibration, io, study
+from rockstudy.core import io
+from rockstudy.studies import device_calibration as calibration
+from rockstudy.studies import parameters, study
 
 study.log_to(snakemake.log[0])
 numba.set_num_threads(snakemake.threads)
 p = snakemake.params
 device, coarse_rms = calibration.best_devices(io.read_netcdf(snakemake.input.grid), p.rank + 1)[p.rank]
 ds, = calibration.device_spectra(p.scenario, device, [p.strategy], {p.level: p.noise_level},
-                                 study.frequency_ratios(p.frequency_grid), p.realisations,
-                                 study.amplitude_grid(p.amplitude_grid))
+                                 parameters.frequency_ratios(p.frequency_grid), p.realisations,
+                                 parameters.amplitude_grid(p.amplitude_grid))
 ds.attrs.update(calibration_rank=p.rank, coarse_rms_residual=coarse_rms, rockstudy_source_sha256=p.library)
 io.write_netcdf(ds, snakemake.output[0])

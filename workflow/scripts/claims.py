@@ -1,5 +1,6 @@
 """The claims checklist of §5 and the Conclusions, and Table 1 side by side with the paper (issue 9)."""
-from rockstudy import claims, io, study
+from rockstudy.core import io
+from rockstudy.studies import claims, study
 
 study.log_to(snakemake.log[0])
 p, i = snakemake.params, snakemake.input

@@ -1,5 +1,6 @@
 """Fig. 6a data: a_min,OVER over the first N noise realisations, N = 1 ... n."""
-from rockstudy import datasets, io, study
+from rockstudy.core import io
+from rockstudy.studies import datasets, study
 
 study.log_to(snakemake.log[0])
 ds = io.read_netcdf(snakemake.input[0])

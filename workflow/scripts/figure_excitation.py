@@ -1,5 +1,7 @@
 """Fig. 4: baseline Eq. 23 excitation and the same contaminated with noise."""
-from rockstudy import io, plotting, study
+from rockstudy import plotting
+from rockstudy.core import io
+from rockstudy.studies import study
 
 study.log_to(snakemake.log[0])
 fig = plotting.figure_excitation(io.read_netcdf(snakemake.input[0]))

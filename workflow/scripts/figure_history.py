@@ -1,5 +1,7 @@
 """Figs. 2-3: normalised time history of the controlled block and the stiffness K."""
-from rockstudy import io, plotting, study
+from rockstudy import plotting
+from rockstudy.core import io
+from rockstudy.studies import study
 
 study.log_to(snakemake.log[0])
 fig = plotting.figure_control_history(io.read_netcdf(snakemake.input[0]), snakemake.params.paper_figure)

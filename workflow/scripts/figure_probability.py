@@ -1,7 +1,9 @@
 """P(overturn) surfaces over the noise realisations, laid out like the overturning maps."""
-from rockstudy import io, plotting, study
+from rockstudy import plotting
+from rockstudy.core import io
+from rockstudy.studies import parameters, study
 
 study.log_to(snakemake.log[0])
 surfaces = [io.read_netcdf(path) for path in snakemake.input]
-fig = plotting.figure_probability(surfaces, study.a_max0_ratio(surfaces[0], snakemake.params.a_max0))
+fig = plotting.figure_probability(surfaces, parameters.a_max0_ratio(surfaces[0], snakemake.params.a_max0))
 plotting.save_figure(fig, snakemake.output.png, snakemake.output.pdf)

@@ -1,5 +1,7 @@
 """Figure of the readings study: FS J_OS against noise level per reading, the paper's values as markers."""
-from rockstudy import io, plotting, study
+from rockstudy import plotting
+from rockstudy.core import io
+from rockstudy.studies import study
 
 study.log_to(snakemake.log[0])
 plotting.save_figure(plotting.figure_readings(io.read_netcdf(snakemake.input[0])), snakemake.output.png,

@@ -1,8 +1,10 @@
 """Fig. 5: thresholds of two noise realisations and the rotation histories at "Ex01"."""
-from rockstudy import io, plotting, study
+from rockstudy import plotting
+from rockstudy.core import io
+from rockstudy.studies import parameters, study
 
 study.log_to(snakemake.log[0])
 spectrum = io.read_netcdf(snakemake.input.spectrum[0])
-point = {**snakemake.params.point, "a_max0_ratio": study.a_max0_ratio(spectrum, snakemake.params.a_max0)}
+point = {**snakemake.params.point, "a_max0_ratio": parameters.a_max0_ratio(spectrum, snakemake.params.a_max0)}
 fig = plotting.figure_realisations(spectrum, [io.read_netcdf(p) for p in snakemake.input.histories], point)
 plotting.save_figure(fig, snakemake.output.png, snakemake.output.pdf)

@@ -1,14 +1,15 @@
 """Fragility of each strategy over the record suite: stripes, lognormal MLE, median shift over FS."""
-from rockstudy import io, study
-from rockstudy.control import Control
-from rockstudy.fragility import fragility_dataset, fragility_markdown
-from rockstudy.records import read_record
-from rockstudy.spectra import frequency_grid
-from rockstudy.synthetic import MODEL_REFERENCE, ranges_from_dict
+from rockstudy.analysis.fragility import fragility_dataset, fragility_markdown
+from rockstudy.analysis.spectra import frequency_grid
+from rockstudy.core import io
+from rockstudy.model.control import Control
+from rockstudy.model.records import read_record
+from rockstudy.model.synthetic import MODEL_REFERENCE, ranges_from_dict
+from rockstudy.studies import parameters, study
 
 study.log_to(snakemake.log[0])
 p = snakemake.params
-scenario = study.scenario_from_dict(p.scenario)
+scenario = parameters.scenario_from_dict(p.scenario)
 records = [read_record(path, unit) for path, unit in zip(snakemake.input.records, p.units)]
 suite = {"records": "files given in the config"}
 if p.synthetic is not None:

@@ -1,7 +1,8 @@
 """Concatenate the realisation chunks of one spectrum and recompute a_min,OVER (min over realisations)."""
 import numpy as np
 
-from rockstudy import datasets, io, study
+from rockstudy.core import io
+from rockstudy.studies import datasets, study
 
 study.log_to(snakemake.log[0])
 ds = datasets.gather_spectra([io.read_netcdf(path) for path in snakemake.input])

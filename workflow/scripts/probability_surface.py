@@ -1,14 +1,15 @@
 """P(overturn) at every (omega_p/p, a_p/(g tan alpha)) point over the noise realisations (Eq. P1)."""
 import numba
 
-from rockstudy import datasets, io, study
-from rockstudy.probability import probability_surface
-from rockstudy.spectra import AmplitudeGrid, frequency_grid
+from rockstudy.analysis.probability import probability_surface
+from rockstudy.analysis.spectra import AmplitudeGrid, frequency_grid
+from rockstudy.core import io
+from rockstudy.studies import datasets, parameters, study
 
 study.log_to(snakemake.log[0])
 numba.set_num_threads(snakemake.threads)
 p = snakemake.params
-scenario = study.scenario_from_dict(p.scenario)
+scenario = parameters.scenario_from_dict(p.scenario)
 datasets.check_noise(io.read_netcdf(snakemake.input.noise), scenario)
 ds = probability_surface(scenario, frequency_grid(**p.frequency_grid), realisations=range(p.realisations),
                          grid=AmplitudeGrid(**p.amplitude_grid))

@@ -1,11 +1,13 @@
 """The readings study: FS row of Table 1 under each reading of the noise model, against the paper (issue 9)."""
-from rockstudy import io, readings, study
+from rockstudy.core import io
+from rockstudy.studies import noise_readings as readings
+from rockstudy.studies import parameters, study
 
 study.log_to(snakemake.log[0])
 p = snakemake.params
 spectra = {key: io.read_netcdf(path) for key, path in zip(p.spectrum_keys, snakemake.input.spectra)}
 table = readings.readings_table(spectra, io.read_netcdf(snakemake.input.reference),
-                                {name: study.reading_from_dict(spec) for name, spec in p.readings.items()},
+                                {name: parameters.reading_from_dict(spec) for name, spec in p.readings.items()},
                                 dict(p.levels), p.a_max0)
 io.write_netcdf(table, snakemake.output.nc)
 io.write_text(readings.readings_csv(table), snakemake.output.csv)

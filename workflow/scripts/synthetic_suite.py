@@ -1,7 +1,8 @@
 """The synthetic record suite: one PEER .AT2 file per record and a netCDF file with the model parameters."""
-from rockstudy import io, study
-from rockstudy.records import write_at2
-from rockstudy.synthetic import ranges_from_dict, suite_dataset, synthetic_suite
+from rockstudy.core import io
+from rockstudy.model.records import write_at2
+from rockstudy.model.synthetic import ranges_from_dict, suite_dataset, synthetic_suite
+from rockstudy.studies import study
 
 study.log_to(snakemake.log[0])
 spec = snakemake.params.synthetic

@@ -1,5 +1,6 @@
 """Table 1: J_OS at each noise level against the noise-free strategy and against FS (Eqs. 18-22)."""
-from rockstudy import io, study, tables
+from rockstudy.core import io
+from rockstudy.studies import study, tables
 
 study.log_to(snakemake.log[0])
 p = snakemake.params

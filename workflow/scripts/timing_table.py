@@ -1,5 +1,6 @@
 """J_OS of the sampling (or delay) sweep against the same strategy without it and against FS (§5.2)."""
-from rockstudy import io, study, tables
+from rockstudy.core import io
+from rockstudy.studies import study, tables
 
 study.log_to(snakemake.log[0])
 p = snakemake.params

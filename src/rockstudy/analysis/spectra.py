@@ -1,0 +1,311 @@
+"""Overturning spectra (paper §4–5): the minimum overturning amplitude per excitation
+frequency, over noise realisations, with overturning maps and convergence in N.
+
+The unsafe region is not monotone in amplitude (there are safe islands above the first
+unsafe amplitude), so a threshold is found by an upward scan of a coarse amplitude grid and
+a bisection between the last safe and the first overturning grid point, down to a stated
+resolution. All amplitudes are ratios a_p / (g·tanα); frequencies are ratios ω_p / p.
+"""
+from __future__ import annotations
+
+import logging
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from rockstudy._version import __version__
+from rockstudy.analysis.scenario import Scenario
+from rockstudy.core.constants import PAPER
+from rockstudy.engine import _kernel as kn
+from rockstudy.engine.outcome import OUTCOME_MEANINGS, Outcome
+from rockstudy.engine.simulate import kernel_record, pack_parameters, simulate
+from rockstudy.model.excitation import GroundMotion, modulated_peak
+
+log = logging.getLogger("rockstudy")
+
+PAPER_EQUATIONS = "Eqs. 1-17 (model), Eq. 23 (excitation), Figs. 5-8 (spectra)"
+
+
+@dataclass(frozen=True)
+class AmplitudeGrid:
+    """Amplitude ratios a_p/(g·tanα) scanned upward, and the refinement resolution.
+
+    Parameters
+    ----------
+    start, stop, step : float
+        Coarse scan from ``start`` to ``stop`` (inclusive) in ``step``. [-]
+    resolution : float
+        Width of the final bracket around the threshold. [-]
+    """
+
+    start: float = 0.9
+    stop: float = 6.0
+    step: float = 0.1
+    resolution: float = 0.01
+
+    def __post_init__(self):
+        for name in ("start", "stop", "step", "resolution"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise ValueError(f"AmplitudeGrid.{name} must be a positive number, got {v!r}")
+        if self.stop <= self.start:
+            raise ValueError(f"AmplitudeGrid.stop ({self.stop}) must exceed start ({self.start})")
+        if self.resolution > self.step:
+            raise ValueError(f"AmplitudeGrid.resolution ({self.resolution}) must not exceed step ({self.step})")
+
+    def values(self) -> np.ndarray:
+        n = int(math.floor((self.stop - self.start) / self.step + 1e-9))
+        return np.round(self.start + self.step * np.arange(n + 1), 10)
+
+
+def frequency_grid(start: float = 0.25, stop: float = 5.0, step: float = 0.1) -> np.ndarray:
+    """Frequency ratios ω_p/p from ``start`` to ``stop`` (inclusive) in ``step``. [-]"""
+    if not (start > 0 and stop >= start and step > 0):
+        raise ValueError(f"frequency grid needs 0 < start <= stop and step > 0, got {start}, {stop}, {step}")
+    n = int(math.floor((stop - start) / step + 1e-9))
+    return np.round(start + step * np.arange(n + 1), 10)
+
+
+def _unit_peak(scenario: Scenario, rec) -> float:
+    if rec is not None:
+        return float(np.max(np.abs(rec.values)))
+    return modulated_peak() if scenario.excitation == "modulated" else 1.0
+
+
+def _reference_outcome(scenario: Scenario, motion: GroundMotion, amplitude_ratio: float, peak: float) -> Outcome:
+    """Outcome of one reference-engine run at one amplitude ratio."""
+    if amplitude_ratio * peak <= 1.0:
+        return Outcome.NO_UPLIFT
+    r = simulate(scenario.block, scenario.anchorage, scenario.control,
+                 motion.scaled(amplitude_ratio * scenario.block.uplift_acceleration), engine="reference",
+                 overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
+    if not r.overturned:
+        return Outcome.SAFE
+    return Outcome.OVERTURNED_AFTER_IMPACT if r.n_impacts else Outcome.OVERTURNED_WITHOUT_IMPACT
+
+
+def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 0,
+              grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast", energy_bound: bool = True) -> dict:
+    """Minimum overturning amplitude ratio a_p/(g·tanα) at one frequency ratio.
+
+    ``energy_bound`` (fast engine) ends each run once it provably cannot overturn any more
+    (docs/model.md); it never changes an outcome, only the time spent (False: integrate every run
+    to rest or the time limit, as before).
+
+    Returns a dict with ``amplitude_ratio`` (None when nothing on the grid overturns),
+    ``last_safe_amplitude_ratio``, ``n_simulations``, the bound scanned, and the noise record's
+    energy and PGA ratios.
+    """
+    if not (frequency_ratio > 0 and math.isfinite(frequency_ratio)):
+        raise ValueError(f"frequency_ratio must be a positive number, got {frequency_ratio!r}")
+    motion, rec = scenario.motion(frequency_ratio, 1.0, realisation)
+    peak = _unit_peak(scenario, rec)
+    values = grid.values()
+    if engine == "fast":
+        P = pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
+                            overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
+                            energy_bound=energy_bound)
+        thr, lo, n_sim, n_und = kn.threshold_kernel(P, kn.writable(kernel_record(scenario.control, motion)),
+                                                    kn.writable(motion.vertical), values, float(grid.resolution),
+                                                    float(peak))
+    elif engine == "reference":
+        # the same scan as the fast engine's (kn.threshold_kernel), driven from Python
+        state, done, n_sim, lower = kn.scan_start(), False, 0, 1.0 / peak
+        while not done:
+            o = _reference_outcome(scenario, motion, float(kn.scan_amplitude(state, values)), peak)
+            n_sim += o != Outcome.NO_UPLIFT
+            done = kn.scan_update(state, values, grid.resolution, lower, o.overturned)
+        thr, lo, n_und = state[kn.S_HI], state[kn.S_LO], 0
+    else:
+        raise ValueError(f"engine must be 'fast' or 'reference', got {engine!r}")
+    return {
+        "amplitude_ratio": None if not np.isfinite(thr) else float(thr),
+        "last_safe_amplitude_ratio": float(lo),
+        "max_amplitude_ratio": float(values[-1]),
+        "resolution": grid.resolution,
+        "frequency_ratio": float(frequency_ratio),
+        "n_simulations": int(n_sim),
+        "n_undetermined": int(n_und),
+        "energy_ratio": 1.0 if rec is None else rec.energy_ratio,
+        "pga_ratio": 1.0 if rec is None else rec.pga_ratio,
+        "engine": engine,
+    }
+
+
+def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: bool = True):
+    """Parameter rows and concatenated records for every (realisation, frequency) case."""
+    rows, recs, peaks, e_ratio, p_ratio = [], [], [], [], []
+    for k in realisations:
+        for f in frequency_ratios:
+            motion, rec = scenario.motion(float(f), 1.0, int(k))
+            rows.append(pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
+                                        overturn_criterion=scenario.overturn_criterion,
+                                        free_time=scenario.free_time, energy_bound=energy_bound))
+            recs.append(kernel_record(scenario.control, motion))
+            peaks.append(_unit_peak(scenario, rec))
+            e_ratio.append(1.0 if rec is None else rec.energy_ratio)
+            p_ratio.append(1.0 if rec is None else rec.pga_ratio)
+    lengths = np.array([len(r) for r in recs], dtype=np.int64)
+    offsets = np.concatenate([[0], np.cumsum(lengths)[:-1]]).astype(np.int64)
+    flat = np.concatenate(recs) if lengths.sum() else np.zeros(0)
+    return (np.array(rows), flat, offsets, lengths, np.array(peaks), np.array(e_ratio), np.array(p_ratio))
+
+
+def _run_chunked(fn, n_cases: int, label: str, n_chunks: int):
+    """Run ``fn(sl)`` over slices of the cases, logging progress and the time left."""
+    t0 = time.perf_counter()
+    bounds = np.linspace(0, n_cases, min(n_chunks, n_cases) + 1).astype(int)
+    parts = []
+    for i in range(len(bounds) - 1):
+        parts.append(fn(slice(bounds[i], bounds[i + 1])))
+        done = bounds[i + 1]
+        elapsed = time.perf_counter() - t0
+        eta = elapsed / done * (n_cases - done)
+        log.info("%s: %d/%d cases (%.0f%%), %.1f s elapsed, about %.1f s left",
+                 label, done, n_cases, 100 * done / n_cases, elapsed, eta)
+    return parts
+
+
+def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: AmplitudeGrid = AmplitudeGrid(),
+             with_map: bool = False, progress_chunks: int = 10, energy_bound: bool = True) -> xr.Dataset:
+    """Overturning spectrum: the threshold at each frequency for each noise realisation.
+
+    Parameters
+    ----------
+    scenario : Scenario
+    frequency_ratios : array_like
+        ω_p/p values. [-]
+    realisations : sequence of int
+        Noise realisation indices (ignored beyond the first when ``noise_level`` = 0).
+    grid : AmplitudeGrid
+    with_map : bool
+        Also compute the outcome at every (frequency, amplitude) grid point.
+    energy_bound : bool
+        End runs that provably cannot overturn any more (see :func:`threshold`).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``threshold_realisation`` (realisation, frequency_ratio); the paper's aggregate
+        ``threshold`` (the lowest over realisations) with ``threshold_mean`` and ``threshold_std``;
+        ``last_safe``, ``n_simulations``, ``energy_ratio``, ``pga_ratio``; and ``outcome`` on
+        request. NaN thresholds mean "no overturning up to the grid's upper bound".
+    """
+    freqs = np.asarray(frequency_ratios, dtype=float)
+    if freqs.ndim != 1 or len(freqs) == 0 or np.any(freqs <= 0):
+        raise ValueError("frequency_ratios must be a non-empty 1-D list of positive numbers")
+    realisations = [int(k) for k in realisations]
+    if len(realisations) == 0 or any(k < 0 for k in realisations) or len(set(realisations)) != len(realisations):
+        raise ValueError(f"realisations must be distinct integers >= 0, got {realisations!r}")
+    if scenario.noise_level == 0 and len(realisations) > 1:
+        realisations = realisations[:1]  # without noise every realisation is the same record
+    values = grid.values()
+    Pm, recs, off, lens, peaks, e_ratio, p_ratio = _cases(scenario, freqs, realisations, energy_bound)
+    n = len(Pm)
+    label = f"spectrum {scenario.control.strategy} noise={scenario.noise_level:g} Ts={scenario.control.sampling_time:g}"
+    t0 = time.perf_counter()
+
+    def run(sl):
+        return kn.threshold_batch(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, grid.resolution, peaks[sl])
+
+    parts = _run_chunked(run, n, label, progress_chunks)
+    thr = np.concatenate([p[0] for p in parts])
+    low = np.concatenate([p[1] for p in parts])
+    nsim = np.concatenate([p[2] for p in parts])
+    nund = np.concatenate([p[3] for p in parts])
+    if nund.any():
+        log.warning("%s: %d run(s) hit the engine's event cap and were counted as not overturned "
+                    "(see the n_undetermined variable)", label, int(nund.sum()))
+    shape = (len(realisations), len(freqs))
+    ds = spectrum_dataset(scenario, freqs, realisations, thr.reshape(shape), low.reshape(shape),
+                          nsim.reshape(shape), e_ratio.reshape(shape), p_ratio.reshape(shape), grid,
+                          n_undetermined=nund.reshape(shape))
+    if with_map:
+        def run_map(sl):
+            return kn.outcome_batch(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, peaks[sl])
+        out = np.concatenate(_run_chunked(run_map, n, label + " map", progress_chunks))
+        ds["outcome"] = (("realisation", "frequency_ratio", "amplitude_ratio"), out.reshape(shape + (len(values),)),
+                         {"long_name": "outcome of the simulation at each grid point",
+                          "flag_values": np.arange(len(OUTCOME_MEANINGS), dtype=np.int8),
+                          "flag_meanings": " ".join(OUTCOME_MEANINGS)})
+        ds = ds.assign_coords(amplitude_ratio=("amplitude_ratio", values,
+                                               {"units": "1", "long_name": "amplitude ratio a_p/(g tan(alpha))"}))
+    ds.attrs["compute_time_s"] = time.perf_counter() - t0
+    return ds
+
+
+def spectrum_dataset(scenario, freqs, realisations, thr, low, nsim, e_ratio, p_ratio, grid,
+                     n_undetermined=None) -> xr.Dataset:
+    """Assemble the labelled spectrum Dataset (one strategy, noise level, T_s and Δτ)."""
+    dims = ("realisation", "frequency_ratio")
+    if n_undetermined is None:
+        n_undetermined = np.zeros(np.shape(thr), dtype=np.int64)
+    finite = np.isfinite(thr)
+    count = finite.sum(axis=0)
+    agg = np.where(count > 0, np.min(np.where(finite, thr, np.inf), axis=0), np.nan)
+    safe_count = np.maximum(count, 1)
+    mean = np.where(count > 0, np.where(finite, thr, 0.0).sum(axis=0) / safe_count, np.nan)
+    var = np.where(finite, (thr - mean) ** 2, 0.0).sum(axis=0) / safe_count
+    std = np.where(count > 0, np.sqrt(var), np.nan)
+    amp = {"units": "1", "long_name": "minimum overturning amplitude ratio a_min,OVER/(g tan(alpha))"}
+    ds = xr.Dataset(
+        data_vars={
+            "threshold": ("frequency_ratio", agg, {**amp, "description":
+                          "lowest threshold over the realisations (the paper's a_min,OVER); NaN: none below the "
+                          "scan's upper bound"}),
+            "threshold_mean": ("frequency_ratio", mean, {**amp, "description": "mean over realisations (NaN ignored)"}),
+            "threshold_std": ("frequency_ratio", std, {**amp, "description": "std over realisations (NaN ignored)"}),
+            "threshold_realisation": (dims, thr, {**amp, "description": "threshold of each noise realisation"}),
+            "last_safe": (dims, low, {"units": "1",
+                                      "long_name": "highest amplitude ratio found safe below the threshold"}),
+            "n_simulations": (dims, nsim, {"units": "1", "long_name": "simulations run for the threshold"}),
+            "n_undetermined": (dims, n_undetermined, {
+                "units": "1", "long_name": "runs that hit the fast engine's event cap",
+                "description": "counted as not overturned by the scan; 0 expected"}),
+            "energy_ratio": (dims, e_ratio, {"units": "1", "long_name": "noisy record energy / baseline energy"}),
+            "pga_ratio": (dims, p_ratio, {"units": "1", "long_name": "noisy record PGA / baseline PGA"}),
+        },
+        coords={
+            "frequency_ratio": ("frequency_ratio", np.asarray(freqs, float),
+                                {"units": "1", "long_name": "excitation frequency ratio omega_p/p"}),
+            "excitation_frequency": ("frequency_ratio", np.asarray(freqs, float) * scenario.block.p,
+                                     {"units": "rad/s", "long_name": "excitation circular frequency omega_p"}),
+            "realisation": ("realisation", np.asarray(realisations, dtype=np.int64),
+                            {"long_name": "noise realisation index k"}),
+            "strategy": ((), scenario.control.strategy, {"long_name": "control strategy"}),
+            "noise_level": ((), float(scenario.noise_level),
+                            {"units": "1", "long_name": "noise energy / baseline energy"}),
+            "sampling_time": ((), float(scenario.control.sampling_time),
+                              {"units": "s", "long_name": "controller sampling time T_s (0: continuous)"}),
+            "delay": ((), float(scenario.control.delay), {"units": "s", "long_name": "actuation delay"}),
+        },
+        attrs={
+            "title": f"Overturning spectrum, {scenario.control.strategy}, {scenario.excitation} excitation",
+            "rockstudy_version": __version__,
+            "paper": PAPER,
+            "paper_equations": PAPER_EQUATIONS,
+            "grid_amplitude_start": grid.start, "grid_amplitude_stop": grid.stop,
+            "grid_amplitude_step": grid.step, "grid_amplitude_resolution": grid.resolution,
+            "a_max0_ratio": 1.0 / math.tan(scenario.block.alpha),
+            "a_max0_ratio_note": "a_max,0 = g expressed as an amplitude ratio, 1/tan(alpha)",
+            **scenario.to_attrs(),
+        },
+    )
+    return ds
+
+
+def convergence(ds: xr.Dataset) -> xr.DataArray:
+    """Aggregate threshold (lowest over the first N realisations) for N = 1 … n (Fig. 6a)."""
+    thr = ds["threshold_realisation"].values
+    filled = np.where(np.isnan(thr), np.inf, thr)
+    run = np.minimum.accumulate(filled, axis=0)
+    run = np.where(np.isinf(run), np.nan, run)
+    n = np.arange(1, thr.shape[0] + 1)
+    return xr.DataArray(run, dims=("n_realisations", "frequency_ratio"),
+                        coords={"n_realisations": ("n_realisations", n, {"long_name": "number of realisations N"}),
+                                "frequency_ratio": ds["frequency_ratio"]},
+                        name="threshold_convergence",
+                        attrs={"units": "1", "long_name": "lowest threshold over the first N realisations"})

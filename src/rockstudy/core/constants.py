@@ -1,0 +1,79 @@
+"""Numerical constants of the model and the engines, each defined once with the reason for its value.
+
+Physical parameters (block, anchorage, control timing, excitation) are dataclasses; what lives here
+are the fixed choices of the study and of the integrators. ``docs/model.md`` says where each acts.
+"""
+from __future__ import annotations
+
+FREE_TIME = 30.0
+"""Free motion allowed after the excitation before a run stops as "time limit". [s]
+Long enough for every block of the study to come to rest (its rocking decays by e per impact)."""
+
+REST_VELOCITY_FACTOR = 1e-6
+"""An impact whose rebound |θ̇⁺| is below ``REST_VELOCITY_FACTOR·p·α`` ends the rocking (Eq. 15). [-]
+One millionth of the velocity scale p·α: negligible motion, and it ends the infinite impact
+sequence of chattering in finite time."""
+
+NOISE_DT = 0.0025
+"""Sampling step of the noisy records (paper §5). [s]"""
+
+FAST_RTOL = 1e-8
+"""Relative tolerance of the fast engine's Dormand–Prince error control. [-]
+Thresholds agree with a 1000× tighter tolerance within the scan's resolution (tests/analysis/test_spectra.py)."""
+
+FAST_ATOL = 1e-10
+"""Absolute tolerance of the fast engine (θ in rad, θ̇ in rad/s): far below any rotation that matters. [-]"""
+
+REFERENCE_RTOL = 1e-10
+"""Relative tolerance of the reference engine (scipy DOP853), 100× tighter than the fast engine. [-]"""
+
+REFERENCE_ATOL = 1e-12
+"""Absolute tolerance of the reference engine. [-]"""
+
+MAX_EVENTS = 2_000_000
+"""Safety cap on located events per fast-engine run; a run hitting it is "undetermined". [-]
+No run of the study comes near it; it turns an unforeseen infinite event loop into a reported outcome."""
+
+NEGLIGIBLE_STEP = 1e-9
+"""[s] An excursion from θ = 0 that returns within a step this short is not resolved further: the block
+is taken back on the ground at the step's end (θ = θ̇ = 0). Far below every time scale of the model."""
+
+ROTATION_TOLERANCE = 1e-12
+"""[rad] A located event within this of a rotation threshold (an ultimate rotation θ_u, the overturning
+rotation) counts as reaching it: the event locator stops on either side of the root by round-off."""
+
+IMPACT_TOLERANCE = 1e-14
+"""[rad] |θ| below this at a located zero crossing is an impact (θ = 0 up to round-off)."""
+
+TIME_TOLERANCE = 1e-12
+"""Relative tolerance for "a step ends at a known-time event" (record knot, controller sample). [-]"""
+
+LOCATE_TOLERANCE = 1e-13
+"""Width of the bracket (a fraction of the step) at which the Illinois event locator stops. [-]"""
+
+FIRST_STEP = 1e-3
+"""[s] Initial step of the fast engine (error control adapts it at once)."""
+
+MAX_STEP_FRACTION = 0.05
+"""Largest step as a fraction of the free-rocking period 2π/p and of the excitation period 2π/ω_p. [-]"""
+
+ENERGY_MARGIN = 1e-6
+"""[-] Safety margin of the energy bound that ends a run which can no longer overturn
+(docs/model.md, "Early stop below the overturning energy"): the bound must hold by at least this,
+far above the integrator's energy drift at FAST_RTOL."""
+
+
+def rest_velocity(p: float, alpha: float) -> float:
+    """Default rest velocity of Eq. (15), ``REST_VELOCITY_FACTOR·p·α``. [rad/s]
+
+    Parameters
+    ----------
+    p : float
+        Frequency parameter of the block. [rad/s]
+    alpha : float
+        Slenderness angle. [rad]
+    """
+    return REST_VELOCITY_FACTOR * p * alpha
+
+PAPER = "Use of overturning spectra in the performance evaluation of on-off control strategies for rocking objects"
+"""Title of the paper every dataset cites (its ``paper`` attribute)."""

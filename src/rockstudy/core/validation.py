@@ -1,0 +1,278 @@
+"""One validation layer for every way input enters: the CLI, the workflow's config check and the library.
+
+Every check takes the name the user typed (``--frequency-step``, ``frequency_grid.step``,
+``Block.width``), the value, and the unit the user gave it in, and raises :class:`InputError`
+(a :class:`ValueError`) whose message names the input, the value and what is allowed. The checks
+run before any work, so a bad input never costs a computation and never leaves a partial output.
+
+Limits
+------
+The limits below bound everything that becomes an array size, a loop count or a time span. They
+are derived from what one machine can do; with the default study a case (one realisation at one
+frequency) takes about 0.05 s on one core, about 50 simulations of ~1 ms, and needs one noise
+record of ``duration / 0.0025 s`` samples (8 bytes each).
+
+* :data:`MAX_INTEGER` -- seeds and realisation indices are stored as netCDF ``int64``
+  attributes and coordinates, so they must fit in a signed 64-bit integer.
+* :data:`MAX_GRID_POINTS` -- points of one frequency or amplitude grid (a grid of 10^5 points
+  already means 10^5 cases per realisation; the paper uses about 50).
+* :data:`MAX_SIMULATIONS` -- upper bound of the simulations one command or one workflow job
+  may need (cases x (coarse grid points + bisection steps)): 10^8 simulations is about
+  one day on one core at ~1 ms each.
+* :data:`MAX_JOBS_PER_SPECTRUM` -- realisation chunks of one spectrum in the workflow (the DAG of
+  all spectra must stay small enough for Snakemake to plan).
+* :func:`memory_budget` -- the noise records of one command or job must fit in a quarter of the
+  machine's physical memory (they are all held at once).
+* :data:`MAX_TIME_SPAN` -- excitation duration plus free time of one simulation. [s]
+* :data:`MAX_STEPS` -- integrator steps one simulation may need: its time span over the engine's
+  largest step (1/20 of the shorter of the free-rocking and excitation periods).
+* :data:`MAX_CONTROLLER_SAMPLES` -- controller samples of one simulation (time span / T_s), half
+  the fast engine's event cap of 2 000 000, so sampled control cannot exhaust it.
+* :data:`MAX_AMPLITUDE_RATIO`, :data:`MAX_FREQUENCY_RATIO`, :data:`MAX_KAPPA`,
+  :data:`MAX_DAMPING_RATIO` -- physical ranges far beyond the paper's (amplitude ratios up to 6,
+  frequency ratios up to 5, kappa up to 1), kept finite so the integrator's step stays resolvable.
+* :data:`MIN_RELATIVE_RESOLUTION` -- the bisection of a threshold stops when its bracket is
+  narrower than the resolution; below 1e-9 of the scan bound floating point cannot narrow it.
+"""
+from __future__ import annotations
+
+import math
+import numbers
+import os
+import tempfile
+from pathlib import Path
+
+MAX_INTEGER = 2**63 - 1
+"""Largest seed or realisation index: netCDF ``int64`` attributes hold up to 2^63 - 1."""
+MAX_GRID_POINTS = 100_000
+"""Largest number of points of one frequency grid or one coarse amplitude grid."""
+MAX_REALISATIONS = 100_000
+"""Largest number of noise realisations of one spectrum (the paper uses 100)."""
+MAX_JOBS_PER_SPECTRUM = 10_000
+"""Largest number of realisation chunks (workflow jobs) of one spectrum."""
+MAX_SIMULATIONS = 10**8
+"""Largest number of simulations one command or workflow job may need (about a day on one core)."""
+MAX_TIME_SPAN = 3600.0
+"""Longest simulated time span, excitation plus free time. [s]"""
+MAX_FREE_TIME = 3600.0
+"""Longest free motion after the excitation. [s]"""
+MAX_STEPS = 10**7
+"""Largest number of integrator steps one simulation may need."""
+MAX_CONTROLLER_SAMPLES = 10**6
+"""Largest number of controller samples (time span / T_s) in one simulation (half the event cap)."""
+MAX_AMPLITUDE_RATIO = 1000.0
+"""Largest amplitude ratio a_p/(g tan alpha) (for BLC06 about 245 g). [-]"""
+MAX_FREQUENCY_RATIO = 1000.0
+"""Largest frequency ratio omega_p/p. [-]"""
+MAX_KAPPA = 1.0e4
+"""Largest dimensionless stiffness 4 K b^2/(m g R). [-]"""
+MAX_DAMPING_RATIO = 100.0
+"""Largest damping ratio xi. [-]"""
+MIN_RELATIVE_RESOLUTION = 1e-9
+"""Smallest amplitude resolution relative to the scan bound (floating point cannot bisect finer)."""
+RECORD_DT = 0.0025
+"""Sampling step of the noise records (``noise.NOISE_DT``). [s]"""
+RECORD_BYTES_PER_SAMPLE = 24
+"""Bytes held per record sample while a spectrum runs (the record, its baseline and a copy)."""
+PSEUDO_FILESYSTEMS = ("/proc", "/sys", "/dev")
+"""Folders no data product may be written to."""
+FIGURE_FORMATS = ("png", "pdf", "svg")
+"""Suffixes a figure may be written as."""
+
+
+class InputError(ValueError):
+    """A value the user gave is not allowed; the message names the input, the value and the rule."""
+
+
+def _fmt(value) -> str:
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return repr(value) if isinstance(value, str) else str(value)
+
+
+def _unit(unit: str) -> str:
+    return f" {unit}" if unit else ""
+
+
+def fail(name: str, value, allowed: str, unit: str = ""):
+    """Raise :class:`InputError` ``"<name>: <value> <unit> is not allowed: <allowed>"``."""
+    raise InputError(f"{name} = {_fmt(value)}{_unit(unit)} is not allowed: {allowed}")
+
+
+def check_number(name: str, value, unit: str = "") -> float:
+    """A finite real number (not a bool, not NaN or inf)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        fail(name, value, "it must be a number")
+    value = float(value)
+    if not math.isfinite(value):
+        fail(name, value, "it must be a finite number (not NaN or inf)", unit)
+    return value
+
+
+def check_range(name: str, value, low: float | None = None, high: float | None = None, unit: str = "", *,
+                low_open: bool = False, high_open: bool = False, why: str = "") -> float:
+    """A finite number in [low, high] (``low_open``/``high_open`` exclude the ends); ``why`` explains a limit."""
+    value = check_number(name, value, unit)
+    too_low = low is not None and (value <= low if low_open else value < low)
+    too_high = high is not None and (value >= high if high_open else value > high)
+    if too_low or too_high:
+        lo = "" if low is None else f"{_fmt(low)} {'<' if low_open else '<='} "
+        hi = "" if high is None else f" {'<' if high_open else '<='} {_fmt(high)}"
+        fail(name, value, f"allowed is {lo}{name}{hi}{_unit(unit)}" + (f" ({why})" if why else ""), unit)
+    return value
+
+
+def check_positive(name: str, value, unit: str = "", high: float | None = None, why: str = "") -> float:
+    """A finite number > 0 (and <= ``high``)."""
+    return check_range(name, value, 0.0, high, unit, low_open=True, why=why)
+
+
+def check_nonnegative(name: str, value, unit: str = "", high: float | None = None, why: str = "") -> float:
+    """A finite number >= 0 (and <= ``high``)."""
+    return check_range(name, value, 0.0, high, unit, why=why)
+
+
+def check_int_range(name: str, value, low: int = 0, high: int = MAX_INTEGER, why: str = "") -> int:
+    """An integer (an int, or a float with an integer value) in [low, high]."""
+    if isinstance(value, bool):
+        fail(name, value, "it must be an integer")
+    if isinstance(value, numbers.Integral):
+        value = int(value)
+    elif isinstance(value, numbers.Real) and math.isfinite(value) and float(value).is_integer():
+        value = int(value)
+    else:
+        fail(name, value, f"it must be an integer in [{low}, {high}]")
+    if not (low <= value <= high):
+        fail(name, value, f"allowed is {low} <= {name} <= {high}" + (f" ({why})" if why else ""))
+    return value
+
+
+def grid_size(start: float, stop: float, step: float) -> int:
+    """Number of points of the grid ``start, start + step, ..., <= stop`` (computed without building it)."""
+    return int(math.floor((stop - start) / step + 1e-9)) + 1
+
+
+def check_grid(prefix: str, start, stop, step, unit: str = "", *, high: float, max_points: int = MAX_GRID_POINTS,
+               strict: bool = False, names: tuple[str, str, str] | None = None) -> int:
+    """A grid start..stop by step: finite, 0 < start <= stop <= ``high`` (start < stop if ``strict``),
+    step > 0 and at most ``max_points`` points. Returns the number of points.
+
+    ``names`` overrides the three input names (default ``prefix.start``, ``prefix.stop``, ``prefix.step``).
+    """
+    n_start, n_stop, n_step = names or (f"{prefix}.start", f"{prefix}.stop", f"{prefix}.step")
+    start = check_positive(n_start, start, unit, high)
+    stop = check_positive(n_stop, stop, unit, high)
+    step = check_positive(n_step, step, unit)
+    if stop < start or (strict and stop == start):
+        fail(n_stop, stop, f"it must be {'>' if strict else '>='} {n_start} = {_fmt(start)}", unit)
+    n = grid_size(start, stop, step)
+    if n > max_points:
+        fail(n_step, step, f"{n_start}..{n_stop} = {_fmt(start)}..{_fmt(stop)} in steps of {_fmt(step)} gives "
+                           f"{n} points, the limit is {max_points} (use a step >= "
+                           f"{_fmt((stop - start) / (max_points - 1))})", unit)
+    return n
+
+
+def bisection_steps(step: float, resolution: float) -> int:
+    """Bisection steps that narrow a bracket of width ``step`` below ``resolution``."""
+    return max(0, math.ceil(math.log2(step / resolution))) if resolution < step else 0
+
+
+def check_amplitude_grid(start, stop, step, resolution, names=None) -> int:
+    """The upward amplitude scan (ratios a_p/(g tan alpha)); returns the simulations one threshold may need.
+
+    ``names``: the four input names (default ``amplitude_grid.start`` ...).
+    """
+    names = names or ("amplitude_grid.start", "amplitude_grid.stop", "amplitude_grid.step",
+                      "amplitude_grid.resolution")
+    n = check_grid("amplitude_grid", start, stop, step, high=MAX_AMPLITUDE_RATIO, strict=True, names=names[:3])
+    resolution = check_positive(names[3], resolution)
+    if resolution > step:
+        fail(names[3], resolution, f"it must not exceed {names[2]} = {_fmt(float(step))}")
+    floor = MIN_RELATIVE_RESOLUTION * float(stop)
+    if resolution < floor:
+        fail(names[3], resolution, f"it must be >= {_fmt(floor)} ({MIN_RELATIVE_RESOLUTION:g} x {names[1]}): "
+                                   "floating point cannot bisect a threshold more finely")
+    return n + bisection_steps(float(step), resolution)
+
+
+def memory_budget() -> int:
+    """Bytes the noise records of one command or job may take: a quarter of the physical memory. [B]"""
+    try:
+        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):  # pragma: no cover - non-POSIX
+        total = 8 * 2**30
+    return int(total // 4)
+
+
+def record_samples(durations_s) -> int:
+    """Noise record samples of excitations lasting ``durations_s``. [-]"""
+    return int(sum(math.ceil(d / RECORD_DT) + 1 for d in durations_s))
+
+
+def check_workload(name: str, value, n_cases: int, sims_per_case: int, record_bytes: int) -> None:
+    """Refuse a command or job whose simulations or noise records exceed :data:`MAX_SIMULATIONS` or
+    :func:`memory_budget`; ``name``/``value`` is the input that sets the size (e.g. ``--realisations``)."""
+    sims = n_cases * sims_per_case
+    if sims > MAX_SIMULATIONS:
+        fail(name, value, f"{n_cases} cases x up to {sims_per_case} simulations = {sims:.3g} simulations, the "
+                          f"limit is {MAX_SIMULATIONS:.0e} (about a day on one core at ~1 ms each)")
+    budget = memory_budget()
+    if record_bytes > budget:
+        fail(name, value, f"the noise records need about {record_bytes / 2**30:.3g} GiB, the limit is "
+                          f"{budget / 2**30:.3g} GiB (a quarter of this machine's memory)")
+
+
+def check_block(block, name: str = "block") -> None:
+    """Physical meaning of a block: Housner's restitution e = 1 - 1.5 sin^2(alpha) (Eq. 14) must lie in
+    [0, 1], i.e. a slender block with H/B >= 1/sqrt(2); a squat block needs an explicit restitution."""
+    if block.restitution is None and block.housner_restitution < -1e-12:  # e = 0 at H/B = 1/sqrt(2)
+        raise InputError(
+            f"{name}: width {block.width:g} m and height {block.height:g} m give alpha = "
+            f"{math.degrees(block.alpha):.1f} deg and Housner's restitution e = 1 - 1.5 sin^2(alpha) = "
+            f"{block.housner_restitution:.3g} < 0 (Eq. 14); the model needs a slender block (height/width >= "
+            f"{1 / math.sqrt(2):.3f}) or an explicit {name}.restitution in [0, 1]")
+
+
+def check_output_path(name: str, path, *, formats: tuple[str, ...] | None = None) -> Path:
+    """An output file that can be written: not a folder, not under /proc, /sys or /dev, in a folder that
+    exists or can be made and where a file can be created (tested by creating and removing one), and
+    with one of ``formats`` as its suffix if given."""
+    if path is None or str(path).strip() == "":
+        fail(name, path, "give a file name")
+    p = Path(path).expanduser()
+    real = os.path.realpath(p)
+    if any(real == d or real.startswith(d + os.sep) for d in PSEUDO_FILESYSTEMS):
+        fail(name, str(path), f"it lies in a system folder ({', '.join(PSEUDO_FILESYSTEMS)})")
+    if p.is_dir():
+        fail(name, str(path), "it is a folder; give a file name")
+    if formats is not None and p.suffix.lstrip(".").lower() not in formats:
+        fail(name, str(path), f"the file name must end in {', '.join('.' + f for f in formats)}")
+    try:
+        p.parent.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".probe", dir=p.parent)
+        os.close(fd)
+        os.remove(probe)
+    except OSError as exc:
+        fail(name, str(path), f"cannot create a file in {p.parent}: {exc.strerror or exc}")
+    if p.exists() and not os.access(p, os.W_OK):
+        fail(name, str(path), "the existing file is not writable")
+    return p
+
+
+def scan_top(start: float, stop: float, step: float) -> float:
+    """Highest amplitude ratio of the upward scan start, start + step, ... <= stop. [-]"""
+    return round(start + step * (grid_size(start, stop, step) - 1), 10)
+
+
+def check_a_max0(name: str, a_max0_g, alpha: float, top: float, top_name: str = "amplitude_grid.stop") -> float:
+    """a_max,0 in units of g: positive, finite and, as an amplitude ratio a_max,0/(g tan alpha), not above
+    the amplitude scan's top ``top`` (a NaN threshold means "no overturning up to the scan's top"; it
+    only counts as >= a_max,0 when the scan reached a_max,0). Returns a_max,0 as an amplitude ratio. [-]"""
+    a_max0_g = check_positive(name, a_max0_g, "g")
+    ratio = a_max0_g / math.tan(alpha)
+    if ratio > top + 1e-9:
+        fail(name, a_max0_g, f"it is {ratio:.4g} as an amplitude ratio a/(g tan alpha), above the amplitude scan's "
+                             f"top {top:g} ({top_name}); NaN thresholds would then not mean 'no overturning up to "
+                             f"a_max0'. Allowed is {name} <= {top * math.tan(alpha):.4g} g, or scan higher", "g")
+    return ratio

@@ -1,0 +1,697 @@
+"""The driving loop of the fast engine (paper §3), in small compiled parts around one state record.
+
+A run is a parameter vector ``P`` (:mod:`.layout`, ``I_*``), the run's constants ``C`` derived from it
+once (:func:`setup`, ``C_*``) and the state record ``S`` (:func:`initial_state`, ``R_*``: time,
+θ, θ̇, side, mode, device state, element flags, counters, the step size). Between known-time events
+(the end of the excitation, record knots, controller samples and actuation instants,
+:func:`next_known_time`) the block is on the ground or held (:func:`ground_phase`) or rocks under
+Dormand–Prince steps (:func:`integrate`); each accepted step is searched for state events, the
+earliest is located and its map applied (:func:`state_event`); the known-time events are applied by
+:func:`known_time_events`, the CS01 apex decision by :func:`apex`. :func:`simulate_kernel` drives
+them and keeps the logs.
+
+The equation of motion, impacts, uplift and the REST/HOLD exits read the driving Ẍg
+(``ground_acceleration``); the control law's decisions (CS02's sign of Ẍg, its Ẍg = 0 switch,
+sampled decisions) read Ẍg as the controller senses it (``sensed_acceleration``, equal to the
+driving Ẍg without a sensor; :mod:`rockstudy.model.sensor`).
+
+The model and every reading of the paper are in ``docs/model.md``.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from rockstudy.core._inline import inline_into
+from rockstudy.core.constants import (
+    FIRST_STEP,
+    IMPACT_TOLERANCE,
+    MAX_EVENTS,
+    NEGLIGIBLE_STEP,
+    ROTATION_TOLERANCE,
+    TIME_TOLERANCE,
+)
+from rockstudy.engine._kernel import dopri, maps
+from rockstudy.engine._kernel.events import locate, scan_exit
+from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
+from rockstudy.engine._kernel.layout import (
+    C_BOUND,
+    C_BOUND_SWITCHING,
+    C_CD,
+    C_EXC_END,
+    C_FRACTURE,
+    C_KMAX,
+    C_KMIN,
+    C_SAMPLED,
+    C_SWITCHING,
+    C_T_STOP,
+    C_V_END,
+    I_ALPHA,
+    I_ATOL,
+    I_BOUND,
+    I_CD,
+    I_DELAY,
+    I_DUR,
+    I_E,
+    I_FREE,
+    I_G,
+    I_HMAX,
+    I_KIND,
+    I_KMAX,
+    I_KMIN,
+    I_P,
+    I_RDT,
+    I_RTOL,
+    I_STRAT,
+    I_TDU,
+    I_TH0,
+    I_THD0,
+    I_TKU,
+    I_TOVER,
+    I_TS,
+    I_VDT,
+    I_VREST,
+    LEFT,
+    MODE_HOLD,
+    MODE_REST,
+    MODE_ROCK,
+    NCONST,
+    NSTATE,
+    R_APEX,
+    R_DAMPER,
+    R_F0,
+    R_F0_OK,
+    R_FRAC,
+    R_H,
+    R_H_ON,
+    R_HINT,
+    R_K_SAMPLE,
+    R_KAP_ON,
+    R_MAX_ABS,
+    R_MODE,
+    R_N_EVENTS,
+    R_N_IMPACTS,
+    R_Q_COUNT,
+    R_Q_HEAD,
+    R_SIDE,
+    R_SPRING,
+    R_T,
+    R_T_OVER,
+    R_TH,
+    R_THD,
+    R_X_HINT,
+    RIGHT,
+    ST_BOUND,
+    ST_ELIMIT,
+    ST_OVER,
+    ST_REST,
+    ST_TLIM,
+    KernelResult,
+)
+from rockstudy.engine._kernel.maps import sign
+from rockstudy.model.control import CS01, CS02, FS, PASSIVE, stiffness_on
+from rockstudy.model.excitation import RECORD
+
+# what a part of the loop reports to the driver (which logs it)
+NOTHING, UPLIFTED, LEFT_HOLD, HELD = 0, 1, 2, 3
+STEPPED, EVENT, OVERTURNED = 0, 1, 2
+IMPACT, IMPACT_UPLIFT, IMPACT_REST = 4, 5, 6
+
+
+# ---- growable logs --------------------------------------------------------------------
+@njit(cache=True)
+def _push(arr, n, v):
+    if n >= arr.shape[0]:
+        new = np.empty(max(16, 2 * arr.shape[0]))
+        new[:n] = arr[:n]
+        arr = new
+    arr[n] = v
+    return arr, n + 1
+
+
+@njit(cache=True)
+def _push_hist(H, n, t, th, thd, kap, xg):
+    if n >= H.shape[0]:
+        new = np.empty((max(256, 2 * H.shape[0]), 5))
+        new[:n] = H[:n]
+        H = new
+    H[n, 0] = t
+    H[n, 1] = th
+    H[n, 2] = thd
+    H[n, 3] = kap
+    H[n, 4] = xg
+    return H, n + 1
+
+
+@njit(cache=True)
+def _next_knot(t, dt):
+    """The sampling instant after t of a record sampled every dt. [s]"""
+    return (math.floor(t / dt + 1e-7) + 1.0) * dt
+
+
+# ---- small readers of the state ---------------------------------------------------------
+@njit(cache=True, inline="always")
+def _flag(x):
+    return 1.0 if x else 0.0
+
+
+@njit(cache=True, inline="always")
+def _working(S):
+    """Index of the working-side corner elements (LEFT for θ > 0, RIGHT for θ < 0)."""
+    return LEFT if S[R_SIDE] > 0 else RIGHT
+
+
+@njit(cache=True, inline="always")
+def _device(S, C):
+    """κ of the device state in use (before the working spring's fracture function). [-]"""
+    return C[C_KMAX] if S[R_KAP_ON] != 0.0 else C[C_KMIN]
+
+
+@njit(cache=True, inline="always")
+def _xg(S, P, rec):
+    """Ẍg at the state's time while the horizontal excitation lasts, else 0. [m/s^2]"""
+    return ground_acceleration(S[R_T], P, rec) if S[R_H_ON] != 0.0 else 0.0
+
+
+@njit(cache=True, inline="always")
+def _sensed(S, P, rec):
+    """Ẍg as the controller senses it at the state's time while the excitation lasts, else 0. [m/s^2]"""
+    return sensed_acceleration(S[R_T], P, rec) if S[R_H_ON] != 0.0 else 0.0
+
+
+@njit(cache=True, inline="always")
+def _turn(S, turn):
+    """Apply a CS01 apex decision that leaves θ̇ = 0: K_max and outward, or K_min and back."""
+    S[R_KAP_ON] = _flag(turn == maps.TURN_OUT)
+    S[R_HINT] = S[R_SIDE] if S[R_KAP_ON] != 0.0 else -S[R_SIDE]
+
+
+# ---- setup --------------------------------------------------------------------------------
+@njit(cache=True)
+def setup(P, vert, want_history, want_log):
+    """The run's constants ``C`` (``C_*`` slots): the device the strategy uses, the time limits and
+    the flags that select the events and the early stop."""
+    C = np.zeros(NCONST)
+    strategy = int(P[I_STRAT])
+    kmax = P[I_KMAX]
+    kmin = P[I_KMIN]
+    cdamp = P[I_CD]
+    if strategy == FS:
+        kmax = 0.0
+        kmin = 0.0
+        cdamp = 0.0
+    if strategy == PASSIVE:
+        kmin = kmax
+    sampled = P[I_TS] > 0.0
+    nvert = vert.shape[0]
+    v_end = (nvert - 1) * P[I_VDT] if nvert > 0 else 0.0
+    exc_end = max(P[I_DUR], v_end)
+    C[C_KMAX] = kmax
+    C[C_KMIN] = kmin
+    C[C_CD] = cdamp
+    C[C_V_END] = v_end
+    C[C_EXC_END] = exc_end
+    C[C_T_STOP] = exc_end + P[I_FREE]
+    C[C_SAMPLED] = _flag(sampled)
+    C[C_SWITCHING] = _flag((not sampled) and (strategy == CS01 or strategy == CS02) and kmax != kmin)
+    C[C_FRACTURE] = _flag(strategy != FS and (kmax > 0.0 or cdamp > 0.0))
+    # end the run once it provably cannot overturn any more (outcome runs only)
+    C[C_BOUND] = _flag(P[I_BOUND] != 0.0 and not want_history and not want_log)
+    # with sampled control a stale K_max can give energy back: a weaker bound over half-cycles
+    C[C_BOUND_SWITCHING] = _flag(sampled and kmax != kmin)
+    return C
+
+
+@njit(cache=True)
+def initial_state(P, C, rec):
+    """The state record ``S`` (``R_*`` slots) at t = 0."""
+    S = np.zeros(NSTATE)
+    th = P[I_TH0]
+    thd = P[I_THD0]
+    S[R_TH] = th
+    S[R_THD] = thd
+    S[R_H_ON] = 1.0
+    S[R_SPRING:R_SPRING + 2] = 1.0
+    S[R_DAMPER:R_DAMPER + 2] = 1.0
+    S[R_FRAC:R_FRAC + 4] = np.nan
+    S[R_KAP_ON] = 1.0
+    if th != 0.0:
+        S[R_SIDE] = sign(th)
+    elif thd != 0.0:
+        S[R_SIDE] = sign(thd)
+    else:
+        S[R_SIDE] = 1.0
+    S[R_MODE] = MODE_ROCK if (th != 0.0 or thd != 0.0) else MODE_REST
+    S[R_T_OVER] = np.nan
+    S[R_MAX_ABS] = abs(th)
+    strategy = int(P[I_STRAT])
+    if C[C_SAMPLED] == 0.0:
+        S[R_KAP_ON] = _flag(stiffness_on(strategy, th, thd, sensed_acceleration(0.0, P, rec)))
+        S[R_HINT] = sign(thd)
+    S[R_APEX] = _flag(C[C_SWITCHING] != 0.0 and S[R_MODE] == MODE_ROCK and thd == 0.0 and th != 0.0
+                      and strategy == CS01)
+    S[R_H] = min(FIRST_STEP, P[I_HMAX])
+    return S
+
+
+# ---- the parts of the loop ------------------------------------------------------------------
+@njit(cache=True, inline="always")
+def next_known_time(S, C, P, vert, queue_times):
+    """The next known-time event after the state's time: the end of the excitation, a record knot,
+    a controller sample or an actuation instant, or the end of the run. [s]"""
+    t = S[R_T]
+    t_next = C[C_T_STOP]
+    h_on = S[R_H_ON] != 0.0
+    h_end = P[I_DUR]
+    if h_on and h_end < t_next:
+        t_next = max(h_end, t)
+    if h_on and int(P[I_KIND]) == RECORD:  # Ẍg is linear between knots: steps end at each
+        tk = _next_knot(t, P[I_RDT])
+        if tk < t_next:
+            t_next = tk
+    if vert.shape[0] > 0 and t < C[C_V_END]:
+        tk = _next_knot(t, P[I_VDT])
+        if tk < t_next:
+            t_next = tk
+    if C[C_SAMPLED] != 0.0:
+        ts_ = S[R_K_SAMPLE] * P[I_TS]
+        if ts_ < t_next:
+            t_next = ts_
+        if S[R_Q_COUNT] > 0 and queue_times[int(S[R_Q_HEAD])] < t_next:
+            t_next = queue_times[int(S[R_Q_HEAD])]
+    if t_next < t:
+        t_next = t
+    return t_next
+
+
+@njit(cache=True, inline=inline_into("simulate_kernel"))
+def ground_phase(S, C, P, rec, vert, t_next):
+    """REST or HOLD up to ``t_next``: find the exit (uplift; leaving the CS01 sliding surface) and
+    apply it. Returns NOTHING (still there at ``t_next``), UPLIFTED or LEFT_HOLD."""
+    t = S[R_T]
+    mode = int(S[R_MODE])
+    side = S[R_SIDE]
+    sidx = _working(S)
+    h_on = S[R_H_ON] != 0.0
+    kap_max_eff = C[C_KMAX] * S[R_SPRING + sidx]
+    kap_min_eff = C[C_KMIN] * S[R_SPRING + sidx]
+    if t_next > t:
+        t_exit = scan_exit(mode, t, t_next, S[R_TH], side, kap_max_eff, kap_min_eff, h_on, P, rec, vert)
+    else:
+        t_exit = -1.0
+    if t_exit < 0.0:
+        S[R_T] = t_next  # nothing happens before the next known-time event
+        return NOTHING
+    S[R_T] = t_exit
+    S[R_N_EVENTS] += 1
+    xg = _xg(S, P, rec)
+    if mode == MODE_REST:  # uplift
+        side = maps.uplift_side(xg)
+        S[R_SIDE] = side
+        S[R_TH] = 0.0
+        S[R_THD] = 0.0
+        S[R_MODE] = MODE_ROCK
+        if C[C_SAMPLED] == 0.0:
+            S[R_KAP_ON] = _flag(stiffness_on(int(P[I_STRAT]), side, 0.0, _sensed(S, P, rec)))
+        S[R_HINT] = side
+        return UPLIFTED
+    # leaves the sliding surface, outward or back (never HOLD again here)
+    yg = vertical_acceleration(t_exit, P, vert)
+    _turn(S, maps.apex_decision(S[R_TH], side, kap_max_eff, kap_min_eff, xg, yg, P))
+    S[R_MODE] = MODE_ROCK
+    S[R_THD] = 0.0
+    return LEFT_HOLD
+
+
+@njit(cache=True, inline=inline_into("simulate_kernel"))
+def known_time_events(S, C, P, rec, queue_times, queue_values):
+    """Apply what happens at a known-time event: the end of the excitation, controller samples due
+    (decision k taken at k·T_s acts from k·T_s + Δτ), decisions that act now. A record knot
+    changes nothing."""
+    t = S[R_T]
+    strategy = int(P[I_STRAT])
+    kap_before = S[R_KAP_ON]
+    h_before = S[R_H_ON]
+    if S[R_H_ON] != 0.0 and t >= P[I_DUR]:  # the excitation ends
+        S[R_H_ON] = 0.0
+        if C[C_SWITCHING] != 0.0:
+            S[R_KAP_ON] = _flag(stiffness_on(strategy, S[R_TH], S[R_THD], 0.0))
+            S[R_HINT] = sign(S[R_THD])
+            if S[R_THD] == 0.0 and S[R_TH] != 0.0 and S[R_MODE] == MODE_ROCK:
+                S[R_APEX] = 1.0
+    if C[C_SAMPLED] != 0.0:
+        Ts = P[I_TS]
+        head = int(S[R_Q_HEAD])
+        count = int(S[R_Q_COUNT])
+        while S[R_K_SAMPLE] * Ts <= t + TIME_TOLERANCE:  # controller samples due
+            on = stiffness_on(strategy, S[R_TH], S[R_THD], _sensed(S, P, rec))
+            count = maps.queue_push(queue_times, queue_values, head, count, S[R_K_SAMPLE] * Ts + P[I_DELAY], on)
+            S[R_K_SAMPLE] += 1
+        while count > 0 and queue_times[head] <= t + TIME_TOLERANCE:  # decisions that act now
+            S[R_KAP_ON] = _flag(queue_values[head])
+            head = (head + 1) % queue_times.shape[0]
+            count -= 1
+        S[R_Q_HEAD] = head
+        S[R_Q_COUNT] = count
+    if S[R_KAP_ON] != kap_before or S[R_H_ON] != h_before or S[R_APEX] != 0.0:
+        S[R_F0_OK] = 0.0
+
+
+@njit(cache=True, inline=inline_into("simulate_kernel"))
+def below_overturning_energy(S, C, P):
+    """True when the block, free of excitation, provably cannot overturn any more (docs/model.md)."""
+    if C[C_BOUND_SWITCHING] != 0.0:
+        return maps.cannot_overturn_switching(S[R_TH], S[R_THD], S[R_SIDE], P[I_P], P[I_ALPHA], P[I_E], C[C_KMAX])
+    return maps.cannot_overturn(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], C[C_KMIN] * S[R_SPRING + _working(S)])
+
+
+@njit(cache=True, inline=inline_into("simulate_kernel"))
+def apex(S, C, P, rec, vert):
+    """The CS01 switch at θ̇ = 0 (docs/model.md, "CS01 sliding"): turn out with K_max, back with
+    K_min, or hold. Returns HELD or NOTHING."""
+    S[R_APEX] = 0.0
+    side = S[R_SIDE]
+    sidx = _working(S)
+    yg = vertical_acceleration(S[R_T], P, vert)
+    turn = maps.apex_decision(S[R_TH], side, C[C_KMAX] * S[R_SPRING + sidx], C[C_KMIN] * S[R_SPRING + sidx],
+                              _xg(S, P, rec), yg, P)
+    S[R_THD] = 0.0
+    if turn == maps.HOLD:
+        S[R_MODE] = MODE_HOLD
+        return HELD
+    _turn(S, turn)
+    return NOTHING
+
+
+@njit(cache=True, inline="always")
+def _events_used(S, C, P):
+    """(CS01-type switch at θ̇ = 0, CS02 switch at Ẍg = 0) located in this state."""
+    switching = C[C_SWITCHING] != 0.0
+    strategy = int(P[I_STRAT])
+    h_on = S[R_H_ON] != 0.0
+    return switching and (strategy == CS01 or not h_on), switching and strategy == CS02 and h_on
+
+
+@njit(cache=True, inline="always")
+def _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec):
+    """What a run of steps from t starts with: the sign of the sensed Ẍg (CS02 switch event), the
+    sign θ̇ will have (CS01 switch event), and a first step kept inside the excursion after θ = 0.
+    Returns (x_hint, hint, h)."""
+    if use_xg_event:
+        xs = sensed_acceleration(t, P, rec)
+        if xs == 0.0:
+            xs = sensed_acceleration(t + 1e-9, P, rec)
+        x_hint = sign(xs)
+    if thd != 0.0:
+        hint = sign(thd)
+    # after an impact or uplift (θ = 0) keep the first step inside the excursion
+    if th == 0.0 and side * f0 < 0.0 and side * thd > 0.0:
+        h = min(h, 0.5 * abs(thd / f0))
+    return x_hint, hint, h
+
+
+@njit(cache=True, inline=inline_into("simulate_kernel"))
+def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
+    """ROCK: Dormand–Prince steps towards ``t_next``, each accepted step searched for state events
+    (impact, overturning rotation, fractures, the CS01/CS02 switches); stops at the earliest,
+    located on the continuous extension. A step ends on every known-time event; at a record knot
+    where nothing else happens the steps go on (to the next known-time event) without returning.
+    Returns (STEPPED | EVENT | OVERTURNED, H, nh)."""
+    t = S[R_T]
+    th = S[R_TH]
+    thd = S[R_THD]
+    side = S[R_SIDE]
+    sidx = _working(S)
+    h_on = S[R_H_ON] != 0.0
+    kap_dev = _device(S, C)
+    spring = S[R_SPRING + sidx]
+    kap_eff = kap_dev * spring
+    cd_eff = C[C_CD] * S[R_DAMPER + sidx]
+    kmax = C[C_KMAX]
+    th_over = P[I_TOVER]
+    hmax = P[I_HMAX]
+    rtol = P[I_RTOL]
+    atol = P[I_ATOL]
+    alpha = P[I_ALPHA]
+    exc_end = C[C_EXC_END]
+    # the working side's elements cannot change within the steps (a fracture is a state event)
+    track_fracture = C[C_FRACTURE] != 0.0
+    th_ku = P[I_TKU]
+    th_du = P[I_TDU]
+    damper = S[R_DAMPER + sidx]
+    use_thd_event, use_xg_event = _events_used(S, C, P)
+    if S[R_F0_OK] != 0.0:
+        f0 = S[R_F0]
+    else:
+        f0 = dopri.rhs(t, th, thd, side, kap_eff, cd_eff, h_on, P, rec, vert)
+        if want_history:
+            H, nh = _push_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
+    f0_ok = False
+    x_hint, hint, h = _segment_start(t, th, thd, f0, side, use_xg_event, S[R_X_HINT], S[R_HINT], S[R_H], P, rec)
+    max_abs = S[R_MAX_ABS]
+    result = STEPPED
+    while t < t_next:
+        hh = min(h, t_next - t, hmax)
+        if t_next - (t + hh) < TIME_TOLERANCE * (1.0 + t):
+            hh = t_next - t
+        if hh <= 0.0:
+            break
+        y0 = th
+        y1 = thd
+        n0, n1, err = dopri.step(t, hh, y0, y1, f0, K, side, kap_eff, cd_eff, h_on, P, rec, vert, rtol, atol)
+        if err > 1.0:
+            h = hh * max(0.2, 0.9 * err ** -0.2)
+            continue
+        # ---- accepted: look for state events on (t, t + hh] ----
+        best = 2.0
+        negligible = False
+        # impact: side·θ crosses to <= 0
+        if side * n0 <= 0.0:
+            if side * y0 > 0.0:
+                best = locate(1.0, hh, y0, y1, K, side, 0.0, 0.0, 0.0, t, P, rec)
+            elif hh > NEGLIGIBLE_STEP:
+                # left θ = 0 and came back within one step: the excursion is shorter than the step,
+                # so resolve it with a smaller one (a zero-length event here would re-uplift at the
+                # same instant forever)
+                h = 0.25 * hh
+                continue
+            else:
+                negligible = True  # an excursion shorter than NEGLIGIBLE_STEP: it ends at t + hh
+                best = 1.0
+        # an apex inside the step: the largest rotation may lie between the step ends, and a
+        # rotation threshold may be crossed and re-crossed within the step (grazing)
+        peak = side * n0
+        sig_peak = 1.0
+        if not negligible and side * y1 > 0.0 and side * n1 <= 0.0:
+            sa_ = locate(1.0, hh, y0, y1, K, 0.0, side, 0.0, 0.0, t, P, rec)
+            if sa_ >= 0.0:
+                a, b = dopri.dense(sa_, hh, y0, y1, K)
+                if side * a > peak:
+                    peak = side * a
+                    sig_peak = sa_
+                if abs(a) > max_abs:
+                    max_abs = abs(a)
+        if not negligible and peak - th_over >= 0.0 and side * y0 - th_over < 0.0:
+            s = locate(min(best, sig_peak), hh, y0, y1, K, -side, 0.0, 0.0, th_over, t, P, rec)
+            if s >= 0.0:
+                best = s
+        if track_fracture:
+            for k in range(2):
+                thu = th_ku if k == 0 else th_du
+                intact = spring if k == 0 else damper
+                if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and peak - thu >= 0.0:
+                    s = locate(min(best, sig_peak), hh, y0, y1, K, -side, 0.0, 0.0, thu, t, P, rec)
+                    if s >= 0.0:
+                        best = s
+        if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
+            s = locate(min(best, 1.0), hh, y0, y1, K, 0.0, hint, 0.0, 0.0, t, P, rec)
+            if s >= 0.0:
+                best = s
+        if not negligible and use_xg_event and x_hint != 0.0:
+            if x_hint * sensed_acceleration(t + hh, P, rec) <= 0.0:
+                s = locate(min(best, 1.0), hh, y0, y1, K, 0.0, 0.0, x_hint, 0.0, t, P, rec)
+                if s >= 0.0:
+                    best = s
+        if best <= 1.0:
+            # ---- move to the earliest event ----
+            S[R_N_EVENTS] += 1
+            if negligible:
+                a = 0.0
+                b = 0.0
+                tev = t + hh
+            else:
+                a, b = dopri.dense(best, hh, y0, y1, K)
+                tev = t + best * hh
+                if best == 1.0:
+                    a, b = n0, n1
+                    tev = t + hh
+            t = tev
+            th = a
+            thd = b
+            if abs(th) > max_abs:
+                max_abs = abs(th)
+            result = EVENT
+            break
+        # ---- plain accepted step ----
+        t = t + hh
+        if t_next - t < TIME_TOLERANCE * (1.0 + t):
+            t = t_next
+            f0_ok = True
+        th = n0
+        thd = n1
+        f0 = K[6, 1]
+        if abs(th) > max_abs:
+            max_abs = abs(th)
+        if want_history:
+            H, nh = _push_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
+        h = hh * min(10.0, 0.9 * err ** -0.2) if err > 0 else hh * 10.0
+        if hint == 0.0 and thd != 0.0:
+            hint = sign(thd)
+        # early overturning: nothing can bring the block back
+        if t >= exc_end and side * th > alpha and side * thd > 0.0 and (spring == 0.0 or kmax == 0.0):
+            S[R_T_OVER] = t
+            result = OVERTURNED
+            break
+        if t == t_next and t < exc_end:
+            # on a known-time event: when it is only a record knot (the next one lies ahead, so
+            # nothing acts here) go on as a new segment would, else return to the driver
+            S[R_T] = t
+            t_after = next_known_time(S, C, P, vert, queue_times)
+            if t_after > t:
+                t_next = t_after
+                f0_ok = False
+                x_hint, hint, h = _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec)
+    S[R_T] = t
+    S[R_TH] = th
+    S[R_THD] = thd
+    S[R_F0_OK] = _flag(f0_ok)
+    S[R_F0] = K[6, 1]  # read only when R_F0_OK, i.e. after a plain step that ended the segment
+    S[R_H] = h
+    S[R_HINT] = hint
+    S[R_X_HINT] = x_hint
+    S[R_MAX_ABS] = max_abs
+    return result, H, nh
+
+
+@njit(cache=True, inline=inline_into("simulate_kernel"))
+def state_event(S, C, P, rec, vert):
+    """Apply the maps of a located state event: fracture (Eqs. 8–11), overturning, impact
+    (Eqs. 14–15: rebound, rest or uplift), the CS01 switch at θ̇ = 0 (an apex decision is due) and
+    the CS02 switch at Ẍg = 0. Returns OVERTURNED, IMPACT, IMPACT_UPLIFT, IMPACT_REST or NOTHING."""
+    t = S[R_T]
+    side = S[R_SIDE]
+    if C[C_FRACTURE] != 0.0:
+        # only when a working element reaches its ultimate rotation (maps.fracture's own test), so
+        # that the other events do not pay for the element views
+        sidx = _working(S)
+        reach = side * S[R_TH]
+        if (S[R_SPRING + sidx] > 0.0 and reach >= P[I_TKU] - ROTATION_TOLERANCE) or \
+                (S[R_DAMPER + sidx] > 0.0 and reach >= P[I_TDU] - ROTATION_TOLERANCE):
+            maps.fracture(side, S[R_TH], t, S[R_SPRING:R_SPRING + 2], S[R_DAMPER:R_DAMPER + 2],
+                          S[R_FRAC:R_FRAC + 4], P[I_TKU], P[I_TDU])
+    th = S[R_TH]
+    thd = S[R_THD]
+    if side * th >= P[I_TOVER] - ROTATION_TOLERANCE:
+        S[R_T_OVER] = t
+        return OVERTURNED
+    use_thd_event, use_xg_event = _events_used(S, C, P)
+    if side * th <= IMPACT_TOLERANCE and (side * thd < 0.0 or (thd == 0.0 and th == 0.0)):
+        # impact, Eqs. (14)-(15)
+        S[R_TH] = 0.0
+        S[R_N_IMPACTS] += 1
+        xg = _xg(S, P, rec)
+        yg = vertical_acceleration(t, P, vert)
+        what, side, thd = maps.impact(thd, side, P[I_E], P[I_VREST], xg, yg, P[I_G], P[I_ALPHA])
+        S[R_SIDE] = side
+        S[R_THD] = thd
+        if what == maps.REST:
+            S[R_MODE] = MODE_REST
+        hint = sign(thd) if thd != 0.0 else side
+        S[R_HINT] = hint
+        if C[C_SAMPLED] == 0.0 and S[R_MODE] == MODE_ROCK:
+            S[R_KAP_ON] = _flag(stiffness_on(int(P[I_STRAT]), side, hint, _sensed(S, P, rec)))
+        if what == maps.UPLIFT:
+            return IMPACT_UPLIFT
+        if what == maps.REST:
+            return IMPACT_REST
+        return IMPACT
+    if use_thd_event and S[R_HINT] * thd <= 0.0:
+        S[R_APEX] = 1.0
+        S[R_THD] = 0.0
+        return NOTHING
+    if use_xg_event:
+        xg_after = sensed_acceleration(t + 1e-9, P, rec)
+        S[R_KAP_ON] = _flag(stiffness_on(int(P[I_STRAT]), side, 0.0, xg_after if xg_after != 0.0 else -S[R_X_HINT]))
+    return NOTHING
+
+
+# ---- the driver -----------------------------------------------------------------------------
+@njit(cache=True)
+def simulate_kernel(P, rec, vert, want_history, want_log):
+    """Simulate one run; returns a :class:`~rockstudy.engine._kernel.layout.KernelResult`."""
+    C = setup(P, vert, want_history, want_log)
+    S = initial_state(P, C, rec)
+    queue_times, queue_values = maps.queue_new(P[I_DELAY], P[I_TS])
+    K = np.zeros((7, 2))
+    impacts = np.empty(16 if want_log else 0)
+    n_imp_log = np.int64(0)
+    uplifts = np.empty(16 if want_log else 0)
+    n_up = np.int64(0)
+    rests = np.empty(16 if want_log else 0)
+    n_rest = np.int64(0)
+    H = np.empty((256 if want_history else 0, 5))
+    nh = np.int64(0)
+    status = ST_TLIM
+    while True:
+        if S[R_N_EVENTS] > MAX_EVENTS:
+            status = ST_ELIMIT
+            break
+        t_next = next_known_time(S, C, P, vert, queue_times)
+        mode = S[R_MODE]
+        if want_history and mode != MODE_ROCK:
+            H, nh = _push_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
+        if mode == MODE_REST or mode == MODE_HOLD:  # on the ground, or held by CS01
+            if mode == MODE_REST and S[R_T] >= C[C_EXC_END]:
+                status = ST_REST
+                break
+            left = ground_phase(S, C, P, rec, vert, t_next)
+            if left == UPLIFTED and want_log:
+                uplifts, n_up = _push(uplifts, n_up, S[R_T])
+            if left != NOTHING:
+                continue
+            # still there at t_next: on to the known-time events there
+        if S[R_T] >= t_next:  # a known-time event is due
+            if S[R_T] >= C[C_T_STOP]:
+                status = ST_TLIM
+                break
+            known_time_events(S, C, P, rec, queue_times, queue_values)
+            continue
+        if C[C_BOUND] != 0.0 and S[R_T] >= C[C_EXC_END] and below_overturning_energy(S, C, P):
+            status = ST_BOUND
+            break
+        if S[R_APEX] != 0.0 and apex(S, C, P, rec, vert) == HELD:
+            continue
+        result, H, nh = integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history)
+        if result == OVERTURNED:
+            status = ST_OVER
+            break
+        if result == STEPPED:
+            continue
+        if want_history:
+            H, nh = _push_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
+        what = state_event(S, C, P, rec, vert)
+        if what == OVERTURNED:
+            status = ST_OVER
+            break
+        if want_log and what >= IMPACT:
+            impacts, n_imp_log = _push(impacts, n_imp_log, S[R_T])
+            if what == IMPACT_UPLIFT:
+                uplifts, n_up = _push(uplifts, n_up, S[R_T])
+            if what == IMPACT_REST:
+                rests, n_rest = _push(rests, n_rest, S[R_T])
+    if want_history:
+        H, nh = _push_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
+    return KernelResult(status, S[R_T_OVER], S[R_T], S[R_MAX_ABS], np.int64(S[R_N_IMPACTS]), impacts[:n_imp_log],
+                        uplifts[:n_up], rests[:n_rest], S[R_FRAC:R_FRAC + 4].copy(), H[:nh])

@@ -1,0 +1,118 @@
+"""Event detection and location: zeros of g = a_θ·θ + a_θ̇·θ̇ + a_x·Ẍg + c on a step's continuous
+extension (impacts, rotation thresholds, the CS01 and CS02 switches), and the exits from REST and
+HOLD found by scanning the ground motion.
+
+The a_x·Ẍg term is the CS02 switch, a decision of the controller: it reads Ẍg as the controller
+senses it (:func:`rockstudy.engine._kernel.ground.sensed_acceleration`). The REST and HOLD exits concern
+the block, so they read the driving Ẍg."""
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from rockstudy.core._inline import inline_into
+from rockstudy.core.constants import LOCATE_TOLERANCE
+from rockstudy.engine._kernel.dopri import acceleration, dense
+from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
+from rockstudy.engine._kernel.layout import I_ALPHA, I_G, I_KIND, I_OMEGA, MODE_REST
+from rockstudy.model.excitation import MODULATED, ONE_SINE
+
+REST_HOLD_SCAN_DIVISIONS = 256.0
+"""An analytic excitation's period is scanned in this many pieces for a REST/HOLD exit (a root of a
+smooth function cannot hide inside 1/256 of a period at the amplitudes that matter)."""
+
+
+@njit(cache=True, inline=inline_into("locate"))
+def event_value(sig, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec):
+    """g = a_th·θ + a_thd·θ̇ + a_x·Ẍg + c at t + sig·hh (Ẍg as the controller senses it, only when a_x != 0)."""
+    a, b = dense(sig, hh, y0, y1, K)
+    g = a_th * a + a_thd * b + c
+    if a_x != 0.0:
+        g += a_x * sensed_acceleration(t + sig * hh, P, rec)
+    return g
+
+
+@njit(cache=True)
+def locate(hi, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec):
+    """Earliest sig in (0, hi] where g (positive at 0) reaches <= 0, by the Illinois method.
+
+    Returns -1 when g(hi) > 0 (no crossing before ``hi``). The returned point always has g <= 0.
+    """
+    fhi = event_value(hi, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec)
+    if fhi > 0.0:
+        return -1.0
+    lo = 0.0
+    flo = event_value(0.0, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec)
+    if flo <= 0.0:
+        return hi  # degenerate start on the surface: take the step end
+    last = 0
+    for _ in range(200):
+        if hi - lo <= LOCATE_TOLERANCE:
+            break
+        s = hi - fhi * (hi - lo) / (fhi - flo)
+        if not (lo < s < hi):
+            s = 0.5 * (lo + hi)
+        f = event_value(s, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec)
+        if f <= 0.0:
+            hi = s
+            fhi = f
+            if last == -1:
+                flo *= 0.5
+            last = -1
+        else:
+            lo = s
+            flo = f
+            if last == 1:
+                fhi *= 0.5
+            last = 1
+    return hi
+
+
+@njit(cache=True)
+def exit_value(mode, t, th, side, kap_max_eff, kap_min_eff, h_on, P, rec, vert):
+    """> 0 when the block leaves REST (uplift, |Ẍg| > (g + Ÿg)·tanα) or HOLD (either side of the
+    CS01 sliding surface, docs/model.md, "CS01 sliding")."""
+    xg = ground_acceleration(t, P, rec) if h_on else 0.0
+    yg = vertical_acceleration(t, P, vert)
+    if mode == MODE_REST:
+        return abs(xg) - (P[I_G] + yg) * math.tan(P[I_ALPHA])
+    a_max = side * acceleration(th, 0.0, side, kap_max_eff, 0.0, xg, yg, P)
+    a_min = side * acceleration(th, 0.0, side, kap_min_eff, 0.0, xg, yg, P)
+    return max(a_max, -a_min)  # leave HOLD when s·a_max >= 0 or s·a_min <= 0
+
+
+@njit(cache=True)
+def scan_exit(mode, t0, t1, th, side, kmx, kmn, h_on, P, rec, vert):
+    """First t in (t0, t1] where the exit value becomes >= 0 (> 0 for REST), or -1.
+
+    Records and pulses are linear (or constant) between known-time events, so one piece is exact;
+    analytic excitations are scanned in pieces of 1/``REST_HOLD_SCAN_DIVISIONS`` of a period.
+    """
+    kind = int(P[I_KIND])
+    if h_on and (kind == ONE_SINE or kind == MODULATED):
+        dt = 2.0 * math.pi / P[I_OMEGA] / REST_HOLD_SCAN_DIVISIONS
+    else:
+        dt = t1 - t0  # piecewise linear (or constant) on (t0, t1]
+    ta = t0
+    while ta < t1:
+        tb = min(t1, ta + dt)
+        if t1 - tb < 1e-12 * dt:
+            tb = t1
+        vb = exit_value(mode, tb, th, side, kmx, kmn, h_on, P, rec, vert)
+        hit = vb > 0.0 if mode == MODE_REST else vb >= 0.0
+        if hit:
+            lo = ta
+            hi = tb
+            for _ in range(80):
+                mid = 0.5 * (lo + hi)
+                if mid <= lo or mid >= hi:
+                    break
+                vm = exit_value(mode, mid, th, side, kmx, kmn, h_on, P, rec, vert)
+                if (vm > 0.0) if mode == MODE_REST else (vm >= 0.0):
+                    hi = mid
+                else:
+                    lo = mid
+            return hi
+        ta = tb
+    return -1.0

@@ -1,0 +1,169 @@
+"""Event maps of the fast engine: what happens to the state at an impact, an uplift, an apex of a
+CS01 run, a fracture, and the sampled controller's queue of pending decisions (paper §3)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from rockstudy.core.constants import ENERGY_MARGIN, ROTATION_TOLERANCE
+from rockstudy.engine._kernel.dopri import acceleration
+from rockstudy.engine._kernel.layout import LEFT
+from rockstudy.model.anchorage import damper_left_intact, damper_right_intact, spring_left_intact, spring_right_intact
+from rockstudy.model.equation_of_motion import normalised_energy
+
+TURN_OUT, TURN_BACK, HOLD = 1, 0, -1
+"""Apex decisions of CS01: leave outward with K_max, turn back with K_min, stay on the sliding surface."""
+
+REBOUND, UPLIFT, REST = 0, 1, 2
+"""What follows an impact (Eqs. 14–15)."""
+
+
+@njit(cache=True)
+def sign(x):
+    return 1.0 if x > 0 else (-1.0 if x < 0 else 0.0)
+
+
+@njit(cache=True)
+def apex_decision(th, side, kap_max_eff, kap_min_eff, xg, yg, P):
+    """CS01 at θ̇ = 0, θ ≠ 0 (docs/model.md, "CS01 sliding"): compare θ̈ under K_max and under K_min.
+
+    s·a_max >= 0: TURN_OUT (K_max); else s·a_min <= 0: TURN_BACK (K_min); else HOLD (Filippov
+    sliding, the device holds the block with a stiffness between the two).
+    """
+    a_max = side * acceleration(th, 0.0, side, kap_max_eff, 0.0, xg, yg, P)
+    if a_max >= 0.0:
+        return TURN_OUT
+    a_min = side * acceleration(th, 0.0, side, kap_min_eff, 0.0, xg, yg, P)
+    if a_min <= 0.0:
+        return TURN_BACK
+    return HOLD
+
+
+@njit(cache=True)
+def uplift_side(xg):
+    """Side a block at rest uplifts onto: the ground pushes it the other way (Makris). [-]"""
+    return -sign(xg)
+
+
+@njit(cache=True)
+def can_uplift(xg, yg, gravity, alpha):
+    """True when |Ẍg| > (g + Ÿg)·tanα: the ground lifts a block at rest (no preload)."""
+    return abs(xg) > (gravity + yg) * math.tan(alpha)
+
+
+@njit(cache=True)
+def impact(thd, side, e, v_rest, xg, yg, gravity, alpha):
+    """Impact at θ = 0, Eq. (14), then rest or uplift when the rebound is negligible (Eq. 15).
+
+    Returns (what, side, θ̇) with ``what`` one of REBOUND, UPLIFT, REST.
+    """
+    v_after = e * thd
+    if abs(v_after) < v_rest:
+        if can_uplift(xg, yg, gravity, alpha):
+            return UPLIFT, uplift_side(xg), 0.0
+        return REST, side, 0.0
+    return REBOUND, -side, v_after
+
+
+@njit(cache=True)
+def fracture(side, th, t, spring, damper, frac, th_ku, th_du):
+    """Break the working-side spring / damper that ``th`` has reached (Eqs. 8–11, permanent).
+
+    ``spring``, ``damper`` (intact flags by corner) and ``frac`` (times: spring L, R, damper L, R)
+    are updated in place. A rotation within ROTATION_TOLERANCE of θ_u counts as reaching it.
+    """
+    sidx = LEFT if side > 0 else 1 - LEFT
+    if spring[sidx] > 0.0:
+        u = th_ku - ROTATION_TOLERANCE
+        intact = spring_left_intact(th, u) if side > 0 else spring_right_intact(th, u)
+        if intact == 0:
+            spring[sidx] = 0.0
+            frac[sidx] = t
+    if damper[sidx] > 0.0:
+        u = th_du - ROTATION_TOLERANCE
+        intact = damper_left_intact(th, u) if side > 0 else damper_right_intact(th, u)
+        if intact == 0:
+            damper[sidx] = 0.0
+            frac[2 + sidx] = t
+
+
+@njit(cache=True)
+def cannot_overturn(th, thd, p, alpha, kappa_low):
+    """True when a block free of excitation can provably never reach |θ| = α again.
+
+    W = θ̇²/(2p²) + cos(α − |θ|) + 2·κ_lo·sin²(θ/2) does not increase once the excitation is over
+    under continuous FS, PASSIVE, CS01 and CS02 control (proof in docs/model.md, "Early stop below
+    the overturning energy"), and reaching |θ| = α needs W >= 1.
+
+    Parameters
+    ----------
+    th, thd : float
+        θ [rad] and θ̇ [rad/s].
+    p, alpha : float
+        Frequency parameter [rad/s] and slenderness [rad].
+    kappa_low : float
+        Smallest stiffness the device can apply, times the working spring's fracture function. [-]
+    """
+    return abs(th) <= alpha and normalised_energy(th, thd, p, alpha, kappa_low) < 1.0 - ENERGY_MARGIN
+
+
+@njit(cache=True)
+def cannot_overturn_switching(th, thd, side, p, alpha, e, kappa_high):
+    """True when a block free of excitation can provably never reach |θ| = α again, whatever the
+    device does: any stiffness history κ(t) in [0, κ_hi] (sampled and delayed on-off control).
+
+    A stale decision can keep κ_hi while the block returns and so give back energy; the bound
+    is over half-cycles (proof in docs/model.md, "Early stop under sampled control"). With
+    g(θ) = cos(α − θ) − cos α and S(θ) = 2·sin²(θ/2): outward, E = θ̇²/(2p²) + cos(α − |θ|) cannot
+    grow, so the peak θ_a has g(θ_a) <= E − cos α; inward, E + κ_hi·S(θ) cannot grow; an impact
+    multiplies the kinetic part u = E − cos α by e². So u at the next impact is at most
+    u₁ = e²·(E − cos α + κ_hi·S(θ_a)), and if F(u) = e²·(u + κ_hi·S(θ_a(u))) <= u at u* >= u₁, every
+    later u stays <= u* (F increases) and every peak stays below θ_a(u*) < α.
+
+    Parameters
+    ----------
+    th, thd : float
+        θ [rad] and θ̇ [rad/s].
+    side : {+1.0, -1.0}
+        Pivoting side. [-]
+    p, alpha : float
+        Frequency parameter [rad/s] and slenderness [rad].
+    e : float
+        Coefficient of restitution of Eq. (14). [-]
+    kappa_high : float
+        Largest stiffness the device can apply, κ_max (0 for FS). [-]
+    """
+    if abs(th) > alpha:
+        return False
+    energy = normalised_energy(th, thd, p, alpha, 0.0)
+    cos_a = math.cos(alpha)
+    if side * thd > 0.0:  # outward: the peak of this excursion
+        if not energy < 1.0 - ENERGY_MARGIN:
+            return False
+        peak = alpha - math.acos(energy)
+    else:  # inward, or at the apex
+        peak = abs(th)
+    u_star = e * e * (energy - cos_a + 2.0 * kappa_high * math.sin(0.5 * peak) ** 2) + ENERGY_MARGIN
+    if not cos_a + u_star < 1.0 - ENERGY_MARGIN:
+        return False
+    peak_star = alpha - math.acos(cos_a + u_star)
+    return e * e * (u_star + 2.0 * kappa_high * math.sin(0.5 * peak_star) ** 2) <= u_star - ENERGY_MARGIN
+
+
+# ---- the sampled controller: decisions wait in a ring buffer until they act -------------------
+@njit(cache=True)
+def queue_new(delay, sampling_time):
+    """Empty queue sized for every decision that can be pending at once (Δτ/T_s + a margin)."""
+    n = int(delay / sampling_time) + 4 if sampling_time > 0.0 else 1
+    return np.zeros(n), np.zeros(n, dtype=np.bool_)
+
+
+@njit(cache=True)
+def queue_push(times, values, head, count, t_act, value):
+    """Append a decision acting at ``t_act``; returns the new count."""
+    slot = (head + count) % times.shape[0]
+    times[slot] = t_act
+    values[slot] = value
+    return count + 1

@@ -1,0 +1,159 @@
+"""The threshold scan, written once: an upward scan of the amplitude grid, then a bisection between
+the last safe and the first overturning grid point down to the resolution.
+
+:func:`scan_amplitude` / :func:`scan_update` are the scan as a small state machine on a 4-slot
+array, so that the compiled :func:`threshold_kernel` and the reference engine's Python loop
+(:func:`rockstudy.analysis.spectra.threshold`) drive the very same decisions.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from rockstudy.engine._kernel.engine import simulate_kernel
+from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, ST_ELIMIT, ST_OVER
+from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, SAFE, UNDETERMINED
+
+# ---- the scan's state: [phase, j, lo, hi] ------------------------------------------------
+S_PHASE, S_J, S_LO, S_HI = 0, 1, 2, 3
+SCANNING, BISECTING, DONE = 0.0, 1.0, 2.0
+
+
+@njit(cache=True)
+def scan_start():
+    """A new scan at the first grid point."""
+    state = np.zeros(4)
+    state[S_PHASE] = SCANNING
+    return state
+
+
+@njit(cache=True)
+def scan_amplitude(state, grid):
+    """Amplitude ratio to simulate next. [-]"""
+    if state[S_PHASE] == SCANNING:
+        return grid[int(state[S_J])]
+    return 0.5 * (state[S_LO] + state[S_HI])
+
+
+@njit(cache=True)
+def scan_update(state, grid, resolution, lower, overturned):
+    """Advance the scan with the outcome at :func:`scan_amplitude`; True when it is done.
+
+    ``lower`` is the amplitude ratio below which nothing can uplift (the bracket's floor).
+    When done, ``state[S_HI]`` is the threshold (NaN: nothing on the grid overturns) and
+    ``state[S_LO]`` the highest amplitude shown safe below it.
+    """
+    if state[S_PHASE] == SCANNING:
+        j = int(state[S_J])
+        if overturned:
+            hi = grid[j]
+            lo = grid[j - 1] if j > 0 else lower
+            if lo < lower:
+                lo = lower
+            state[S_LO] = lo
+            state[S_HI] = hi
+            state[S_PHASE] = BISECTING if hi - lo > resolution else DONE
+        elif j + 1 >= grid.shape[0]:
+            state[S_LO] = grid[grid.shape[0] - 1]
+            state[S_HI] = np.nan
+            state[S_PHASE] = DONE
+        else:
+            state[S_J] = j + 1
+    else:
+        mid = 0.5 * (state[S_LO] + state[S_HI])
+        if overturned:
+            state[S_HI] = mid
+        else:
+            state[S_LO] = mid
+        if not (state[S_HI] - state[S_LO] > resolution):
+            state[S_PHASE] = DONE
+    return state[S_PHASE] == DONE
+
+
+@njit(cache=True)
+def is_overturned(outcome):
+    return outcome == OVERTURNED_WITHOUT_IMPACT or outcome == OVERTURNED_AFTER_IMPACT
+
+
+@njit(cache=True)
+def uplift_floor(vert, unit_peak):
+    """Amplitude ratio at or below which the record cannot uplift the block (0: unknown). [-]"""
+    if vert.shape[0] == 0 and unit_peak > 0:
+        return 1.0 / unit_peak
+    return 0.0
+
+
+_NO = np.zeros(2, dtype=np.bool_)
+"""(want_history, want_log) of outcome runs: read from an array, they are typed bool as in the calls
+from Python, so the engine is compiled once, not once more for Literal[False]."""
+
+
+# ---- outcomes and thresholds ----------------------------------------------------------------
+@njit(cache=True)
+def outcome_kernel(P, rec, vert, amplitude_ratio, unit_peak):
+    """:class:`~rockstudy.engine.outcome.Outcome` code of one run at one amplitude ratio."""
+    if vert.shape[0] == 0 and amplitude_ratio * unit_peak <= 1.0:
+        return NO_UPLIFT
+    Q = P.copy()
+    Q[I_AMP] = amplitude_ratio * P[I_G] * math.tan(P[I_ALPHA])
+    res = simulate_kernel(Q, rec, vert, _NO[0], _NO[1])
+    if res.status == ST_ELIMIT:
+        return UNDETERMINED
+    if res.status == ST_OVER:
+        return OVERTURNED_AFTER_IMPACT if res.n_impacts > 0 else OVERTURNED_WITHOUT_IMPACT
+    return SAFE
+
+
+@njit(cache=True)
+def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
+    """Lowest overturning amplitude ratio on ``grid`` refined to ``resolution``.
+
+    Returns (threshold, lower_safe, n_simulations, n_undetermined); threshold = NaN when nothing
+    on the grid overturns. An undetermined run (event cap) counts as not overturned and is counted.
+    """
+    n_sim = 0
+    n_und = 0
+    lower = uplift_floor(vert, unit_peak)
+    state = scan_start()
+    done = False
+    while not done:
+        o = outcome_kernel(P, rec, vert, scan_amplitude(state, grid), unit_peak)
+        if o != NO_UPLIFT:
+            n_sim += 1
+        if o == UNDETERMINED:
+            n_und += 1
+        done = scan_update(state, grid, resolution, lower, is_overturned(o))
+    return state[S_HI], state[S_LO], n_sim, n_und
+
+
+@njit(cache=True, parallel=True)
+def threshold_batch(Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks):
+    """threshold_kernel over many cases (rows of Pm), in parallel."""
+    n = Pm.shape[0]
+    out = np.empty(n)
+    low = np.empty(n)
+    nsim = np.zeros(n, dtype=np.int64)
+    nund = np.zeros(n, dtype=np.int64)
+    for i in prange(n):
+        rec = recs[rec_off[i]:rec_off[i] + rec_len[i]]
+        th, lo, ns, nu = threshold_kernel(Pm[i], rec, vert, grid, resolution, peaks[i])
+        out[i] = th
+        low[i] = lo
+        nsim[i] = ns
+        nund[i] = nu
+    return out, low, nsim, nund
+
+
+@njit(cache=True, parallel=True)
+def outcome_batch(Pm, recs, rec_off, rec_len, vert, grid, peaks):
+    """outcome_kernel on the full (case × amplitude) grid, in parallel over cases."""
+    n = Pm.shape[0]
+    m = grid.shape[0]
+    out = np.zeros((n, m), dtype=np.int8)
+    for i in prange(n):
+        rec = recs[rec_off[i]:rec_off[i] + rec_len[i]]
+        for j in range(m):
+            out[i, j] = outcome_kernel(Pm[i], rec, vert, grid[j], peaks[i])
+    return out

@@ -1,0 +1,183 @@
+"""One simulation of the controlled block: the public entry point for both engines.
+
+``engine="fast"`` runs the compiled kernel (:mod:`rockstudy.engine._kernel`); ``engine="reference"``
+runs :func:`rockstudy.engine.reference.simulate_reference` on scipy's ``solve_ivp``. Both implement
+``docs/model.md`` and are tested against each other and against closed forms.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rockstudy.core.constants import FAST_ATOL, FAST_RTOL, FREE_TIME, MAX_STEP_FRACTION
+from rockstudy.core.constants import rest_velocity as default_rest_velocity
+from rockstudy.engine import _kernel as kn
+from rockstudy.engine.simulation_result import (
+    FRACTURE_ELEMENTS,
+    STATUS_CANNOT_OVERTURN,
+    STATUS_OVERTURNED,
+    STATUS_REST,
+    STATUS_TIME_LIMIT,
+    SimulationResult,
+)
+from rockstudy.model.anchorage import Anchorage
+from rockstudy.model.block import Block
+from rockstudy.model.control import Control
+from rockstudy.model.excitation import GroundMotion
+from rockstudy.model.sensor import sensed_samples, sensed_step
+
+ENGINES = ("fast", "reference")
+OVERTURN_CRITERIA = ("flat", "alpha")
+DEFAULT_FREE_TIME = FREE_TIME
+"""Free rocking allowed after the excitation before a run stops as "time limit" (``constants.FREE_TIME``). [s]"""
+__all__ = ["simulate", "pack_parameters", "kernel_record", "overturn_rotation", "ENGINES", "OVERTURN_CRITERIA",
+           "DEFAULT_FREE_TIME", "FAST_RTOL", "FAST_ATOL"]
+
+
+def overturn_rotation(block: Block, criterion: str) -> float:
+    """Rotation at which the block counts as overturned: π/2 ("flat") or α ("alpha"). [rad]"""
+    if criterion == "flat":
+        return math.pi / 2
+    if criterion == "alpha":
+        return block.alpha
+    raise ValueError(f"overturn_criterion must be one of {', '.join(OVERTURN_CRITERIA)}, got {criterion!r}")
+
+
+def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion: GroundMotion, *,
+                    overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
+                    initial_rotation: float = 0.0, initial_velocity: float = 0.0,
+                    rest_velocity: float | None = None, rtol: float = FAST_RTOL,
+                    atol: float = FAST_ATOL, energy_bound: bool = False) -> np.ndarray:
+    """The kernel's parameter vector (its named slots: :mod:`rockstudy.engine._kernel.layout`).
+
+    ``energy_bound`` lets the engine end a run once it provably can no longer overturn (outcome
+    runs only: the history and event log after that point are not computed).
+    """
+    if not (free_time >= 0 and math.isfinite(free_time)):
+        raise ValueError(f"free_time must be a finite number >= 0 [s], got {free_time!r}")
+    P = np.zeros(kn.NPAR)
+    P[kn.I_P] = block.p
+    P[kn.I_ALPHA] = block.alpha
+    P[kn.I_SINA] = math.sin(block.alpha)
+    P[kn.I_COSA] = math.cos(block.alpha)
+    P[kn.I_G] = block.gravity
+    P[kn.I_E] = block.e
+    P[kn.I_KMAX] = anchorage.kappa_max
+    P[kn.I_KMIN] = anchorage.kappa_min
+    P[kn.I_CD] = 2.0 * anchorage.damping_ratio * block.p
+    P[kn.I_TKU] = anchorage.theta_spring(block)
+    P[kn.I_TDU] = anchorage.theta_damper(block)
+    P[kn.I_TOVER] = overturn_rotation(block, overturn_criterion)
+    P[kn.I_STRAT] = control.code
+    P[kn.I_TS] = control.sampling_time
+    P[kn.I_DELAY] = control.delay
+    P[kn.I_VREST] = default_rest_velocity(block.p, block.alpha) if rest_velocity is None else rest_velocity
+    P[kn.I_RTOL] = rtol
+    P[kn.I_ATOL] = atol
+    P[kn.I_FREE] = free_time
+    P[kn.I_KIND] = motion.code
+    P[kn.I_AMP] = motion.amplitude
+    P[kn.I_OMEGA] = motion.omega if motion.omega > 0 else 1.0
+    P[kn.I_DUR] = motion.duration
+    P[kn.I_RDT] = motion.record_dt if motion.record_dt > 0 else 1.0
+    P[kn.I_VDT] = motion.vertical_dt if motion.vertical_dt > 0 else 1.0
+    P[kn.I_TH0] = initial_rotation
+    P[kn.I_THD0] = initial_velocity
+    # the largest step: a fraction of the free-rocking and of the excitation time scales
+    hmax = MAX_STEP_FRACTION * 2 * math.pi / block.p
+    if motion.kind in ("one-sine", "modulated"):
+        hmax = min(hmax, MAX_STEP_FRACTION * 2 * math.pi / motion.omega)
+    P[kn.I_HMAX] = hmax
+    P[kn.I_BOUND] = 1.0 if energy_bound else 0.0
+    P[kn.I_SDT] = 1.0
+    if control.sensor_band is not None:  # the sensed samples follow the driving ones (kernel_record)
+        P[kn.I_SENSE] = 1.0
+        P[kn.I_SOFF] = len(motion.record)
+        P[kn.I_SDT] = sensed_step(motion)
+    return P
+
+
+def kernel_record(control: Control, motion: GroundMotion) -> np.ndarray:
+    """The samples the kernel reads: the driving record, then (with a sensor) the sensed record. [-]
+
+    Without a sensor (``control.sensor_band`` None) this is ``motion.record`` itself. With one, the
+    unit-amplitude sensed samples of :func:`rockstudy.model.sensor.sensed_samples` follow the record's
+    (slots ``I_SENSE``, ``I_SOFF``, ``I_SDT`` of :func:`pack_parameters`).
+    """
+    if control.sensor_band is None:
+        return motion.record
+    sensed, _ = sensed_samples(motion, control.sensor_band)
+    return np.concatenate([motion.record, sensed])
+
+
+def _result_from_kernel(out, block: Block, engine: str = "fast") -> SimulationResult:
+    status, t_over, t_end, max_abs = out.status, out.overturn_time, out.end_time, out.max_abs_theta
+    impacts, uplifts, rests, frac, H = out.impact_times, out.uplift_times, out.rest_times, out.fracture_times, \
+        out.history
+    if status == kn.ST_ELIMIT:
+        raise RuntimeError(
+            f"the fast engine hit its cap of {kn.MAX_EVENTS} events at t = {t_end:.6g} s "
+            "(an unresolved chattering or sliding case); run it with engine='reference' and report it"
+        )
+    name = {kn.ST_REST: STATUS_REST, kn.ST_OVER: STATUS_OVERTURNED, kn.ST_TLIM: STATUS_TIME_LIMIT,
+            kn.ST_BOUND: STATUS_CANNOT_OVERTURN}[status]
+    history = None
+    if len(H):
+        history = {"t": H[:, 0].copy(), "theta": H[:, 1].copy(), "theta_dot": H[:, 2].copy(),
+                   "kappa": H[:, 3].copy(), "ground_acceleration": H[:, 4].copy()}
+    return SimulationResult(
+        status=name, overturned=status == kn.ST_OVER, overturn_time=float(t_over), end_time=float(t_end),
+        max_rotation_ratio=float(max_abs / block.alpha), impact_times=np.asarray(impacts).copy(),
+        uplift_times=np.asarray(uplifts).copy(), rest_times=np.asarray(rests).copy(),
+        fracture_times={k: float(v) for k, v in zip(FRACTURE_ELEMENTS, frac) if np.isfinite(v)},
+        history=history, engine=engine,
+    )
+
+
+def simulate(block: Block, anchorage: Anchorage, control: Control, motion: GroundMotion, *,
+             engine: str = "fast", overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
+             initial_rotation: float = 0.0, initial_velocity: float = 0.0,
+             rest_velocity: float | None = None, record_history: bool = False,
+             rtol: float | None = None, atol: float | None = None) -> SimulationResult:
+    """Simulate the block under a ground motion with the chosen anchorage control.
+
+    Parameters
+    ----------
+    block, anchorage, control, motion
+        The block, its restrainers, the control law and timing, and the ground motion.
+    engine : {"fast", "reference"}
+        Compiled event-accurate Dormand–Prince engine, or scipy ``solve_ivp`` reference.
+    overturn_criterion : {"flat", "alpha"}
+        Overturned at |θ| ≥ π/2 (default) or at |θ| ≥ α.
+    free_time : float
+        Time allowed after the excitation ends. [s]
+    initial_rotation, initial_velocity : float
+        Initial θ [rad] and θ̇ [rad/s] (free-rocking tests).
+    rest_velocity : float, optional
+        |θ̇⁺| below which an impact ends the motion (Eq. 15). Default 1e-6·p·α. [rad/s]
+    record_history : bool
+        Return time histories of θ, θ̇, κ and Ẍg.
+    rtol, atol : float, optional
+        Integration tolerances (engine defaults when None).
+    """
+    if engine not in ENGINES:
+        raise ValueError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")
+    if engine == "reference":
+        from rockstudy.engine.reference import simulate_reference
+        kw = {}
+        if rtol is not None:
+            kw["rtol"] = rtol
+        if atol is not None:
+            kw["atol"] = atol
+        return simulate_reference(block, anchorage, control, motion, overturn_criterion=overturn_criterion,
+                                  free_time=free_time, rest_velocity=rest_velocity,
+                                  record_history=record_history, initial_rotation=initial_rotation,
+                                  initial_velocity=initial_velocity, **kw)
+    P = pack_parameters(block, anchorage, control, motion, overturn_criterion=overturn_criterion,
+                        free_time=free_time, initial_rotation=initial_rotation,
+                        initial_velocity=initial_velocity, rest_velocity=rest_velocity,
+                        rtol=FAST_RTOL if rtol is None else rtol, atol=FAST_ATOL if atol is None else atol)
+    out = kn.simulate_kernel(P, kn.writable(kernel_record(control, motion)), kn.writable(motion.vertical),
+                             bool(record_history), True)
+    return _result_from_kernel(out, block)

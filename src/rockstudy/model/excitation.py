@@ -1,0 +1,271 @@
+"""Ground motions: one-sine pulse, the amplitude-modulated harmonic of Eq. (23), and
+sampled records (noise-contaminated versions, see :mod:`rockstudy.model.noise`).
+
+A :class:`GroundMotion` is what the integrators consume. Analytic kinds are evaluated
+exactly; a ``record`` is linearly interpolated between its samples at ``i·record_dt``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+
+from rockstudy.core._inline import inline_into
+from rockstudy.core.validation import MAX_CONTROLLER_SAMPLES, MAX_STEPS, MAX_TIME_SPAN, fail
+
+EXCITATIONS = ("one-sine", "modulated")
+KIND_CODE = {"one-sine": 0, "modulated": 1, "record": 2, "rectangular": 3}
+"""Integer code of each kind of ground motion, the one the compiled engine reads."""
+ONE_SINE, MODULATED, RECORD, RECTANGULAR = (KIND_CODE[k] for k in ("one-sine", "modulated", "record", "rectangular"))
+MODULATED_CYCLES = 5
+"""T_d = 5 · 2π/ω_p for Eq. (23)."""
+ENVELOPE_PEAK = 90.0 * 0.25**2 * 0.75**6
+"""Peak of Eq. (23)'s envelope 90 t²(t−T_d)⁶/T_d⁸, reached at t = T_d/4 (≈ 1.00113). [-]"""
+
+
+def modulated_duration(omega: float) -> float:
+    """T_d = 5·2π/ω_p, the duration of Eq. (23). [s]"""
+    return MODULATED_CYCLES * 2.0 * math.pi / omega
+
+
+def excitation_duration(kind: str, omega: float) -> float:
+    """Duration after which the analytic excitation is zero. [s]"""
+    if kind == "one-sine":
+        return 2.0 * math.pi / omega
+    if kind == "modulated":
+        return modulated_duration(omega)
+    raise ValueError(f"excitation must be one of {', '.join(EXCITATIONS)}, got {kind!r}")
+
+
+@njit(cache=True)
+def one_sine_acceleration(t, amplitude, omega):
+    """One-sine pulse a_p·sin(ω_p t), for 0 <= t <= 2π/ω_p (the caller checks the range). [m/s^2]
+
+    Parameters
+    ----------
+    t : float
+        Time. [s]
+    amplitude : float
+        a_p. [m/s^2]
+    omega : float
+        ω_p. [rad/s]
+    """
+    return amplitude * math.sin(omega * t)
+
+
+@njit(cache=True)
+def modulated_acceleration(t, amplitude, omega, duration):
+    """Eq. (23): 90 t²(t − T_d)⁶/T_d⁸ · a_p · sin(ω_p (t − T_d)), for 0 <= t <= T_d
+    (the caller checks the range). Both engines evaluate the excitation with this. [m/s^2]
+
+    Parameters
+    ----------
+    t : float
+        Time. [s]
+    amplitude : float
+        a_p. [m/s^2]
+    omega : float
+        ω_p. [rad/s]
+    duration : float
+        T_d = 5·2π/ω_p. [s]
+    """
+    s = t / duration
+    return 90.0 * s * s * (s - 1.0) ** 6 * amplitude * math.sin(omega * (t - duration))
+
+
+@njit(cache=True, inline=inline_into("ground_acceleration"))
+def interpolate_record(t, dt, samples):
+    """Linear interpolation of ``samples`` taken at i·dt, for t >= 0; the last sample after the end. [-]
+
+    Parameters
+    ----------
+    t : float
+        Time. [s]
+    dt : float
+        Sampling step. [s]
+    samples : ndarray
+        Values at 0, dt, 2dt, ...
+    """
+    x = t / dt
+    i = int(x)
+    n = samples.shape[0]
+    if i >= n - 1:
+        return samples[n - 1]
+    f = x - i
+    return samples[i] + f * (samples[i + 1] - samples[i])
+
+
+def modulation_envelope(t, duration):
+    """Envelope of Eq. (23), 90 t²(t − T_d)⁶ / T_d⁸, zero outside [0, T_d]. [-]"""
+    t = np.asarray(t, dtype=float)
+    s = t / duration
+    env = 90.0 * s**2 * (s - 1.0) ** 6
+    return np.where((t >= 0) & (t <= duration), env, 0.0)
+
+
+def one_sine(t, amplitude, omega):
+    """One-sine pulse a_p·sin(ω_p t) on [0, 2π/ω_p], zero elsewhere. [m/s^2]"""
+    t = np.asarray(t, dtype=float)
+    end = 2.0 * math.pi / omega
+    return np.where((t >= 0) & (t <= end), amplitude * np.sin(omega * t), 0.0)
+
+
+def modulated(t, amplitude, omega):
+    """Amplitude-modulated harmonic, Eq. (23), zero outside [0, T_d], on an array of times. [m/s^2]
+
+    The sampled baselines of the noisy records are built with this array form; the engines use
+    :func:`modulated_acceleration`. Both evaluate the same polynomial; their products are rounded
+    in a different order (agreement within 1e-15 relative, tests/model/test_excitation.py).
+    """
+    t = np.asarray(t, dtype=float)
+    td = modulated_duration(omega)
+    return modulation_envelope(t, td) * amplitude * np.sin(omega * (t - td))
+
+
+def analytic(kind: str, t, amplitude, omega):
+    """Evaluate an analytic excitation by name. [m/s^2]"""
+    if kind == "one-sine":
+        return one_sine(t, amplitude, omega)
+    if kind == "modulated":
+        return modulated(t, amplitude, omega)
+    raise ValueError(f"excitation must be one of {', '.join(EXCITATIONS)}, got {kind!r}")
+
+
+@dataclass(frozen=True)
+class GroundMotion:
+    """A horizontal (and optional vertical) ground acceleration history.
+
+    Parameters
+    ----------
+    kind : {"one-sine", "modulated", "record", "rectangular"}
+        Analytic pulse, Eq. (23), a sampled record, or a rectangular pulse (tests).
+    amplitude : float
+        a_p; for a record, the factor multiplying ``record``. [m/s^2]
+    omega : float
+        ω_p (unused for "rectangular"). [rad/s]
+    duration : float
+        Time after which the horizontal excitation is zero. [s]
+    record_dt : float
+        Sampling step of ``record``. [s]
+    record : ndarray
+        Samples at i·record_dt (dimensionless; times ``amplitude`` gives m/s^2).
+    vertical_dt : float
+        Sampling step of ``vertical``. [s]
+    vertical : ndarray
+        Vertical ground acceleration samples at i·vertical_dt, zero after. [m/s^2]
+    """
+
+    kind: str
+    amplitude: float
+    omega: float
+    duration: float
+    record_dt: float = 0.0
+    record: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    vertical_dt: float = 0.0
+    vertical: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    def __post_init__(self):
+        if self.kind not in KIND_CODE:
+            raise ValueError(f"GroundMotion.kind must be one of {', '.join(KIND_CODE)}, got {self.kind!r}")
+        if not (math.isfinite(self.amplitude)):
+            raise ValueError(f"GroundMotion.amplitude must be finite, got {self.amplitude!r}")
+        if self.kind != "rectangular" and not (self.omega > 0):
+            raise ValueError(f"GroundMotion.omega must be > 0 rad/s, got {self.omega!r}")
+        if not (self.duration > 0):
+            raise ValueError(f"GroundMotion.duration must be > 0 s, got {self.duration!r}")
+        if self.kind == "record" and (self.record_dt <= 0 or len(self.record) < 2):
+            raise ValueError("GroundMotion of kind 'record' needs record_dt > 0 and at least 2 samples")
+        if len(self.vertical) and self.vertical_dt <= 0:
+            raise ValueError("GroundMotion.vertical needs vertical_dt > 0")
+        object.__setattr__(self, "record", np.ascontiguousarray(self.record, dtype=float))
+        object.__setattr__(self, "vertical", np.ascontiguousarray(self.vertical, dtype=float))
+
+    @property
+    def code(self) -> int:
+        return KIND_CODE[self.kind]
+
+    def horizontal(self, t):
+        """Horizontal ground acceleration Ẍ_g(t). [m/s^2]"""
+        t = np.asarray(t, dtype=float)
+        if self.kind in EXCITATIONS:
+            return analytic(self.kind, t, self.amplitude, self.omega)
+        if self.kind == "rectangular":
+            return np.where((t >= 0) & (t < self.duration), self.amplitude, 0.0)
+        grid = np.arange(len(self.record)) * self.record_dt
+        return self.amplitude * np.interp(t, grid, self.record, left=0.0, right=0.0)
+
+    def vertical_acceleration(self, t):
+        """Vertical ground acceleration Ÿ_g(t) (zero when not given). [m/s^2]"""
+        t = np.asarray(t, dtype=float)
+        if len(self.vertical) == 0:
+            return np.zeros_like(t)
+        grid = np.arange(len(self.vertical)) * self.vertical_dt
+        return np.interp(t, grid, self.vertical, left=0.0, right=0.0)
+
+    def scaled(self, amplitude: float) -> "GroundMotion":
+        """The same motion with a different amplitude a_p. [m/s^2]"""
+        return GroundMotion(self.kind, amplitude, self.omega, self.duration, self.record_dt, self.record,
+                            self.vertical_dt, self.vertical)
+
+    @property
+    def end_time(self) -> float:
+        """Time after which both components are zero. [s]"""
+        end = self.duration
+        if len(self.vertical):
+            end = max(end, (len(self.vertical) - 1) * self.vertical_dt)
+        return end
+
+    def peak(self) -> float:
+        """Peak |Ẍ_g| (PGA). [m/s^2]"""
+        if self.kind == "record":
+            return abs(self.amplitude) * float(np.max(np.abs(self.record)))
+        if self.kind == "modulated":
+            return abs(self.amplitude) * modulated_peak()
+        return abs(self.amplitude)
+
+
+def modulated_peak() -> float:
+    """max_t |Eq. 23| for a_p = 1 (slightly below the envelope peak). [-]"""
+    # Independent of ω_p: in s = t/T_d the carrier is sin(10π(s−1)). Sample densely and polish.
+    s = np.linspace(0.0, 1.0, 200001)
+    f = np.abs(90 * s**2 * (s - 1) ** 6 * np.sin(10 * np.pi * (s - 1)))
+    return float(f.max())
+
+
+def check_time_span(block, excitation: str, frequency_ratios, free_time: float, sampling_time: float = 0.0, *,
+                    frequency_name: str = "frequency_ratio", free_time_name: str = "free_time",
+                    sampling_name: str = "sampling_time") -> None:
+    """The simulations at these frequency ratios stay within :data:`MAX_TIME_SPAN`, :data:`MAX_STEPS`
+    and :data:`MAX_CONTROLLER_SAMPLES` (the worst cases are the lowest and the highest frequency).
+
+    Parameters
+    ----------
+    block : Block
+    excitation : {"one-sine", "modulated"}
+    frequency_ratios : sequence of float
+        omega_p/p values (only the smallest and the largest are checked). [-]
+    free_time : float
+        Free motion after the excitation. [s]
+    sampling_time : float
+        Controller sampling time T_s (0: continuous). [s]
+    """
+    for f in {min(frequency_ratios), max(frequency_ratios)}:
+        omega = f * block.p
+        if not omega > 0:  # e.g. a grid start below 5e-11, which the grid rounds to 0
+            fail(frequency_name, f, "it must be > 0 (the grids are rounded to 10 decimals)")
+        span = excitation_duration(excitation, omega) + free_time
+        if span > MAX_TIME_SPAN:
+            fail(frequency_name, f, f"the excitation lasts {span - free_time:.4g} s at this frequency ratio "
+                                    f"for this block (p = {block.p:.4g} rad/s); with {free_time_name} = "
+                                    f"{free_time:g} s that is {span:.4g} s, the limit is {MAX_TIME_SPAN:g} s")
+        hmax = 0.05 * 2 * math.pi / max(block.p, omega)
+        if span / hmax > MAX_STEPS:
+            fail(frequency_name, f, f"a simulation of {span:.4g} s at steps of at most {hmax:.3g} s needs "
+                                    f"{span / hmax:.3g} steps, the limit is {MAX_STEPS:.0e} (lower the frequency "
+                                    f"or {free_time_name}, or use a larger block)")
+        if sampling_time > 0 and span / sampling_time > MAX_CONTROLLER_SAMPLES:
+            fail(sampling_name, sampling_time, f"a simulation of {span:.4g} s sampled every {sampling_time:g} s "
+                                               f"takes {span / sampling_time:.3g} controller samples, the limit is "
+                                               f"{MAX_CONTROLLER_SAMPLES:.0e} (the fast engine's event cap)", "s")

@@ -1,0 +1,372 @@
+"""Recorded ground motions: read PEER NGA ``.AT2`` files and two-column text/CSV files.
+
+A :class:`Record` is a horizontal ground acceleration sampled at a uniform step, in SI units;
+:meth:`Record.motion` turns it into the :class:`~rockstudy.model.excitation.GroundMotion` the
+integrators consume (linear interpolation between samples, like the noisy records of §5).
+
+This module is the record-file counterpart of :mod:`rockstudy.core.io` (which holds the netCDF
+I/O): every record file is read and written here. Malformed files are refused with a
+:class:`RecordFormatError` naming the file, the line and what was expected there.
+
+Formats
+-------
+PEER NGA ``.AT2`` [1]_: three free header lines (database, event and station, "ACCELERATION
+TIME SERIES IN UNITS OF G"), a fourth line ``NPTS=  3930, DT=   .0100 SEC`` (the older
+``3930   .0100   NPTS, DT`` is accepted too), then the NPTS accelerations in g, any number
+per line.
+
+Two-column text or CSV: time [s] and acceleration, separated by commas, semicolons, tabs or
+blanks; blank lines and lines starting with ``#`` are skipped; one header line (the first
+line that is not a comment) may name the columns, e.g. ``time [s], acceleration [g]``, and
+its bracketed unit is used when no unit is given. Times must start anywhere and increase by
+one constant step (the record's time origin is its first sample).
+
+References
+----------
+.. [1] PEER (2010). *PEER Ground Motion Database, technical report and user's manual*,
+   Pacific Earthquake Engineering Research Center, Berkeley (the ``.AT2`` format).
+"""
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from rockstudy.core.io import write_text
+from rockstudy.model.excitation import GroundMotion
+
+STANDARD_GRAVITY = 9.80665
+"""Standard gravity g_n, the unit "g" of record files. [m/s^2]"""
+
+UNITS = {"g": STANDARD_GRAVITY, "m/s^2": 1.0, "m/s2": 1.0, "cm/s^2": 0.01, "cm/s2": 0.01, "gal": 0.01,
+         "mm/s^2": 0.001, "mm/s2": 0.001}
+"""Acceleration units a record file may use, with their value in m/s^2."""
+
+AT2_SUFFIXES = (".at2",)
+UNIFORM_STEP_TOLERANCE = 0.05
+"""Largest relative deviation of a time step from the median step in a two-column file (the
+printed times may be rounded: 0.00333, 0.00334, ... for 1/300 s). [-]"""
+
+_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][-+]?\d+)?"
+_NUMBER_RE = re.compile(_NUMBER)
+_NPTS_DT_NEW = re.compile(rf"NPTS\s*=\s*(\d+)\s*,?\s*DT\s*=\s*({_NUMBER})", re.IGNORECASE)
+_NPTS_DT_OLD = re.compile(rf"^\s*(\d+)\s+({_NUMBER})\s+NPTS\s*,?\s*DT", re.IGNORECASE)
+_UNIT_IN_HEADER = re.compile(r"[\[(]\s*([A-Za-z/0-9^*]+)\s*[\])]")
+_SEPARATORS = re.compile(r"[,;\s]+")
+
+
+class RecordFormatError(ValueError):
+    """A record file that does not follow its format; the message names the file and line."""
+
+    def __init__(self, path, line: int | None, expected: str, found: str | None = None):
+        where = f"{path}" if line is None else f"{path}, line {line}"
+        text = f"{where}: expected {expected}"
+        if found is not None:
+            text += f", found {found!r}"
+        super().__init__(text)
+        self.path, self.line, self.expected, self.found = str(path), line, expected, found
+
+
+def unit_factor(unit: str) -> float:
+    """Value of one ``unit`` of acceleration in m/s^2 (``"g"``, ``"m/s^2"``, ``"cm/s^2"``, ...). [m/s^2]
+
+    Raises
+    ------
+    ValueError
+        If ``unit`` is not one of :data:`UNITS`.
+    """
+    key = str(unit).strip().lower().replace("**", "^").replace("/s/s", "/s^2")
+    if key not in UNITS:
+        raise ValueError(f"record unit must be one of {', '.join(UNITS)}, got {unit!r}")
+    return UNITS[key]
+
+
+@dataclass(frozen=True)
+class Record:
+    """A horizontal ground acceleration sampled at a uniform step.
+
+    Parameters
+    ----------
+    name : str
+        Label of the record (event and station for an ``.AT2`` file).
+    dt : float
+        Sampling step. [s]
+    acceleration : ndarray
+        Ground acceleration Ẍ_g at t_i = i·dt, i = 0..n-1, read-only. [m/s^2]
+    source : str
+        File the record was read from ("" when built in memory).
+    unit : str
+        Unit of the accelerations in the source file (informative; ``acceleration`` is SI).
+    """
+
+    name: str
+    dt: float
+    acceleration: np.ndarray
+    source: str = ""
+    unit: str = "m/s^2"
+
+    def __post_init__(self):
+        if not (isinstance(self.dt, (int, float)) and math.isfinite(self.dt) and self.dt > 0):
+            raise ValueError(f"Record.dt must be a positive number [s], got {self.dt!r}")
+        acc = np.array(self.acceleration, dtype=float)
+        if acc.ndim != 1 or acc.size < 2:
+            raise ValueError(f"Record.acceleration must be a 1-D array of at least 2 samples, got shape {acc.shape}")
+        if not np.all(np.isfinite(acc)):
+            raise ValueError("Record.acceleration must be finite (found NaN or inf)")
+        acc.setflags(write=False)
+        object.__setattr__(self, "acceleration", acc)
+        object.__setattr__(self, "dt", float(self.dt))
+
+    @property
+    def duration(self) -> float:
+        """Time of the last sample, (n − 1)·dt. [s]"""
+        return (self.acceleration.size - 1) * self.dt
+
+    @property
+    def times(self) -> np.ndarray:
+        """Sample times i·dt. [s]"""
+        return np.arange(self.acceleration.size) * self.dt
+
+    @property
+    def pga(self) -> float:
+        """Peak ground acceleration max|Ẍ_g|. [m/s^2]"""
+        return float(np.max(np.abs(self.acceleration)))
+
+    def motion(self, scale: float = 1.0) -> GroundMotion:
+        """The record as a ground motion ``scale``·Ẍ_g(t), linear between samples, zero after.
+
+        Parameters
+        ----------
+        scale : float, default 1
+            Factor multiplying the record. [-]
+
+        Returns
+        -------
+        GroundMotion
+            ``kind="record"`` with ``amplitude=scale``, ``record`` in m/s^2 and a nominal
+            ``omega = 2π/duration`` (not used for records).
+        """
+        if not (isinstance(scale, (int, float)) and math.isfinite(scale)):
+            raise ValueError(f"scale must be a finite number, got {scale!r}")
+        return GroundMotion(kind="record", amplitude=float(scale), omega=2.0 * math.pi / self.duration,
+                            duration=self.duration, record_dt=self.dt, record=self.acceleration)
+
+    def scale_to_pga(self, pga: float) -> float:
+        """The factor that gives this record a peak ground acceleration ``pga`` [m/s^2]. [-]"""
+        if not (pga >= 0 and math.isfinite(pga)):
+            raise ValueError(f"pga must be a finite number >= 0 [m/s^2], got {pga!r}")
+        return pga / self.pga
+
+    def to_attrs(self, prefix: str = "record_") -> dict:
+        """Flat attributes for a self-describing dataset."""
+        return {f"{prefix}name": self.name, f"{prefix}source": self.source, f"{prefix}unit": self.unit,
+                f"{prefix}dt_s": self.dt, f"{prefix}npts": int(self.acceleration.size),
+                f"{prefix}pga_m_s2": self.pga}
+
+
+# --- reading ---------------------------------------------------------------------------------------
+def _float(token: str) -> float:
+    return float(token.replace("D", "E").replace("d", "e"))
+
+
+def _numbers_of_line(path, number: int, text: str, expected: str) -> list[float]:
+    """Every number of a data line; anything else on it is refused."""
+    values, pos = [], 0
+    for match in _NUMBER_RE.finditer(text):
+        gap = text[pos:match.start()]
+        if gap.strip(" \t,"):
+            raise RecordFormatError(path, number, expected, gap.strip())
+        values.append(_float(match.group()))
+        pos = match.end()
+    rest = text[pos:]
+    if rest.strip(" \t,\r\n"):
+        raise RecordFormatError(path, number, expected, rest.strip())
+    return values
+
+
+def read_at2(path) -> Record:
+    """Read a PEER NGA ``.AT2`` record (accelerations in g) into SI units.
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``.AT2`` file.
+
+    Returns
+    -------
+    Record
+        ``acceleration`` in m/s^2 (g = 9.80665 m/s^2), ``unit="g"``, ``name`` from header line 2.
+
+    Raises
+    ------
+    RecordFormatError
+        Naming the line: fewer than 4 header lines, a units line that is not "UNITS OF G",
+        no ``NPTS``/``DT`` on line 4, NPTS < 2 or DT <= 0, a token that is not a number,
+        a non-finite value, or more or fewer values than NPTS.
+    """
+    path = Path(path)
+    lines = path.read_text(errors="replace").splitlines()
+    if len(lines) < 4:
+        raise RecordFormatError(path, len(lines) + 1, "4 header lines (title, event, units, 'NPTS= n, DT= dt SEC')",
+                                "end of file")
+    units = lines[2]
+    if not re.search(r"UNITS\s+OF\s+G\b", units, re.IGNORECASE):
+        raise RecordFormatError(path, 3, "the units line 'ACCELERATION TIME SERIES IN UNITS OF G'", units.strip())
+    match = _NPTS_DT_NEW.search(lines[3]) or _NPTS_DT_OLD.search(lines[3])
+    if match is None:
+        raise RecordFormatError(path, 4, "'NPTS= <count>, DT= <step> SEC' (or '<count> <step> NPTS, DT')",
+                                lines[3].strip())
+    npts, dt = int(match.group(1)), _float(match.group(2))
+    if npts < 2:
+        raise RecordFormatError(path, 4, "NPTS >= 2", str(npts))
+    if not (math.isfinite(dt) and dt > 0):
+        raise RecordFormatError(path, 4, "DT > 0 [s]", match.group(2))
+    values: list[float] = []
+    expected = "accelerations in g (numbers only)"
+    for number, text in enumerate(lines[4:], start=5):
+        if not text.strip():
+            continue
+        row = _numbers_of_line(path, number, text, expected)
+        if any(not math.isfinite(v) for v in row):
+            raise RecordFormatError(path, number, "finite accelerations", text.strip())
+        if len(values) + len(row) > npts:
+            raise RecordFormatError(path, number, f"NPTS = {npts} values in all (line 4)",
+                                    f"value {len(values) + len(row)}")
+        values.extend(row)
+    if len(values) < npts:
+        raise RecordFormatError(path, len(lines) + 1, f"NPTS = {npts} values (line 4)",
+                                f"end of file after {len(values)} values")
+    name = lines[1].strip() or path.stem
+    return Record(name=name, dt=dt, acceleration=np.asarray(values) * STANDARD_GRAVITY, source=str(path), unit="g")
+
+
+def read_two_column(path, unit: str | None = None) -> Record:
+    """Read a two-column text/CSV record: time [s] and acceleration in ``unit``.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (see the module docstring for the layout).
+    unit : str, optional
+        Unit of the acceleration column, one of :data:`UNITS`. When None, the header line must
+        state it in brackets, e.g. ``time [s], acceleration [cm/s^2]``.
+
+    Returns
+    -------
+    Record
+        ``acceleration`` in m/s^2; ``dt`` the slope of a least-squares line through the times (printed
+        times may be rounded); the time origin moved to the first sample.
+
+    Raises
+    ------
+    RecordFormatError
+        Naming the line: a row without exactly two numbers, a non-finite value, a time that
+        does not increase, a step more than 5 % off the median step, fewer than 2 rows, or no unit.
+    ValueError
+        If ``unit`` is not one of :data:`UNITS`.
+    """
+    path = Path(path)
+    lines = path.read_text(errors="replace").splitlines()
+    header, header_unit, rows, row_lines = None, None, [], []
+    expected = "two numbers: time [s] and acceleration"
+    for number, text in enumerate(lines, start=1):
+        stripped = text.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        fields = [f for f in _SEPARATORS.split(stripped) if f]
+        try:
+            row = [_float(f) for f in fields]
+        except ValueError:
+            if not rows and header is None:  # one header line, before the data
+                header, header_unit = number, _header_unit(stripped)
+                continue
+            raise RecordFormatError(path, number, expected, stripped) from None
+        if len(row) != 2:
+            raise RecordFormatError(path, number, expected, stripped)
+        if not all(math.isfinite(v) for v in row):
+            raise RecordFormatError(path, number, "finite time and acceleration", stripped)
+        rows.append(row)
+        row_lines.append(number)
+    if len(rows) < 2:
+        raise RecordFormatError(path, len(lines) + 1, "at least 2 rows of time and acceleration",
+                                f"end of file after {len(rows)}")
+    if unit is None:
+        if not header_unit:
+            raise RecordFormatError(path, None, "a stated acceleration unit: pass unit= (--record-unit) or name "
+                                    "it in a header line such as 'time [s], acceleration [g]'")
+        unit = header_unit
+    factor = unit_factor(unit)
+    data = np.asarray(rows)
+    steps = np.diff(data[:, 0])
+    nonincreasing = np.flatnonzero(steps <= 0)
+    if nonincreasing.size:
+        i = int(nonincreasing[0]) + 1
+        raise RecordFormatError(path, row_lines[i], "a time greater than the previous one",
+                                lines[row_lines[i] - 1].strip())
+    typical = float(np.median(steps))
+    bad = np.flatnonzero(np.abs(steps - typical) > UNIFORM_STEP_TOLERANCE * typical)
+    if bad.size:
+        i = int(bad[0]) + 1
+        raise RecordFormatError(path, row_lines[i], f"time {data[i - 1, 0] + typical:.6g} s (a uniform step of "
+                                f"{typical:.6g} s; resample the record)", lines[row_lines[i] - 1].strip())
+    # the step from a least-squares line through all times: printed times carry rounding
+    index = np.arange(len(data))
+    dt = float(np.polyfit(index, data[:, 0], 1)[0])
+    return Record(name=path.stem, dt=dt, acceleration=data[:, 1] * factor, source=str(path), unit=unit)
+
+
+def _header_unit(text: str) -> str | None:
+    """The bracketed unit of the last column named in a header line, if it is a known unit."""
+    found = _UNIT_IN_HEADER.findall(text)
+    for candidate in reversed(found):
+        try:
+            unit_factor(candidate)
+        except ValueError:
+            continue
+        return candidate
+    return None
+
+
+def read_record(path, unit: str | None = None) -> Record:
+    """Read a record file: ``.AT2`` (PEER NGA, in g) by its suffix, any other as two columns.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    unit : str, optional
+        For two-column files, the acceleration unit (see :func:`read_two_column`); for an
+        ``.AT2`` file it must be None or "g" (the format fixes it).
+
+    Returns
+    -------
+    Record
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"record file {str(path)!r} does not exist")
+    if path.suffix.lower() in AT2_SUFFIXES:
+        if unit not in (None, "g", "G"):
+            raise ValueError(f"an .AT2 record is in g by its format; unit must be 'g' or omitted, got {unit!r}")
+        return read_at2(path)
+    return read_two_column(path, unit)
+
+
+# --- writing ---------------------------------------------------------------------------------------
+def at2_text(record: Record, title: str = "rockstudy record (PEER NGA AT2 layout)") -> str:
+    """The record in the PEER NGA ``.AT2`` layout, accelerations in g, 5 per line (``%15.7E``)."""
+    g = record.acceleration / STANDARD_GRAVITY
+    lines = [title, record.name, "ACCELERATION TIME SERIES IN UNITS OF G",
+             f"NPTS= {g.size:7d}, DT= {record.dt:.6f} SEC"]
+    for i in range(0, g.size, 5):
+        lines.append("".join(f"{v:15.7E}" for v in g[i:i + 5]))
+    return "\n".join(lines) + "\n"
+
+
+def write_at2(record: Record, path, title: str = "rockstudy record (PEER NGA AT2 layout)") -> Path:
+    """Write ``record`` as a PEER NGA ``.AT2`` file, atomically with the umask's mode
+    (:func:`rockstudy.core.io.write_text`). Returns the path."""
+    return write_text(at2_text(record, title), path)

@@ -1,0 +1,529 @@
+"""The paper's checkable statements (§5 and the Conclusions), evaluated on a run's results.
+
+Each claim is a plain function of the run's tables and spectra that returns a
+:class:`ClaimResult`: the paper's words, our explicit definition of them (what "smooths",
+"appreciably", "enough" mean here), the numbers behind the verdict, and PASS / FAIL (or
+``None``, "not evaluated", when the run lacks the data, e.g. a tiny study without R010).
+Where a claim can also be checked on the paper's own Table 1 it is, so a FAIL of ours can be
+told apart from a statement the paper's numbers do not support either.
+
+Inputs are the datasets of :mod:`rockstudy.studies.study`: Table 1 (``j_os`` over ``reference`` ×
+``strategy`` × ``noise_level``), the timing tables (``j_os`` over ``reference`` ×
+``strategy`` × ``sampling_time`` or ``delay``), the convergence dataset of Fig. 6a, and the
+gathered spectra. J_OS values are in percent; thresholds are ratios a_p/(g·tanα).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from rockstudy._version import __version__
+from rockstudy.analysis.utility_index import utility_index
+from rockstudy.core.constants import PAPER
+
+PAPER_TABLE1 = {
+    ("no_noise", "FS"): (-2.01, -5.43, -6.28),
+    ("no_noise", "CS01"): (-2.88, -1.61, -0.26),
+    ("no_noise", "CS02"): (+1.18, +2.13, +8.09),
+    ("fs_same_noise", "CS01"): (+28.02, +30.51, +32.44),
+    ("fs_same_noise", "CS02"): (+16.55, +19.65, +23.52),
+}
+"""The paper's Table 1, J_OS [%] at R001, R005, R010, by (reference, strategy)."""
+PAPER_LEVELS = ("R001", "R005", "R010")
+"""Noise levels of the paper's Table 1 (noise energy 1 %, 5 %, 10 % of the baseline's)."""
+
+APPRECIABLE = 2.0
+"""A J_OS change of at least this many points [%] is "appreciable" / "significant" (§5.2)."""
+CONVERGED = 1.0
+"""40 realisations are "enough" when the 10 last move J_OS of the aggregate by less than this [%]."""
+CONVERGENCE_FROM = 30
+"""The aggregate at N = 40 is compared with the one at N = CONVERGENCE_FROM."""
+RANGE_SLACK = 1.0
+"""The Conclusions' ranges ("+28 % to +32 %") are read as whole percent (truncated): low <= J < high + 1 [%]."""
+
+
+@dataclass(frozen=True)
+class ClaimResult:
+    """One evaluated statement.
+
+    Parameters
+    ----------
+    key : str
+        Short identifier, e.g. ``"fs_negative"``.
+    section : str
+        Where the paper says it (``"5.1"``, ``"5.2"``, ``"6"``).
+    statement : str
+        The paper's words (quoted or closely paraphrased).
+    definition : str
+        What we check, with the thresholds used.
+    evidence : str
+        The numbers behind the verdict.
+    passed : bool or None
+        The verdict; None when the run lacks the data.
+    paper_passed : bool or None
+        The same check on the paper's own Table 1, when it applies.
+    """
+
+    key: str
+    section: str
+    statement: str
+    definition: str
+    evidence: str
+    passed: bool | None
+    paper_passed: bool | None = None
+
+    def __post_init__(self):
+        for name in ("key", "section", "statement", "definition", "evidence"):
+            if not isinstance(getattr(self, name), str):
+                raise ValueError(f"ClaimResult.{name} must be a string, got {getattr(self, name)!r}")
+        for name in ("passed", "paper_passed"):
+            value = getattr(self, name)
+            if value is not None and not isinstance(value, (bool, np.bool_)):
+                raise ValueError(f"ClaimResult.{name} must be True, False or None, got {value!r}")
+            object.__setattr__(self, name, None if value is None else bool(value))
+
+    @property
+    def verdict(self) -> str:
+        """"PASS", "FAIL" or "n/a"."""
+        return "n/a" if self.passed is None else ("PASS" if self.passed else "FAIL")
+
+
+# --- helpers -------------------------------------------------------------------------------------
+def _fmt(values) -> str:
+    return ", ".join(f"{v:+.2f}" for v in values)
+
+
+def _row(table: xr.Dataset | None, reference: str, strategy: str, levels=PAPER_LEVELS):
+    """J_OS [%] of one Table 1 row at ``levels``; None when any cell is missing or NaN."""
+    if table is None:
+        return None
+    try:
+        values = [float(table["j_os"].sel(reference=reference, strategy=strategy, noise_level=lv)) for lv in levels]
+    except KeyError:
+        return None
+    return None if any(math.isnan(v) for v in values) else values
+
+
+def _paper_row(reference: str, strategy: str):
+    return list(PAPER_TABLE1[(reference, strategy)])
+
+
+def _decreasing(values) -> bool:
+    return all(b < a for a, b in zip(values, values[1:]))
+
+
+def _increasing(values) -> bool:
+    return all(b > a for a, b in zip(values, values[1:]))
+
+
+def _timing(table: xr.Dataset | None, reference: str, strategy: str, variable: str):
+    """{value [s]: J_OS [%]} of one timing-table row, or None."""
+    if table is None or variable not in table.dims:
+        return None
+    try:
+        row = table["j_os"].sel(reference=reference, strategy=strategy)
+    except KeyError:
+        return None
+    return {float(v): float(j) for v, j in zip(row[variable].values, row.values)}
+
+
+def total_variation(thresholds, cap: float) -> float:
+    """Total variation Σ|a_{i+1} − a_i| of a threshold curve over the frequency grid. [-]
+
+    NaN (no overturning up to the scan bound) and values above ``cap`` count as ``cap``, so a
+    spectrum that leaves the scan range is not rewarded or punished beyond the bound.
+    """
+    a = np.asarray(thresholds, dtype=float)
+    a = np.where(np.isnan(a) | (a > cap), cap, a)
+    return float(np.sum(np.abs(np.diff(a))))
+
+
+# --- Table 1 claims ------------------------------------------------------------------------------
+def claim_fs_negative(table) -> ClaimResult:
+    ours, paper = _row(table, "no_noise", "FS"), _paper_row("no_noise", "FS")
+    return ClaimResult(
+        "fs_negative", "5.1", "Noise makes the free-standing block less stable: J_OS of FS against no noise < 0.",
+        "J_OS(FS vs FS without noise) < 0 at R001, R005 and R010.",
+        "n/a (Table 1 incomplete)" if ours is None else f"ours {_fmt(ours)} %; paper {_fmt(paper)} %",
+        None if ours is None else all(v < 0 for v in ours), all(v < 0 for v in paper))
+
+
+def claim_fs_falls(table) -> ClaimResult:
+    ours, paper = _row(table, "no_noise", "FS"), _paper_row("no_noise", "FS")
+    return ClaimResult(
+        "fs_falls_with_noise", "5.1", "\"The value of J_OS of the free standing block decreases with increasing the "
+        "level of noise.\"", "J_OS(FS vs no noise) strictly decreasing from R001 to R005 to R010.",
+        "n/a (Table 1 incomplete)" if ours is None else f"ours {_fmt(ours)} %; paper {_fmt(paper)} %",
+        None if ours is None else _decreasing(ours), _decreasing(paper))
+
+
+def claim_controlled_rises(table) -> ClaimResult:
+    rows = {s: _row(table, "no_noise", s) for s in ("CS01", "CS02")}
+    paper = {s: _paper_row("no_noise", s) for s in ("CS01", "CS02")}
+    ok = None if any(v is None for v in rows.values()) else all(_increasing(v) for v in rows.values())
+    evidence = "n/a (Table 1 incomplete)" if ok is None else "; ".join(
+        f"{s}: ours {_fmt(rows[s])} %, paper {_fmt(paper[s])} %" for s in rows)
+    return ClaimResult(
+        "controlled_rises_with_noise", "5.1", "\"... whilst the opposite happens for the controlled body\" (J_OS "
+        "against no noise grows with the noise level).",
+        "J_OS(CS01 vs no noise) and J_OS(CS02 vs no noise) strictly increasing from R001 to R010.",
+        evidence, ok, all(_increasing(v) for v in paper.values()))
+
+
+def claim_controlled_less_sensitive(table) -> ClaimResult:
+    fs = _row(table, "no_noise", "FS")
+    rows = {s: _row(table, "no_noise", s) for s in ("CS01", "CS02")}
+
+    def check(fs_row, row_map):
+        return all(abs(row_map[s][i]) < abs(fs_row[i]) for s in row_map for i in range(len(fs_row)))
+
+    ok = None if fs is None or any(v is None for v in rows.values()) else check(fs, rows)
+    paper = check(_paper_row("no_noise", "FS"), {s: _paper_row("no_noise", s) for s in rows})
+    evidence = "n/a (Table 1 incomplete)" if ok is None else (
+        f"|J_OS| vs no noise, FS {_fmt(np.abs(fs))}; CS01 {_fmt(np.abs(rows['CS01']))}; "
+        f"CS02 {_fmt(np.abs(rows['CS02']))} %")
+    return ClaimResult(
+        "controlled_less_sensitive", "5.1", "\"The discrepancy between the a_min,OVER of the contaminated and pure "
+        "... excitations decreases when moving from the uncontrolled free standing block to the controlled one.\"",
+        "|J_OS(S vs no noise)| < |J_OS(FS vs no noise)| for S = CS01, CS02 at every level.", evidence, ok, paper)
+
+
+def claim_both_beat_fs(table) -> ClaimResult:
+    rows = {s: _row(table, "fs_same_noise", s) for s in ("CS01", "CS02")}
+    ok = None if any(v is None for v in rows.values()) else all(v > 0 for r in rows.values() for v in r)
+    evidence = "n/a (Table 1 incomplete)" if ok is None else "; ".join(
+        f"{s} vs FS: {_fmt(r)} %" for s, r in rows.items())
+    return ClaimResult(
+        "both_beat_fs", "5.1 / 6", "Both controlled blocks are more stable than the free-standing block at every "
+        "noise level.", "J_OS(CS01 vs FS) > 0 and J_OS(CS02 vs FS) > 0 at R001, R005, R010 (same noise).",
+        evidence, ok, True)
+
+
+def claim_cs01_beats_cs02(table) -> ClaimResult:
+    c1, c2 = _row(table, "fs_same_noise", "CS01"), _row(table, "fs_same_noise", "CS02")
+    ok = None if c1 is None or c2 is None else all(a > b for a, b in zip(c1, c2))
+    return ClaimResult(
+        "cs01_beats_cs02", "5.1 / 6", "\"The block controlled through the feedback strategy (CS01) results to be more "
+        "stable than the block controlled by the feedback-feedforward strategy (CS02).\"",
+        "J_OS(CS01 vs FS) > J_OS(CS02 vs FS) at every level.",
+        "n/a (Table 1 incomplete)" if ok is None else f"CS01 {_fmt(c1)} %; CS02 {_fmt(c2)} %", ok, True)
+
+
+def claim_gap_shrinks(table) -> ClaimResult:
+    c1, c2 = _row(table, "fs_same_noise", "CS01"), _row(table, "fs_same_noise", "CS02")
+    p1, p2 = _paper_row("fs_same_noise", "CS01"), _paper_row("fs_same_noise", "CS02")
+    paper_gap = [a - b for a, b in zip(p1, p2)]
+    ok, evidence = None, "n/a (Table 1 incomplete)"
+    if c1 is not None and c2 is not None:
+        gap = [a - b for a, b in zip(c1, c2)]
+        ok = _increasing(gap)
+        evidence = f"gap CS01 - CS02 vs FS at R001, R005, R010: ours {_fmt(gap)}; paper {_fmt(paper_gap)} points"
+    return ClaimResult(
+        "gap_shrinks_as_noise_falls", "5.1", "\"Reducing the level of noise, the discrepancy in the performances of "
+        "the two control strategies decreases.\"",
+        "J_OS(CS01 vs FS) - J_OS(CS02 vs FS) strictly smaller at lower noise: gap(R001) < gap(R005) < gap(R010).",
+        evidence, ok, _increasing(paper_gap))
+
+
+def _range_claim(table, strategy, low, high) -> ClaimResult:
+    row = _row(table, "fs_same_noise", strategy)
+    lo, hi = low, high + RANGE_SLACK
+    paper = _paper_row("fs_same_noise", strategy)
+    return ClaimResult(
+        f"{strategy.lower()}_range", "6", f"\"The utility index for law {strategy} was seen to be in the range "
+        f"+{low:g}% to +{high:g}% for noise up to the 10%.\"",
+        f"every J_OS({strategy} vs FS) at R001-R010 in [{lo:g}, {hi:g}) % (the stated range in whole percent, "
+        "as the paper's +23.52 % is \"+23 %\").",
+        "n/a (Table 1 incomplete)" if row is None else f"ours {_fmt(row)} %; paper {_fmt(paper)} %",
+        None if row is None else all(lo <= v < hi for v in row), all(lo <= v < hi for v in paper))
+
+
+# --- convergence, smoothing ----------------------------------------------------------------------
+def claim_forty_enough(conv: xr.Dataset | None, a_max0_ratio: float) -> ClaimResult:
+    statement = ("\"The minimum number of contaminated signals to be taken into account to define a stable "
+                 "a_min,OVER was in the range of 40.\"")
+    definition = (f"the aggregate threshold of the convergence study (Fig. 6a) at N = 40 differs from the one at "
+                  f"N = {CONVERGENCE_FROM} by |J_OS(N=40 vs N={CONVERGENCE_FROM})| < {CONVERGED:g} % (a_max,0 as in "
+                  "Table 1).")
+    if conv is None or "threshold_convergence" not in conv or conv.sizes.get("n_realisations", 0) < 40:
+        return ClaimResult("forty_realisations_enough", "5.1", statement, definition,
+                           "n/a (fewer than 40 realisations in the run)", None)
+    run = conv["threshold_convergence"]
+    a40, a30 = run.sel(n_realisations=40).values, run.sel(n_realisations=CONVERGENCE_FROM).values
+    j, _ = utility_index(a40, a30, a_max0_ratio)
+    both = np.isfinite(a40) & np.isfinite(a30)
+    moved = int(np.count_nonzero(both & (a40 < a30)))
+    rel = float(np.nanmax(np.where(both, (a30 - a40) / a30, np.nan))) if both.any() else 0.0
+    strategy = conv["strategy"].item() if "strategy" in conv.coords else "?"
+    return ClaimResult(
+        "forty_realisations_enough", "5.1", statement, definition,
+        f"{strategy}: J_OS(N=40 vs N={CONVERGENCE_FROM}) = {j:+.2f} %; the last 10 realisations lower the threshold "
+        f"at {moved} of {len(a40)} frequencies, by at most {100 * rel:.1f} %", abs(j) < CONVERGED)
+
+
+def claim_noise_smooths(spectra: dict, levels: dict, cap: float) -> ClaimResult:
+    """``spectra``: {(strategy, level name): thresholds}; ``levels``: {level name: value}."""
+    statement = ("\"In the presence of noise a_min,OVER of the controlled block becomes more smoothed and spikes tend "
+                 "to disappear.\"")
+    definition = ("total variation TV = sum |a(w_i+1) - a(w_i)| of the aggregate threshold over the frequency grid "
+                  f"(NaN and values above {cap:g} counted as {cap:g}) is smaller at every noisy level than without "
+                  "noise, for CS01 and CS02.")
+    free = [name for name, v in levels.items() if v == 0]
+    noisy = [name for name, v in levels.items() if v > 0]
+    parts, ok = [], True
+    for s in ("CS01", "CS02"):
+        if not free or (s, free[0]) not in spectra or not all((s, lv) in spectra for lv in noisy):
+            return ClaimResult("noise_smooths_controlled", "5.1", statement, definition,
+                               f"n/a ({s} spectra missing)", None)
+        tv0 = total_variation(spectra[(s, free[0])], cap)
+        tvs = [total_variation(spectra[(s, lv)], cap) for lv in noisy]
+        ok = ok and all(tv < tv0 for tv in tvs)
+        parts.append(f"{s}: TV {tv0:.2f} without noise; " + ", ".join(f"{lv} {tv:.2f}" for lv, tv in zip(noisy, tvs)))
+    return ClaimResult("noise_smooths_controlled", "5.1", statement, definition, "; ".join(parts), ok)
+
+
+# --- timing claims -------------------------------------------------------------------------------
+def claim_cs01_sampling(sampling: xr.Dataset | None) -> ClaimResult:
+    row = _timing(sampling, "continuous_same_noise", "CS01", "sampling_time")
+    statement = ("\"The feedback strategy CS01 ... appreciable difference was found only for the largest sampling "
+                 "time of 0.20 s.\"")
+    definition = (f"|J_OS(CS01 sampled vs continuous)| < {APPRECIABLE:g} % for every T_s < 0.2 s of the sweep, and "
+                  f">= {APPRECIABLE:g} % at T_s = 0.2 s.")
+    if row is None or not any(math.isclose(t, 0.2) for t in row):
+        return ClaimResult("cs01_sampling_only_at_0.2s", "5.2", statement, definition, "n/a (no T_s = 0.2 s)", None)
+    small = all(abs(j) < APPRECIABLE for t, j in row.items() if t < 0.2 - 1e-9)
+    big = abs(row[min(row, key=lambda t: abs(t - 0.2))]) >= APPRECIABLE
+    return ClaimResult("cs01_sampling_only_at_0.2s", "5.2", statement, definition,
+                       "CS01 vs continuous: " + ", ".join(f"T_s={t:g} s {j:+.2f} %" for t, j in row.items()),
+                       small and big)
+
+
+def claim_cs02_sampling(sampling: xr.Dataset | None) -> ClaimResult:
+    row = _timing(sampling, "continuous_same_noise", "CS02", "sampling_time")
+    statement = "\"Control strategy CS02 deteriorates its performance for sampling time as low as 0.10 s.\""
+    definition = f"J_OS(CS02 at T_s = 0.1 s vs continuous) <= -{APPRECIABLE:g} %."
+    if row is None or not any(math.isclose(t, 0.1) for t in row):
+        return ClaimResult("cs02_deteriorates_at_0.1s", "5.2", statement, definition, "n/a (no T_s = 0.1 s)", None)
+    j = row[min(row, key=lambda t: abs(t - 0.1))]
+    return ClaimResult("cs02_deteriorates_at_0.1s", "5.2", statement, definition,
+                       "CS02 vs continuous: " + ", ".join(f"T_s={t:g} s {v:+.2f} %" for t, v in row.items()),
+                       j <= -APPRECIABLE)
+
+
+def claim_cs01_less_affected(sampling: xr.Dataset | None) -> ClaimResult:
+    r1 = _timing(sampling, "continuous_same_noise", "CS01", "sampling_time")
+    r2 = _timing(sampling, "continuous_same_noise", "CS02", "sampling_time")
+    statement = "\"The feedback control strategy is less affected by sampling than the feedback-feedforward one.\""
+    definition = "J_OS(CS01 sampled vs continuous) >= J_OS(CS02 sampled vs continuous) at every T_s >= 0.1 s."
+    if r1 is None or r2 is None:
+        return ClaimResult("cs01_less_affected_by_sampling", "6", statement, definition, "n/a (no sweep)", None)
+    common = sorted(t for t in r1 if t in r2 and t >= 0.1 - 1e-9)
+    if not common:
+        return ClaimResult("cs01_less_affected_by_sampling", "6", statement, definition, "n/a (no T_s >= 0.1 s)",
+                           None)
+    return ClaimResult("cs01_less_affected_by_sampling", "6", statement, definition,
+                       ", ".join(f"T_s={t:g} s: CS01 {r1[t]:+.2f} %, CS02 {r2[t]:+.2f} %" for t in common),
+                       all(r1[t] >= r2[t] for t in common))
+
+
+def claim_cs01_stable_sampled(sampling: xr.Dataset | None) -> ClaimResult:
+    r1 = _timing(sampling, "fs_same_noise", "CS01", "sampling_time")
+    r2 = _timing(sampling, "fs_same_noise", "CS02", "sampling_time")
+    statement = "\"The feedback strategy CS01 was still the more stable\" over T_s from 2.5 ms to 0.20 s."
+    definition = "J_OS(CS01 vs FS) > J_OS(CS02 vs FS) at every sampling time of the sweep."
+    if r1 is None or r2 is None:
+        return ClaimResult("cs01_more_stable_when_sampled", "5.2", statement, definition, "n/a (no sweep)", None)
+    common = sorted(set(r1) & set(r2))
+    return ClaimResult("cs01_more_stable_when_sampled", "5.2", statement, definition,
+                       ", ".join(f"T_s={t:g} s: CS01 {r1[t]:+.2f} %, CS02 {r2[t]:+.2f} %" for t in common),
+                       all(r1[t] > r2[t] for t in common))
+
+
+def claim_delay(delay: xr.Dataset | None) -> ClaimResult:
+    statement = ("\"Both strategies perform well with respect to time-delay effects, as the threshold ... remained "
+                 "substantially the same\" (delays 2.5 ms and 60 ms, T_s = 100 ms).")
+    definition = (f"|J_OS(delayed vs the same sampling without delay)| < {APPRECIABLE:g} % for CS01 and CS02 at every "
+                  "delay of the sweep.")
+    rows = {s: _timing(delay, "sampled_without_delay_same_noise", s, "delay") for s in ("CS01", "CS02")}
+    if any(r is None for r in rows.values()):
+        return ClaimResult("delay_harmless", "5.2 / 6", statement, definition, "n/a (no delay sweep)", None)
+    evidence = "; ".join(f"{s}: " + ", ".join(f"delay {d * 1000:g} ms {j:+.2f} %" for d, j in r.items())
+                         for s, r in rows.items())
+    return ClaimResult("delay_harmless", "5.2 / 6", statement, definition, evidence,
+                       all(abs(j) < APPRECIABLE for r in rows.values() for j in r.values()))
+
+
+# --- all together --------------------------------------------------------------------------------
+def evaluate_claims(table1: xr.Dataset | None, *, convergence: xr.Dataset | None = None,
+                    sampling: xr.Dataset | None = None, delay: xr.Dataset | None = None,
+                    spectra: dict | None = None, levels: dict | None = None,
+                    a_max0_ratio: float = 4.0, cap: float | None = None) -> list[ClaimResult]:
+    """Every checkable statement of §5 and the Conclusions, in the paper's order.
+
+    Parameters
+    ----------
+    table1 : xarray.Dataset or None
+        Table 1 as built by :func:`rockstudy.studies.tables.table1`.
+    convergence : xarray.Dataset, optional
+        Fig. 6a data (:func:`rockstudy.studies.datasets.convergence_dataset`).
+    sampling, delay : xarray.Dataset, optional
+        The timing tables (:func:`rockstudy.studies.tables.timing_table`).
+    spectra : dict, optional
+        {(strategy, level name): aggregate thresholds over the frequency grid} [-].
+    levels : dict, optional
+        {level name: noise level} [-].
+    a_max0_ratio : float, default 4.0
+        a_max,0 as an amplitude ratio (4 = g for BLC06). [-]
+    cap : float, optional
+        Threshold cap for the total variation (default ``a_max0_ratio``). [-]
+
+    Returns
+    -------
+    list of ClaimResult
+    """
+    cap = a_max0_ratio if cap is None else cap
+    return [
+        claim_fs_negative(table1),
+        claim_fs_falls(table1),
+        claim_controlled_rises(table1),
+        claim_controlled_less_sensitive(table1),
+        claim_noise_smooths(spectra or {}, levels or {}, cap),
+        claim_forty_enough(convergence, a_max0_ratio),
+        claim_both_beat_fs(table1),
+        claim_cs01_beats_cs02(table1),
+        claim_gap_shrinks(table1),
+        claim_cs01_stable_sampled(sampling),
+        claim_cs01_sampling(sampling),
+        claim_cs02_sampling(sampling),
+        claim_cs01_less_affected(sampling),
+        claim_delay(delay),
+        _range_claim(table1, "CS01", 28, 32),
+        _range_claim(table1, "CS02", 16, 23),
+    ]
+
+
+def _verdict(value) -> str:
+    return "n/a" if value is None else ("PASS" if value else "FAIL")
+
+
+def claims_dataset(results: list[ClaimResult], attrs: dict | None = None) -> xr.Dataset:
+    """The claims as a labelled dataset: ``passed`` (1 PASS, 0 FAIL, -1 not evaluated) and the texts."""
+    def code(v):
+        return -1 if v is None else int(v)
+    keys = [r.key for r in results]
+    return xr.Dataset(
+        {"passed": ("claim", np.array([code(r.passed) for r in results], dtype=np.int8),
+                    {"long_name": "verdict on this run", "flag_values": np.array([-1, 0, 1], dtype=np.int8),
+                     "flag_meanings": "not_evaluated fail pass"}),
+         "paper_passed": ("claim", np.array([code(r.paper_passed) for r in results], dtype=np.int8),
+                          {"long_name": "verdict of the same check on the paper's own Table 1",
+                           "flag_values": np.array([-1, 0, 1], dtype=np.int8),
+                           "flag_meanings": "not_applicable fail pass"}),
+         "section": ("claim", [r.section for r in results]),
+         "statement": ("claim", [r.statement for r in results]),
+         "definition": ("claim", [r.definition for r in results]),
+         "evidence": ("claim", [r.evidence for r in results])},
+        coords={"claim": ("claim", keys)},
+        attrs={"title": "Claims of the paper (§5, Conclusions) checked on this run", "paper": PAPER,
+               "rockstudy_version": __version__, "appreciable_jos_percent": APPRECIABLE,
+               "converged_jos_percent": CONVERGED, "convergence_from_n": CONVERGENCE_FROM,
+               "range_slack_percent": RANGE_SLACK, **(attrs or {})})
+
+
+def table1_comparison(table1: xr.Dataset) -> xr.Dataset:
+    """Table 1 side by side: the paper's J_OS, ours and ours − paper per cell [%] (NaN where absent)."""
+    keys = list(PAPER_TABLE1)
+    paper = np.array([PAPER_TABLE1[k] for k in keys])
+    ours = np.full(paper.shape, np.nan)
+    for i, (ref, s) in enumerate(keys):
+        row = _row(table1, ref, s, PAPER_LEVELS)
+        if row is None:  # a partial row (e.g. a tiny study): fill what exists
+            for j, lv in enumerate(PAPER_LEVELS):
+                try:
+                    ours[i, j] = float(table1["j_os"].sel(reference=ref, strategy=s, noise_level=lv))
+                except KeyError:
+                    pass
+        else:
+            ours[i] = row
+    dims = ("row", "noise_level")
+    pct = {"units": "percent"}
+    return xr.Dataset(
+        {"paper": (dims, paper, {**pct, "long_name": "J_OS in the paper's Table 1"}),
+         "ours": (dims, ours, {**pct, "long_name": "J_OS of this run"}),
+         "difference": (dims, ours - paper, {**pct, "long_name": "ours minus paper (points)"})},
+        coords={"row": ("row", [f"{s} vs {ref}" for ref, s in keys]),
+                "reference": ("row", [ref for ref, _ in keys]), "strategy": ("row", [s for _, s in keys]),
+                "noise_level": ("noise_level", list(PAPER_LEVELS))},
+        attrs={"title": "Table 1: paper vs this run", "paper": PAPER, "rockstudy_version": __version__})
+
+
+def comparison_markdown(comp: xr.Dataset) -> str:
+    """Table 1 side by side as Markdown: per row and level, paper / ours / difference."""
+    levels = list(comp["noise_level"].values)
+    head = ["Table 1 row"] + [f"{lv} paper / ours / diff" for lv in levels] + ["max abs diff"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for i, row in enumerate(comp["row"].values):
+        cells = []
+        for j in range(len(levels)):
+            p, o, d = (float(comp[v].values[i, j]) for v in ("paper", "ours", "difference"))
+            cells.append(f"{p:+.2f} / " + ("-" if math.isnan(o) else f"{o:+.2f} / {d:+.2f}"))
+        diffs = np.abs(comp["difference"].values[i])
+        worst = "-" if np.all(np.isnan(diffs)) else f"{np.nanmax(diffs):.2f}"
+        lines.append("| " + " | ".join([str(row)] + cells + [worst]) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def claims_markdown(results: list[ClaimResult], comp: xr.Dataset | None = None, header: str = "") -> str:
+    """The checklist as Markdown (one line per claim, then details), with Table 1 side by side."""
+    n_pass = sum(r.passed is True for r in results)
+    n_fail = sum(r.passed is False for r in results)
+    out = ["# Claims of the paper checked on this run", ""]
+    if header:
+        out += [header, ""]
+    out += [f"**{n_pass} PASS, {n_fail} FAIL, {len(results) - n_pass - n_fail} not evaluated** "
+            f"(\"paper\": the same check on the paper's own Table 1, where it applies).", "",
+            "| # | § | claim | ours | paper's own numbers | evidence |", "|---|---|---|---|---|---|"]
+    for i, r in enumerate(results, 1):
+        out.append(f"| {i} | {r.section} | {r.statement} | **{r.verdict}** | {_verdict(r.paper_passed)} | "
+                   f"{r.evidence} |")
+    out += ["", "## Definitions", ""]
+    out += [f"{i}. `{r.key}`: {r.definition}" for i, r in enumerate(results, 1)]
+    if comp is not None:
+        out += ["", "## Table 1 side by side (J_OS, %)", "", comparison_markdown(comp)]
+    return "\n".join(out) + "\n"
+
+
+def claims_csv(results: list[ClaimResult]) -> str:
+    """The checklist as CSV (one row per claim) for the HTML report."""
+    import csv
+    import io as _io
+    buf = _io.StringIO()
+    writer = csv.writer(buf)
+    writer.writerow(["claim", "section", "verdict", "paper_own_numbers", "statement", "definition", "evidence"])
+    for r in results:
+        writer.writerow([r.key, r.section, r.verdict, _verdict(r.paper_passed), r.statement, r.definition,
+                         r.evidence])
+    return buf.getvalue()
+
+
+def evaluate_run(table1: xr.Dataset, spectra, levels: dict, a_max0_g: float, *, convergence=None, sampling=None,
+                 delay=None) -> list[ClaimResult]:
+    """:func:`evaluate_claims` on a run's datasets: ``spectra`` is a list of gathered spectrum datasets.
+
+    ``a_max0_g`` is a_max,0 in units of g (converted with the block's α from the spectra). [g]
+    """
+    spectra = list(spectra)
+    if not spectra:
+        raise ValueError("spectra must hold at least one gathered spectrum dataset")
+    ratio = float(a_max0_g) / math.tan(float(spectra[0].attrs["block_alpha"]))
+    by_value = {float(v): name for name, v in levels.items()}
+    curves = {}
+    for ds in spectra:
+        name = by_value.get(float(ds["noise_level"]))
+        if name is not None:
+            curves[(ds["strategy"].item(), name)] = ds["threshold"].values
+    return evaluate_claims(table1, convergence=convergence, sampling=sampling, delay=delay, spectra=curves,
+                           levels=levels, a_max0_ratio=ratio)

@@ -1,0 +1,176 @@
+"""The study's labelled datasets (paper §5, Figs. 2–6): the noise realisations of a level, the
+spectra gathered from realisation chunks, the convergence with the number of realisations, and
+time histories. Every dataset is self-describing (units, long names, parameters, seed, paper
+reference, the meaning of every NaN).
+"""
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from rockstudy._version import __version__
+from rockstudy.analysis.scenario import Scenario
+from rockstudy.analysis.spectra import convergence
+from rockstudy.core.constants import PAPER
+from rockstudy.engine.simulate import simulate
+from rockstudy.model.excitation import excitation_duration
+from rockstudy.model.noise import NOISE_DT, baseline_samples, level_key, noisy_record
+
+MISSING_MEANINGS = {
+    "threshold": "NaN: no overturning found up to the scan's top (grid_amplitude_stop) in any realisation",
+    "threshold_realisation": "NaN: no overturning found up to the scan's top (grid_amplitude_stop) in this "
+                             "realisation",
+    "threshold_mean": "NaN: no realisation overturned up to the scan's top (grid_amplitude_stop)",
+    "threshold_std": "NaN: no realisation overturned up to the scan's top (grid_amplitude_stop)",
+    "threshold_convergence": "NaN: none of the first N realisations overturned up to the scan's top "
+                             "(grid_amplitude_stop)",
+    "last_safe": "NaN never: the highest amplitude ratio found safe (the scan's top when nothing overturned)",
+    "j_os": "NaN where N* = 0: no frequency has a threshold below a_max,0 for the system or the reference, "
+            "so J_OS (Eq. 21) is undefined",
+}
+
+
+"""What a NaN means in each variable that can hold one (the ``missing_value_meaning`` attribute)."""
+
+
+def document_missing(ds: xr.Dataset) -> xr.Dataset:
+    """Add ``missing_value_meaning`` (what a NaN means) to every variable of ``ds`` listed in
+    :data:`MISSING_MEANINGS`; returns ``ds``."""
+    for name, meaning in MISSING_MEANINGS.items():
+        if name in ds.variables:
+            ds[name].attrs["missing_value_meaning"] = meaning
+    return ds
+
+
+def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_frequency_ratio: float,
+                  n_records: int) -> xr.Dataset:
+    """The noise realisations of one level: seeds, spawn keys, energy and PGA ratios, unit records.
+
+    Records are regenerated exactly by ``noisy_record(excitation, ω_p, level, k, seed, reading)``
+    with ``SeedSequence(seed, spawn_key=(level_key, k))``; the first ``n_records`` unit records
+    at ``reference_frequency_ratio`` are stored with the baseline for Fig. 4.
+    """
+    sc, freqs, ks = scenario, np.asarray(frequency_ratios, float), [int(k) for k in realisations]
+    level = sc.noise_level
+
+    def record(f, k):
+        return noisy_record(sc.excitation, sc.omega(f), level, k, sc.seed, sc.noise)
+
+    ratios = np.array([[(r.energy_ratio, r.pga_ratio) for r in (record(f, k) for f in freqs)] for k in ks])
+    base, dt = baseline_samples(sc.excitation, sc.omega(reference_frequency_ratio), sc.noise.step)
+    kept = ks[:n_records]
+    recs = np.array([record(reference_frequency_ratio, k).values for k in kept]).reshape(len(kept), len(base))
+    ratio = {"units": "1"}
+    return xr.Dataset(
+        {"energy_ratio": (("realisation", "frequency_ratio"), ratios[..., 0],
+                          {**ratio, "long_name": "noisy record energy / baseline energy"}),
+         "pga_ratio": (("realisation", "frequency_ratio"), ratios[..., 1],
+                       {**ratio, "long_name": "noisy record PGA / baseline PGA"}),
+         "spawn_key": (("realisation", "key"), np.array([[level_key(level), k] for k in ks], dtype=np.int64),
+                       {"long_name": "SeedSequence spawn key (level_key, realisation)"}),
+         "baseline": ("time", base, {**ratio, "long_name": "unit-amplitude baseline excitation X_g/a_p",
+                                     "frequency_ratio": reference_frequency_ratio}),
+         "record": (("record_realisation", "time"), recs,
+                    {**ratio, "long_name": "unit-amplitude noisy record X_g/a_p",
+                     "frequency_ratio": reference_frequency_ratio})},
+        coords={"realisation": ("realisation", np.array(ks, dtype=np.int64), {"long_name": "noise realisation k"}),
+                "record_realisation": ("record_realisation", np.array(kept, dtype=np.int64),
+                                       {"long_name": "noise realisation k of the stored records"}),
+                "frequency_ratio": ("frequency_ratio", freqs, {"units": "1", "long_name": "omega_p/p"}),
+                "time": ("time", np.arange(len(base)) * dt, {"units": "s", "long_name": "time"})},
+        attrs={"title": f"Noise realisations, level {level:g} (noise energy / baseline energy)", "paper": PAPER,
+               "paper_section": "5 (Fig. 4)", "rockstudy_version": __version__, "noise_level": level,
+               "noise_seed": sc.seed, "noise_level_key": level_key(level), **sc.noise.to_attrs(),
+               "excitation": sc.excitation, "reference_frequency_ratio": reference_frequency_ratio,
+               "regenerate": "rockstudy.model.noise.noisy_record(excitation, frequency_ratio*block_p, noise_level, k, "
+                             "noise_seed, NoiseReading(step=noise_step_s, rescale=noise_rescale, "
+                             "level_means=noise_level_means, band=noise_band_hz or None, span=noise_span_s)); "
+                             "SeedSequence(seed, spawn_key=(level_key, k))",
+               **sc.block.to_attrs()})
+
+
+REALISATION_VARS = ("threshold_realisation", "last_safe", "n_simulations", "n_undetermined", "energy_ratio",
+                    "pga_ratio")
+
+
+def gather_spectra(parts) -> xr.Dataset:
+    """Concatenate realisation chunks of one spectrum and recompute the aggregates.
+
+    ``threshold`` is the lowest threshold over all realisations (the paper's a_min,OVER),
+    ``threshold_mean``/``threshold_std`` the mean and std over the realisations with a threshold.
+    """
+    parts = sorted(parts, key=lambda d: int(d["realisation"].values[0]))
+    ds = xr.concat([p[list(REALISATION_VARS)] for p in parts], dim="realisation", combine_attrs="override")
+    if len(np.unique(ds["realisation"])) != ds.sizes["realisation"]:
+        raise ValueError("the chunks overlap: a realisation appears twice")
+    out = parts[0].drop_vars(list(REALISATION_VARS) + ["realisation"]).copy()
+    out = out.assign_coords(realisation=ds["realisation"])
+    for name in REALISATION_VARS:
+        out[name] = ds[name]
+    thr = ds["threshold_realisation"]
+    out["threshold"] = thr.min("realisation", skipna=True).assign_attrs(parts[0]["threshold"].attrs)
+    out["threshold_mean"] = thr.mean("realisation", skipna=True).assign_attrs(parts[0]["threshold_mean"].attrs)
+    out["threshold_std"] = thr.std("realisation", skipna=True).assign_attrs(parts[0]["threshold_std"].attrs)
+    out.attrs["compute_time_s"] = float(sum(p.attrs.get("compute_time_s", 0.0) for p in parts))
+    out.attrs["n_realisations"] = int(ds.sizes["realisation"])
+    return document_missing(out)
+
+
+def convergence_dataset(ds: xr.Dataset) -> xr.Dataset:
+    """Fig. 6a: the lowest threshold over the first N realisations, N = 1 … n."""
+    out = convergence(ds).to_dataset()
+    out["threshold_realisation"] = ds["threshold_realisation"]
+    out.attrs = {**ds.attrs, "title": f"Convergence of a_min,OVER with the number of noise realisations, "
+                                      f"{ds['strategy'].item()}", "paper_figure": "6a"}
+    return document_missing(out.assign_coords(strategy=ds["strategy"], noise_level=ds["noise_level"]))
+
+
+def history_dataset(result, scenario: Scenario, motion, frequency_ratio: float, amplitude_ratio: float,
+                    realisation: int = 0, dt: float = NOISE_DT) -> xr.Dataset:
+    """A :class:`SimulationResult` history as a labelled Dataset with the paper's normalisations
+    (Figs. 2, 3, 5b): θ/α, θ̇/(p·α), κ/κ_max at the integrator's steps (``time``) and the ground
+    motion Ẍ_g/(g·tanα) of ``motion`` sampled every ``dt`` [s] (``ground_time``)."""
+    if result.history is None:
+        raise ValueError("the simulation has no history: run it with record_history=True")
+    h, b, an = result.history, scenario.block, scenario.anchorage
+    ground_time = np.arange(0.0, result.end_time + dt, dt)
+    kappa_ref = an.kappa_max if an.kappa_max > 0 else 1.0
+    one = {"units": "1"}
+    summary = result.summary()
+    return xr.Dataset(
+        {"theta": ("time", h["theta"], {"units": "rad", "long_name": "rotation theta"}),
+         "theta_dot": ("time", h["theta_dot"], {"units": "rad/s", "long_name": "angular velocity"}),
+         "kappa": ("time", h["kappa"], {**one, "long_name": "dimensionless stiffness 4Kb^2/(mgR)"}),
+         "ground_acceleration": ("time", h["ground_acceleration"], {"units": "m/s^2", "long_name": "X_g"}),
+         "rotation_ratio": ("time", h["theta"] / b.alpha, {**one, "long_name": "theta/alpha"}),
+         "velocity_ratio": ("time", h["theta_dot"] / (b.p * b.alpha), {**one, "long_name": "theta_dot/(p alpha)"}),
+         "stiffness_ratio": ("time", h["kappa"] / kappa_ref, {**one, "long_name": "K/K_max"}),
+         "ground_ratio": ("ground_time", motion.horizontal(ground_time) / b.uplift_acceleration,
+                          {**one, "long_name": "X_g/(g tan(alpha))"})},
+        coords={"time": ("time", h["t"], {"units": "s", "long_name": "time (integrator steps)"}),
+                "ground_time": ("ground_time", ground_time, {"units": "s", "long_name": "time (uniform)"})},
+        attrs={"title": f"Time history, {scenario.control.strategy}, omega_p/p={frequency_ratio:g}, "
+                        f"a_p/(g tan alpha)={amplitude_ratio:g}", "paper": PAPER, "rockstudy_version": __version__,
+               "frequency_ratio": frequency_ratio, "amplitude_ratio": amplitude_ratio,
+               "noise_realisation": int(realisation), "status": summary["status"],
+               "overturned": int(summary["overturned"]), "n_impacts": summary["n_impacts"],
+               "excitation_end_s": excitation_duration(scenario.excitation, scenario.omega(frequency_ratio)),
+               **scenario.to_attrs()})
+
+
+def time_history(scenario: Scenario, frequency_ratio: float, amplitude_ratio: float,
+                 realisation: int = 0) -> xr.Dataset:
+    """Simulate one (frequency, amplitude, realisation) case and return its labelled history."""
+    motion, _ = scenario.motion(frequency_ratio, amplitude_ratio, realisation)
+    result = simulate(scenario.block, scenario.anchorage, scenario.control, motion, record_history=True,
+                      overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
+    return history_dataset(result, scenario, motion, frequency_ratio, amplitude_ratio, realisation)
+
+
+def check_noise(noise: xr.Dataset, scenario: Scenario) -> None:
+    """The noise file and the scenario describe the same realisations (seed, level, reading)."""
+    expected = {"noise_seed": scenario.seed, "noise_level": scenario.noise_level,
+                "excitation": scenario.excitation, **scenario.noise.to_attrs()}
+    for attr, value in expected.items():
+        if noise.attrs.get(attr) != value:
+            raise ValueError(f"noise file has {attr}={noise.attrs.get(attr)!r}, the scenario {value!r}")

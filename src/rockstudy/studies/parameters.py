@@ -1,0 +1,99 @@
+"""The study's parameters from plain dictionaries (the parsed ``config.yaml`` of the workflow, or
+any dict a user builds): a block, a scenario, the grids, the jobs of a spectrum, the noise-free
+level. Each parser refuses a bad value with :class:`rockstudy.core.validation.InputError` naming
+the config key. Amplitudes are ratios a_p/(g·tanα), frequencies ratios ω_p/p; a_max,0 is given in
+units of g.
+"""
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from rockstudy.analysis.scenario import Scenario
+from rockstudy.analysis.spectra import AmplitudeGrid, frequency_grid
+from rockstudy.core import validation as v
+from rockstudy.model.anchorage import Anchorage
+from rockstudy.model.block import BLOCK_PRESETS, Block
+from rockstudy.model.control import Control
+from rockstudy.model.noise import reading_from_dict
+
+__all__ = ["block_from_dict", "scenario_from_dict", "amplitude_grid", "frequency_ratios",
+           "realisation_chunks", "noise_free_level", "a_max0_ratio", "grid_size_points",
+           "reading_from_dict"]
+
+
+def block_from_dict(spec: dict) -> Block:
+    """A :class:`Block` from ``{"preset": name}`` or from its dimensions (``width``, ``height``, ...)."""
+    spec = dict(spec)
+    preset = spec.pop("preset", None)
+    if preset is not None:
+        if preset not in BLOCK_PRESETS:
+            raise ValueError(f"block.preset must be one of {', '.join(BLOCK_PRESETS)}, got {preset!r}")
+        if spec:
+            raise ValueError(f"block: give either a preset or dimensions, not both (got {sorted(spec)})")
+        return BLOCK_PRESETS[preset]
+    try:
+        return Block(**spec)
+    except (TypeError, ValueError) as exc:
+        raise v.InputError(str(exc).replace("Block.", "block.").replace("Block:", "block:")) from None
+
+
+def scenario_from_dict(spec: dict) -> Scenario:
+    """A :class:`Scenario` from ``block``, ``anchorage``, ``control``, ``noise`` dicts and scalar settings.
+
+    ``noise`` is the noise reading (``step``, ``rescale``, ``level_means``, ``band``, ``span``;
+    :class:`rockstudy.model.noise.NoiseReading`); absent: today's default reading."""
+    spec = dict(spec)
+    block = block_from_dict(spec.pop("block"))
+    try:
+        anchorage = Anchorage(**spec.pop("anchorage", {}))
+    except ValueError as exc:
+        raise v.InputError(str(exc).replace("Anchorage.", "anchorage.")) from None
+    control = Control(**spec.pop("control", {}))
+    noise = reading_from_dict(spec.pop("noise", None))
+    return Scenario(block, anchorage, control, noise=noise, **spec)
+
+
+def amplitude_grid(spec: dict) -> AmplitudeGrid:
+    """:class:`AmplitudeGrid` from ``start``, ``stop``, ``step``, ``resolution`` (ratios a_p/(g·tanα)),
+    refused (naming ``amplitude_grid.<key>``) beyond the limits of :mod:`rockstudy.core.validation`."""
+    v.check_amplitude_grid(spec["start"], spec["stop"], spec["step"], spec["resolution"])
+    return AmplitudeGrid(**spec)
+
+
+def frequency_ratios(spec: dict) -> np.ndarray:
+    """Frequency ratios ω_p/p from ``start``, ``stop``, ``step``, refused (naming ``frequency_grid.<key>``)
+    above :data:`rockstudy.core.validation.MAX_GRID_POINTS` points before the grid is built. [-]"""
+    v.check_grid("frequency_grid", spec["start"], spec["stop"], spec["step"], high=v.MAX_FREQUENCY_RATIO)
+    return frequency_grid(**spec)
+
+
+def realisation_chunks(n_realisations: int, per_job: int, noisy: bool = True) -> list[list[int]]:
+    """Realisation indices split into jobs of at most ``per_job`` (one job [0] without noise)."""
+    if n_realisations < 1 or per_job < 1:
+        raise ValueError(f"n_realisations and per_job must be >= 1, got {n_realisations}, {per_job}")
+    if not noisy:
+        return [[0]]
+    return [list(range(i, min(i + per_job, n_realisations))) for i in range(0, n_realisations, per_job)]
+
+
+def noise_free_level(levels: dict) -> str:
+    """Name of the noise level whose value is 0 (the paper's R000)."""
+    names = [name for name, value in levels.items() if value == 0]
+    if len(names) != 1:
+        raise ValueError(f"noise_levels needs exactly one level equal to 0 (R000), got {levels!r}")
+    return names[0]
+
+
+def a_max0_ratio(ds: xr.Dataset, a_max0_g: float, name: str = "a_max0") -> float:
+    """a_max,0 given in units of g as an amplitude ratio a/(g·tanα), refused (naming ``name``) when it is
+    not positive or lies above the amplitude scan's top recorded in ``ds`` (see
+    :func:`rockstudy.core.validation.check_a_max0`). [-]"""
+    top = v.scan_top(ds.attrs["grid_amplitude_start"], ds.attrs["grid_amplitude_stop"], ds.attrs["grid_amplitude_step"])
+    return v.check_a_max0(name, a_max0_g, float(ds.attrs["block_alpha"]), top,
+                          "the spectrum's scan top, grid_amplitude_stop")
+
+
+def grid_size_points(spec: dict) -> int:
+    """Number of points of an amplitude grid ``{start, stop, step}`` (the simulations of one map row)."""
+    return v.grid_size(spec["start"], spec["stop"], spec["step"])

@@ -1,0 +1,192 @@
+"""The edge between the workflow and the library: the one check of a whole study config
+(:func:`check_study`, which calls each section's own check), the source fingerprints that make
+Snakemake rerun what a code change affects, and job logging (paper §4–5).
+
+It takes plain ``dict``/``list`` values, never a config file name; the parsers from dicts to the
+library's dataclasses are in :mod:`rockstudy.studies.parameters`, the labelled datasets in
+:mod:`rockstudy.studies.datasets`, the J_OS tables in :mod:`rockstudy.studies.tables`. Amplitudes are
+ratios a_p/(g·tanα), frequencies ratios ω_p/p; a_max,0 is given in units of g.
+"""
+from __future__ import annotations
+
+import hashlib
+import logging
+import math
+from pathlib import Path
+
+from rockstudy.core import validation as v
+from rockstudy.model.excitation import check_time_span, excitation_duration
+from rockstudy.model.noise import reading_from_dict
+from rockstudy.model.sensor import SENSOR_STEP, check_band
+from rockstudy.studies import beyond, device_calibration, noise_readings
+from rockstudy.studies.parameters import (
+    amplitude_grid,
+    block_from_dict,
+    frequency_ratios,
+    grid_size_points,
+    noise_free_level,
+    scenario_from_dict,
+)
+
+SIMULATION_LAYERS = ("core", "model", "engine", "analysis")
+"""The subpackages whose code can change a simulated number: the workflow reruns every simulation when
+one of them changes (the study's bookkeeping, the figures and the CLI are fingerprinted on their own)."""
+
+NOT_SIMULATED = ("engine/reference",)
+"""Folders inside :data:`SIMULATION_LAYERS` that no study result runs: the scipy reference engine, which
+the tests compare with the fast engine."""
+
+
+def fingerprint_files(*parts: str) -> list[Path]:
+    """The source files :func:`source_fingerprint` hashes, relative to the package, in a fixed order."""
+    root = Path(__file__).resolve().parents[1]
+    files = []
+    for part in parts or SIMULATION_LAYERS:
+        target = root / part
+        if not target.exists():
+            raise ValueError(f"source_fingerprint: {part!r} is not a folder or module of rockstudy")
+        for path in sorted(target.rglob("*.py")) if target.is_dir() else [target]:
+            name = path.relative_to(root).as_posix()
+            if parts or not any(name.startswith(f"{skip}/") for skip in NOT_SIMULATED):
+                files.append(Path(name))
+    return files
+
+
+def source_fingerprint(*parts: str) -> str:
+    """SHA-256 of the package's sources under ``parts``: subpackage folders (``"engine"``) or module files
+    (``"plotting.py"``), relative to the package; none given: :data:`SIMULATION_LAYERS` without
+    :data:`NOT_SIMULATED`.
+
+    Snakemake passes it to a rule as a parameter, so the rule reruns when that code changes. Folders,
+    not file lists: a new module is covered by its layer's fingerprint without editing the workflow."""
+    root = Path(__file__).resolve().parents[1]
+    digest = hashlib.sha256()
+    for name in fingerprint_files(*parts):
+        digest.update(name.as_posix().encode())
+        digest.update((root / name).read_bytes())
+    return digest.hexdigest()
+
+
+def log_to(path) -> logging.Logger:
+    """Send the "rockstudy" logger (progress, ETA) to ``path``."""
+    handler = logging.FileHandler(path, mode="w")
+    handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s"))
+    logger = logging.getLogger("rockstudy")
+    logger.addHandler(handler)
+    logger.setLevel(logging.INFO)
+    return logger
+
+
+def _non_finite(value, key=""):
+    """(key path, value) of every NaN or inf number in a nested config."""
+    if isinstance(value, dict):
+        return [k for name, item in value.items() for k in _non_finite(item, f"{key}.{name}" if key else str(name))]
+    if isinstance(value, (list, tuple)):
+        return [k for i, item in enumerate(value) for k in _non_finite(item, f"{key}[{i}]")]
+    if isinstance(value, float) and not math.isfinite(value):
+        return [(key, value)]
+    return []
+
+
+def check_study(config: dict) -> None:
+    """Checks a JSON schema cannot express, before any job runs; the message names the offending key.
+
+    Beyond the schema: no NaN or inf anywhere; integers that netCDF can store; a slender block
+    (or an explicit restitution); the upper bounds of :mod:`rockstudy.core.validation` on every value
+    that becomes an array size, a loop count or a time span (grid points, simulations and noise
+    memory of one spectrum job, time span and integrator steps of one simulation, controller
+    samples); and the cross-key rules (noise levels, strategies, a_max,0 within the scan).
+
+    Raises
+    ------
+    ValueError
+        (:class:`rockstudy.core.validation.InputError`) naming the key, the value and what is allowed.
+    """
+    bad = _non_finite(config)
+    if bad:
+        key, value = bad[0]
+        v.fail(key, value, "every number must be finite (not NaN or inf)"
+               + (f"; also non-finite: {', '.join(k for k, _ in bad[1:])}" if len(bad) > 1 else ""))
+    levels = config["noise_levels"]
+    noise_free_level(levels)
+    for key in ("convergence", "sampling_sweep", "delay_sweep", "example_point"):
+        if config[key]["noise_level"] not in levels:
+            raise v.InputError(f"{key}.noise_level: {config[key]['noise_level']!r} is not one of noise_levels "
+                               f"({', '.join(levels)})")
+    for key in ("table1", "maps", "control_histories", "sampling_sweep", "delay_sweep"):
+        missing = set(config[key]["strategies"]) - set(config["strategies"])
+        if missing:
+            raise v.InputError(f"{key}.strategies: {sorted(missing)} not in strategies {config['strategies']}")
+    if "FS" not in config["strategies"]:
+        raise v.InputError("strategies: FS is needed as the reference of Table 1 and of the timing tables")
+    n_real = v.check_int_range("realisations", config["realisations"], 1, v.MAX_REALISATIONS)
+    per_job = v.check_int_range("realisations_per_job", config["realisations_per_job"], 1, v.MAX_REALISATIONS)
+    v.check_int_range("seed", config["seed"], 0, v.MAX_INTEGER, why="stored as a netCDF int64 attribute")
+    v.check_int_range("noise_records_stored", config["noise_records_stored"], 1, v.MAX_REALISATIONS)
+    too_high = [k for k in config["example_point"]["realisations"] if k >= n_real]
+    if too_high:
+        raise v.InputError(f"example_point.realisations: {too_high} >= realisations ({n_real})")
+    block = block_from_dict(config["block"])
+    free_time = v.check_nonnegative("free_time", config["free_time"], "s", v.MAX_FREE_TIME)
+    ag = config["amplitude_grid"]
+    sims_per_case = v.check_amplitude_grid(ag["start"], ag["stop"], ag["step"], ag["resolution"])
+    top = amplitude_grid(ag).values()[-1]
+    v.check_a_max0("a_max0", config["a_max0"], block.alpha, top)
+    fg = config["frequency_grid"]
+    n_freq = v.check_grid("frequency_grid", fg["start"], fg["stop"], fg["step"], high=v.MAX_FREQUENCY_RATIO)
+    an = config["anchorage"]
+    for key, limit in (("kappa_max", v.MAX_KAPPA), ("kappa_min", v.MAX_KAPPA), ("damping_ratio", v.MAX_DAMPING_RATIO)):
+        v.check_nonnegative(f"anchorage.{key}", an[key], high=limit)
+    scenario_from_dict({"block": config["block"], "anchorage": an})
+    for key in ("control_histories", "example_point"):
+        v.check_positive(f"{key}.frequency_ratio", config[key]["frequency_ratio"], high=v.MAX_FREQUENCY_RATIO)
+        v.check_positive(f"{key}.amplitude_ratio", config[key]["amplitude_ratio"], high=v.MAX_AMPLITUDE_RATIO)
+    v.check_positive("noise_reference_frequency_ratio", config["noise_reference_frequency_ratio"],
+                     high=v.MAX_FREQUENCY_RATIO)
+    for i, ts in enumerate(config["sampling_sweep"]["sampling_times"]):
+        v.check_positive(f"sampling_sweep.sampling_times[{i}]", ts, "s", v.MAX_TIME_SPAN)
+    v.check_positive("delay_sweep.sampling_time", config["delay_sweep"]["sampling_time"], "s", v.MAX_TIME_SPAN)
+    for i, d in enumerate(config["delay_sweep"]["delays"]):
+        v.check_positive(f"delay_sweep.delays[{i}]", d, "s", v.MAX_TIME_SPAN)
+    freqs = frequency_ratios(fg)
+    grid_name = "frequency_grid.start" if fg["start"] < 1 else "frequency_grid.stop"
+    span_freqs = [fg["start"], float(freqs[-1])]  # the user's start (the grid rounds to 10 decimals)
+    check_time_span(block, config["excitation"], span_freqs, free_time, frequency_name=grid_name)
+    for key in ("control_histories.frequency_ratio", "example_point.frequency_ratio",
+                "noise_reference_frequency_ratio"):
+        node = config
+        for part in key.split("."):
+            node = node[part]
+        check_time_span(block, config["excitation"], [node], free_time, frequency_name=key)
+    for ts, name in ([(t, f"sampling_sweep.sampling_times[{i}]")
+                      for i, t in enumerate(config["sampling_sweep"]["sampling_times"])]
+                     + [(config["delay_sweep"]["sampling_time"], "delay_sweep.sampling_time")]):
+        check_time_span(block, config["excitation"], span_freqs, free_time, ts, frequency_name=grid_name,
+                          sampling_name=name)
+    # one spectrum job: its realisations x frequencies, and the noise records it holds
+    per_job = min(per_job, n_real)
+    samples = v.record_samples(excitation_duration(config["excitation"], f * block.p) for f in freqs)
+    v.check_workload("realisations_per_job", config["realisations_per_job"], per_job * n_freq, sims_per_case,
+                     per_job * samples * v.RECORD_BYTES_PER_SAMPLE)
+    n_chunks = -(-n_real // per_job)
+    if n_chunks > v.MAX_JOBS_PER_SPECTRUM:
+        v.fail("realisations_per_job", config["realisations_per_job"],
+               f"realisations = {n_real} in jobs of {per_job} gives {n_chunks} jobs per spectrum, the limit is "
+               f"{v.MAX_JOBS_PER_SPECTRUM} (Snakemake's DAG would grow too large); use larger jobs")
+    v.check_workload("amplitude_grid.step", ag["step"], n_freq, grid_size_points(ag), 0)
+    try:
+        reading = reading_from_dict(config["noise"])
+    except ValueError as exc:
+        raise v.InputError(f"noise: {exc}") from None
+    band = config["control"]["sensor_band"]
+    if band is not None:  # the sensor reads the noisy records at noise.step, the analytic excitation at SENSOR_STEP
+        try:
+            check_band(band, max(reading.step, SENSOR_STEP), "control.sensor_band")
+        except ValueError as exc:
+            raise v.InputError(str(exc)) from None
+    noise_readings.check_config(config["reproduction"])
+    device_calibration.check_config(config["calibration"], block.alpha)
+    if config.get("beyond"):
+        beyond.check_config(config["beyond"], config)
+
+

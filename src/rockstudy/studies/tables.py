@@ -1,0 +1,150 @@
+"""J_OS tables (paper Eq. 21, Table 1 and the timing sweeps of §5.2): the utility index of one
+spectrum against another with a_max,0 in units of g, Table 1 against both references, the timing
+tables, and their Markdown and CSV forms.
+"""
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from rockstudy._version import __version__
+from rockstudy.analysis.utility_index import utility_index
+from rockstudy.studies.datasets import MISSING_MEANINGS, PAPER
+from rockstudy.studies.parameters import a_max0_ratio, noise_free_level
+
+REFERENCES = ("no_noise", "fs_same_noise")
+
+
+"""Table 1's two references: the same strategy without noise, and FS at the same noise level."""
+
+
+def jos_of(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float,
+           a_max0_name: str = "a_max0") -> tuple[float, int, float]:
+    """J_OS of ``system`` against ``reference`` (Eq. 21) with a_max,0 in units of g.
+
+    The one rule used by the tables and by ``rockstudy jos``: a_max,0 must not lie above either
+    spectrum's amplitude scan (a NaN threshold then means "safe up to a_max,0"). Where no
+    frequency counts (N* = 0) J_OS is undefined and returned as NaN.
+
+    Returns
+    -------
+    j_os : float
+        Utility index, NaN when N* = 0. [%]
+    n_star : int
+        N*, the frequencies counted in Eq. (21).
+    a_max0_ratio : float
+        a_max,0 as an amplitude ratio a/(g·tanα). [-]
+    """
+    if system.sizes["frequency_ratio"] != reference.sizes["frequency_ratio"] or not np.allclose(
+            system["frequency_ratio"], reference["frequency_ratio"]):
+        raise ValueError("J_OS needs the system and the reference on the same frequencies")
+    ratio = a_max0_ratio(system, a_max0_g, a_max0_name)
+    a_max0_ratio(reference, a_max0_g, a_max0_name)
+    j, n = utility_index(system["threshold"].values, reference["threshold"].values, ratio, undefined="nan")
+    return j, n, ratio
+
+
+def _jos(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float) -> tuple[float, int]:
+    j, n, _ = jos_of(system, reference, a_max0_g)
+    return j, n
+
+
+PROVENANCE_PREFIXES = ("block_", "anchorage_")
+
+
+PROVENANCE_KEYS = ("noise_seed", "noise_match", "noise_dt_s", "excitation", "overturn_criterion", "free_time_s",
+                   "grid_amplitude_start", "grid_amplitude_stop", "grid_amplitude_step", "grid_amplitude_resolution",
+                   "noise_step_s", "noise_rescale", "noise_level_means", "noise_band_hz", "noise_span_s")
+
+
+def provenance(spectra) -> dict:
+    """Attributes a table inherits from the spectra it compares: the seed, the block, the device
+    (anchorage), the excitation and scan, and the number of noise realisations of the noisy spectra."""
+    first = spectra[0]
+    attrs = {k: val for k, val in first.attrs.items() if k.startswith(PROVENANCE_PREFIXES) or k in PROVENANCE_KEYS}
+    noisy = sorted({int(ds.sizes["realisation"]) for ds in spectra if float(ds["noise_level"]) > 0})
+    attrs["n_realisations"] = noisy[0] if len(noisy) == 1 else str(noisy)
+    attrs["n_realisations_note"] = "noise realisations of each noisy spectrum (a noise-free spectrum has one)"
+    return attrs
+
+
+def _find(datasets, **coords) -> xr.Dataset:
+    for ds in datasets:
+        if all(np.isclose(float(ds[k]), v) if not isinstance(v, str) else ds[k].item() == v
+               for k, v in coords.items()):
+            return ds
+    raise KeyError(f"no spectrum with {coords}")
+
+
+def _table(values: np.ndarray, n_star: np.ndarray, coords: dict, attrs: dict) -> xr.Dataset:
+    dims = tuple(coords)
+    return xr.Dataset(
+        {"j_os": (dims, values, {"units": "percent", "long_name": "utility index J_OS, Eq. 21",
+                                 "missing_value_meaning": MISSING_MEANINGS["j_os"]}),
+         "n_star": (dims, n_star, {"units": "1", "long_name": "N*, frequencies counted in Eq. 21"})},
+        coords={k: (k, list(v)) for k, v in coords.items()},
+        attrs={"paper": PAPER, "rockstudy_version": __version__, **attrs})
+
+
+def table1(spectra, strategies, noise_levels: dict, a_max0_g: float) -> xr.Dataset:
+    """Table 1: J_OS of each strategy at each noisy level against (a) the same strategy without
+    noise and (b) the free-standing block at the same noise level (for FS itself J_OS = 0 over the
+    N* frequencies where it overturns below a_max,0, as ``rockstudy jos`` gives; NaN only where N* = 0)."""
+    free = noise_free_level(noise_levels)
+    noisy = [name for name in noise_levels if name != free]
+    j = np.full((len(REFERENCES), len(strategies), len(noisy)), np.nan)
+    n = np.zeros(j.shape, dtype=np.int64)
+    for si, s in enumerate(strategies):
+        for li, name in enumerate(noisy):
+            system = _find(spectra, strategy=s, noise_level=noise_levels[name])
+            refs = [_find(spectra, strategy=s, noise_level=0.0),
+                    _find(spectra, strategy="FS", noise_level=noise_levels[name])]
+            for ri, ref in enumerate(refs):
+                j[ri, si, li], n[ri, si, li] = _jos(system, ref, a_max0_g)
+    return _table(j, n, {"reference": REFERENCES, "strategy": strategies, "noise_level": noisy},
+                  {"title": "Table 1: utility index J_OS at each noise level", "paper_table": "1",
+                   "a_max0_g": a_max0_g, "reference_meanings": "no_noise: same strategy without noise (R000); "
+                   "fs_same_noise: free-standing block at the same noise level",
+                   "noise_level_values": str(noise_levels), **provenance(spectra)})
+
+
+def timing_table(sweep, same_strategy, free_standing, variable: str, a_max0_g: float,
+                 reference: str = "continuous_same_noise") -> xr.Dataset:
+    """J_OS of sampled (or delayed) control against the same strategy without that timing
+    (``same_strategy``: continuous control, or sampled without delay) and against the
+    free-standing block, both at the sweep's noise level (§5.2, Figs. 7–8)."""
+    strategies = sorted({ds["strategy"].item() for ds in sweep})
+    values = sorted({float(ds[variable]) for ds in sweep})
+    j = np.full((len(REFERENCES), len(strategies), len(values)), np.nan)
+    n = np.zeros(j.shape, dtype=np.int64)
+    for ds in sweep:
+        s, si, vi = ds["strategy"].item(), strategies.index(ds["strategy"].item()), values.index(float(ds[variable]))
+        level = float(ds["noise_level"])
+        refs = [_find(same_strategy, strategy=s, noise_level=level), _find(free_standing, noise_level=level)]
+        for ri, ref in enumerate(refs):
+            j[ri, si, vi], n[ri, si, vi] = _jos(ds, ref, a_max0_g)
+    out = _table(j, n, {"reference": (reference, "fs_same_noise"), "strategy": strategies,
+                        variable: values},
+                 {"title": f"J_OS against {variable} (§5.2)", "a_max0_g": a_max0_g,
+                  "sampling_time_s": str(sorted({float(d['sampling_time']) for d in sweep})),
+                  "noise_level": str(sorted({float(d['noise_level']) for d in sweep})),
+                  **provenance(list(sweep) + list(same_strategy) + list(free_standing))})
+    out[variable].attrs = {"units": "s"}
+    return out
+
+
+def table_markdown(table: xr.Dataset) -> str:
+    """The table as Markdown: rows strategies, columns reference × last dimension, J_OS in %."""
+    column = table["j_os"].dims[-1]
+    head = ["strategy"] + [f"{r}: {c}" for r in table["reference"].values for c in table[column].values]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for s in table["strategy"].values:
+        cells = [f"{v:+.2f}%" if np.isfinite(v) else "-"
+                 for r in table["reference"].values for v in table["j_os"].sel(reference=r, strategy=s).values]
+        lines.append("| " + " | ".join([str(s)] + cells) + " |")
+    return f"{table.attrs.get('title', '')}\n\n" + "\n".join(lines) + "\n"
+
+
+def table_csv(table: xr.Dataset) -> str:
+    """The table in long form: one row per (reference, strategy, column) with J_OS [%] and N*."""
+    return table.to_dataframe().reset_index().to_csv(index=False, float_format="%.4f")

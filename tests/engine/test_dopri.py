@@ -1,0 +1,95 @@
+"""The Dormand–Prince step of the fast engine (``rockstudy.engine._kernel.dopri``) against independent oracles:
+scipy's RK45 Butcher tableau applied by hand, the method's order, and its continuous extension.
+
+The step is written as a loop over a stage table (so that the right-hand side is compiled once);
+these tests guard the table against a wrong coefficient, a skipped stage or a wrong stage time.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.integrate._ivp.rk import RK45
+
+from rockstudy import BLOCK_PRESETS, Anchorage, Control
+from rockstudy.engine._kernel import dopri
+from rockstudy.engine._kernel.layout import I_ATOL, I_RTOL
+from rockstudy.engine.simulate import pack_parameters
+from rockstudy.model.excitation import GroundMotion, modulated_duration
+
+BLC06 = BLOCK_PRESETS["BLC06"]
+NONE = np.zeros(0)
+
+
+def _problem(kappa: float = 0.0, damping: float = 0.0):
+    """A rocking FS block under Eq. 23 at 3 × the uplift acceleration: θ̈(t, θ, θ̇) and its parameters."""
+    omega = 2.0 * BLC06.p
+    motion = GroundMotion("modulated", 3.0 * BLC06.uplift_acceleration, omega, modulated_duration(omega))
+    P = pack_parameters(BLC06, Anchorage(), Control("FS"), motion)
+
+    def f(t, y):
+        return np.array([y[1], dopri.rhs(t, y[0], y[1], 1.0, kappa, damping, True, P, NONE, NONE)])
+
+    return P, f
+
+
+def _tableau_step(f, t, y, h):
+    """One step with scipy's RK45 tableau (its A, B, C, E), stage by stage: an independent oracle."""
+    K = np.zeros((7, 2))
+    K[0] = f(t, y)
+    for s in range(1, 6):
+        K[s] = f(t + RK45.C[s] * h, y + h * (K[:s].T @ RK45.A[s, :s]))
+    y_new = y + h * (K[:6].T @ RK45.B)
+    K[6] = f(t + h, y_new)
+    return y_new, h * (K.T @ RK45.E), K
+
+
+def _step(P, f, t, y, h):
+    K = np.zeros((7, 2))
+    f0 = f(t, y)[1]
+    n0, n1, err = dopri.step(t, h, y[0], y[1], f0, K, 1.0, 0.0, 0.0, True, P, NONE, NONE, P[I_RTOL], P[I_ATOL])
+    return np.array([n0, n1]), err, K
+
+
+@pytest.mark.parametrize("t, theta, theta_dot, h", [(0.5, 0.02, 0.1, 0.0025), (1.1, 0.15, -0.4, 0.01),
+                                                    (0.3, 0.0, 0.3, 0.05)])
+def test_step_matches_scipy_tableau(t, theta, theta_dot, h):
+    P, f = _problem()
+    y = np.array([theta, theta_dot])
+    ours, err, K = _step(P, f, t, y, h)
+    ref, ref_err, ref_K = _tableau_step(f, t, y, h)
+    np.testing.assert_allclose(ours, ref, rtol=1e-14, atol=1e-16)
+    np.testing.assert_allclose(K[:, 1], ref_K[:, 1], rtol=1e-12, atol=1e-14)  # every stage, the FSAL one too
+    scale = P[I_ATOL] + P[I_RTOL] * np.maximum(np.abs(y), np.abs(ref))
+    ref_norm = math.sqrt(0.5 * np.sum((ref_err / scale) ** 2))
+    # The error estimate h·Σ E_i k_i cancels almost to nothing (it is ~1e-5 of the tolerance here), so the
+    # two orders of summation may differ by the stages' own differences (<= 1e-12 relative, checked above)
+    # and rounding, both amplified by the cancellation: bound the difference by 1e-11 · h·Σ|E_i k_i|.
+    slack = 1e-11 * h * (np.abs(RK45.E) @ np.abs(ref_K)) / scale
+    assert abs(err - ref_norm) <= math.sqrt(0.5 * np.sum(slack ** 2)) + 1e-10 * ref_norm
+    assert abs(err - ref_norm) < 1e-3 * ref_norm  # and the estimate is still the same number
+
+
+def test_local_error_is_fifth_order():
+    """Halving the step divides the one-step error by about 2⁶ (a 5th-order method)."""
+    P, f = _problem()
+    t, y = 0.6, np.array([0.05, 0.2])
+    errors = []
+    for h in (0.04, 0.02, 0.01):
+        exact = solve_ivp(f, (t, t + h), y, method="DOP853", rtol=1e-13, atol=1e-15).y[:, -1]
+        errors.append(np.max(np.abs(_step(P, f, t, y, h)[0] - exact)))
+    for coarse, fine in zip(errors, errors[1:]):
+        assert 40.0 < coarse / fine < 100.0, errors
+
+
+def test_dense_output_meets_both_ends_and_tracks_the_solution():
+    P, f = _problem()
+    t, y, h = 0.6, np.array([0.05, 0.2]), 0.02
+    end, _, K = _step(P, f, t, y, h)
+    np.testing.assert_array_equal(dopri.dense(0.0, h, y[0], y[1], K), y)
+    np.testing.assert_allclose(dopri.dense(1.0, h, y[0], y[1], K), end, rtol=1e-13, atol=1e-16)
+    sol = solve_ivp(f, (t, t + h), y, method="DOP853", rtol=1e-13, atol=1e-15, dense_output=True)
+    for sig in (0.25, 0.5, 0.8):
+        np.testing.assert_allclose(dopri.dense(sig, h, y[0], y[1], K), sol.sol(t + sig * h), rtol=1e-7, atol=1e-10)

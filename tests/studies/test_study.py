@@ -1,0 +1,209 @@
+"""Tests for rockstudy.studies.study: parameters from dicts, chunks, gathering, J_OS tables, noise and histories."""
+import math
+
+import numpy as np
+import pytest
+
+from rockstudy.analysis.spectra import AmplitudeGrid, Scenario, spectrum_dataset
+from rockstudy.model.anchorage import Anchorage
+from rockstudy.model.block import BLOCK_PRESETS
+from rockstudy.model.control import Control
+from rockstudy.model.excitation import modulated_peak
+from rockstudy.model.noise import noisy_record
+from rockstudy.studies import datasets, parameters, study, tables
+
+BLC06 = BLOCK_PRESETS["BLC06"]
+FREQS = np.array([0.5, 1.0, 2.0, 3.0])
+A_MAX0 = 1.0 / math.tan(BLC06.alpha)  # a_max,0 = g as an amplitude ratio (= 4 for BLC06)
+
+
+def fake_spectrum(strategy, level, thresholds, realisations=None, sampling_time=0.0, delay=0.0):
+    """A spectrum Dataset with given thresholds (realisation, frequency), no simulation."""
+    thr = np.atleast_2d(np.asarray(thresholds, float))
+    ks = list(range(thr.shape[0])) if realisations is None else realisations
+    sc = Scenario(BLC06, Anchorage(), Control(strategy, sampling_time, delay), noise_level=level)
+    ones = np.ones_like(thr)
+    return spectrum_dataset(sc, FREQS, ks, thr, thr - 0.01, ones.astype(int), ones, ones, AmplitudeGrid())
+
+
+def base_config():
+    from pathlib import Path
+
+    import yaml
+    return yaml.safe_load((Path(__file__).parents[2] / "config.yaml").read_text())
+
+
+# --- parameters -------------------------------------------------------------------------------
+def test_block_from_preset_and_dimensions():
+    assert parameters.block_from_dict({"preset": "BLC06"}) is BLC06
+    b = parameters.block_from_dict({"width": 0.4, "height": 1.6, "depth": 0.47})
+    assert b.alpha == pytest.approx(math.atan(0.25), rel=1e-12)
+    with pytest.raises(ValueError, match="preset"):
+        parameters.block_from_dict({"preset": "NOPE"})
+    with pytest.raises(ValueError, match="not both"):
+        parameters.block_from_dict({"preset": "BLC06", "width": 1.0})
+
+
+def test_scenario_from_dict():
+    sc = parameters.scenario_from_dict({"block": {"preset": "BLC06"}, "anchorage": {"kappa_max": 2.0},
+                                   "control": {"strategy": "CS02", "sampling_time": 0.1, "delay": 0.06},
+                                   "noise_level": 0.05, "seed": 3})
+    assert sc.anchorage.kappa_max == 2.0 and sc.control.delay == 0.06 and sc.noise_level == 0.05
+
+
+def test_realisation_chunks_cover_each_realisation_once():
+    chunks = parameters.realisation_chunks(40, 15)
+    assert [len(c) for c in chunks] == [15, 15, 10]
+    assert sum(chunks, []) == list(range(40))
+    assert parameters.realisation_chunks(40, 15, noisy=False) == [[0]]
+    with pytest.raises(ValueError):
+        parameters.realisation_chunks(0, 10)
+
+
+def test_a_max0_ratio_is_one_over_tan_alpha():
+    ds = fake_spectrum("FS", 0.0, np.ones(4))
+    assert parameters.a_max0_ratio(ds, 1.0) == pytest.approx(4.0, rel=1e-12)  # BLC06: H/B = 4
+    assert parameters.a_max0_ratio(ds, 0.5) == pytest.approx(2.0, rel=1e-12)
+
+
+def test_source_fingerprint_is_a_stable_sha256():
+    a, b = study.source_fingerprint(), study.source_fingerprint()
+    assert a == b and len(a) == 64
+
+
+def test_check_study_names_the_key():
+    cfg = base_config()
+    study.check_study(cfg)
+    bad = {**cfg, "convergence": {"strategy": "FS", "noise_level": "R999"}}
+    with pytest.raises(ValueError, match="convergence.noise_level"):
+        study.check_study(bad)
+    bad = {**cfg, "a_max0": 2.0}  # 8 as a ratio, above the scan's 6
+    with pytest.raises(ValueError, match="a_max0"):
+        study.check_study(bad)
+    bad = {**cfg, "noise_levels": {"R001": 0.01}}
+    with pytest.raises(ValueError, match="noise_levels"):
+        study.check_study(bad)
+
+
+# --- gathering -----------------------------------------------------------------------------------
+def test_gather_equals_one_job_over_all_realisations():
+    thr = np.array([[1.2, 1.5, np.nan, 2.0], [1.1, 1.6, np.nan, np.nan], [1.3, 1.4, 5.0, 2.2]])
+    whole = fake_spectrum("FS", 0.05, thr)
+    parts = [fake_spectrum("FS", 0.05, thr[2:], [2]), fake_spectrum("FS", 0.05, thr[:2], [0, 1])]
+    gathered = datasets.gather_spectra(parts)
+    np.testing.assert_array_equal(gathered["realisation"], [0, 1, 2])
+    np.testing.assert_allclose(gathered["threshold"], [1.1, 1.4, 5.0, 2.0])  # min over realisations
+    np.testing.assert_allclose(gathered["threshold"], whole["threshold"])
+    np.testing.assert_allclose(gathered["threshold_mean"], whole["threshold_mean"])
+    np.testing.assert_allclose(gathered["threshold_std"], whole["threshold_std"])
+    np.testing.assert_allclose(gathered["threshold_std"][0], np.std([1.2, 1.1, 1.3]), rtol=1e-12)
+    with pytest.raises(ValueError, match="overlap"):
+        datasets.gather_spectra([parts[1], parts[1]])
+
+
+def test_convergence_dataset_is_running_minimum():
+    thr = np.array([[2.0, np.nan, 3.0, 1.0], [1.5, np.nan, 3.5, 1.0], [1.8, 2.5, 1.0, 1.0]])
+    conv = datasets.convergence_dataset(fake_spectrum("FS", 0.05, thr))
+    np.testing.assert_allclose(conv["threshold_convergence"].sel(n_realisations=1), thr[0])
+    np.testing.assert_allclose(conv["threshold_convergence"].sel(n_realisations=3), [1.5, 2.5, 1.0, 1.0])
+
+
+# --- J_OS tables ---------------------------------------------------------------------------------
+LEVELS = {"R000": 0.0, "R005": 0.05}
+
+
+def test_table1_hand_worked():
+    fs0 = fake_spectrum("FS", 0.0, [2.0, 2.0, 2.0, np.nan])
+    fs5 = fake_spectrum("FS", 0.05, [1.0, 2.0, 2.0, np.nan])  # halves a* at one of 3 counted frequencies
+    cs0 = fake_spectrum("CS01", 0.0, [2.0, 2.0, 2.0, np.nan])
+    cs5 = fake_spectrum("CS01", 0.05, [np.nan, np.nan, np.nan, np.nan])  # never overturns: +100 % vs anything
+    table = tables.table1([fs0, fs5, cs0, cs5], ["FS", "CS01"], LEVELS, 1.0)
+    j = table["j_os"]
+    # FS, ref. no noise: terms (1-2)/2 = -0.5, 0, 0 over N* = 3 -> -16.67 %
+    assert float(j.sel(reference="no_noise", strategy="FS", noise_level="R005")) == pytest.approx(-50 / 3, rel=1e-12)
+    assert int(table["n_star"].sel(reference="no_noise", strategy="FS", noise_level="R005")) == 3
+    # FS against itself: every term is 0 over the 3 frequencies below a_max,0 -- as `rockstudy jos` gives
+    assert float(j.sel(reference="fs_same_noise", strategy="FS", noise_level="R005")) == 0.0
+    assert int(table["n_star"].sel(reference="fs_same_noise", strategy="FS", noise_level="R005")) == 3
+    assert tables.jos_of(fs5, fs5, 1.0)[:2] == (0.0, 3)
+    assert float(j.sel(reference="no_noise", strategy="CS01", noise_level="R005")) == pytest.approx(100.0)
+    assert float(j.sel(reference="fs_same_noise", strategy="CS01", noise_level="R005")) == pytest.approx(100.0)
+    md = tables.table_markdown(table)
+    assert "| FS | -16.67% | +0.00% |" in md and "+100.00%" in md
+    # provenance and the meaning of NaN travel with the table (issue 12)
+    for key in ("noise_seed", "block_width", "block_alpha", "anchorage_kappa_max", "n_realisations"):
+        assert key in table.attrs, key
+    assert "N* = 0" in table["j_os"].attrs["missing_value_meaning"]
+    assert "j_os" in tables.table_csv(table).splitlines()[0]
+
+
+def test_jos_undefined_is_nan_with_n_star_zero_and_a_max0_above_the_scan_is_refused():
+    never = fake_spectrum("CS01", 0.05, [np.nan, np.nan, np.nan, np.nan])
+    j, n, _ = tables.jos_of(never, never, 1.0)
+    assert np.isnan(j) and n == 0
+    top_g = never.attrs["grid_amplitude_stop"] * math.tan(never.attrs["block_alpha"])
+    with pytest.raises(ValueError, match=r"a_max0 = .* g is not allowed.*scan"):
+        tables.jos_of(never, never, 1.01 * top_g)
+
+
+def test_timing_table_references():
+    cont = fake_spectrum("CS01", 0.05, [2.0, 2.0, 2.0, 2.0])
+    fs = fake_spectrum("FS", 0.05, [1.0, 1.0, 1.0, 1.0])
+    sampled = [fake_spectrum("CS01", 0.05, [2.0, 2.0, 2.0, 2.0], sampling_time=0.01),
+               fake_spectrum("CS01", 0.05, [1.0, 1.0, 1.0, 1.0], sampling_time=0.2)]
+    table = tables.timing_table(sampled, [cont], [fs], "sampling_time", 1.0)
+    j = table["j_os"].sel(strategy="CS01")
+    assert float(j.sel(reference="continuous_same_noise", sampling_time=0.01)) == pytest.approx(0.0)
+    assert float(j.sel(reference="continuous_same_noise", sampling_time=0.2)) == pytest.approx(-50.0)
+    # vs FS: (2-1)/(4-1) at every frequency
+    assert float(j.sel(reference="fs_same_noise", sampling_time=0.01)) == pytest.approx(100 / 3)
+
+
+# --- noise and histories -------------------------------------------------------------------------
+def test_noise_dataset_regenerates_records_exactly():
+    sc = Scenario(BLC06, noise_level=0.05, seed=7)
+    ds = datasets.noise_dataset(sc, [1.0, 2.0], [0, 1, 2], 1.0, 2)
+    np.testing.assert_allclose(ds["energy_ratio"], 1.0, rtol=1e-12)  # energy match
+    rec = noisy_record("modulated", BLC06.p, 0.05, 1, 7)
+    np.testing.assert_array_equal(ds["record"].sel(record_realisation=1).values, rec.values)
+    assert ds.sizes["record_realisation"] == 2
+    np.testing.assert_array_equal(ds["spawn_key"].values[:, 1], [0, 1, 2])
+    assert ds.attrs["noise_seed"] == 7 and ds["time"].attrs["units"] == "s"
+    datasets.check_noise(ds, sc)
+    with pytest.raises(ValueError, match="noise_seed"):
+        datasets.check_noise(ds, Scenario(BLC06, noise_level=0.05, seed=8))
+
+
+def test_noise_free_dataset_is_the_baseline():
+    ds = datasets.noise_dataset(Scenario(BLC06), [1.0], [0], 1.0, 1)
+    np.testing.assert_array_equal(ds["record"].isel(record_realisation=0), ds["baseline"])
+    assert float(ds["pga_ratio"].squeeze()) == 1.0
+
+
+def test_history_below_uplift_stays_at_rest():
+    # a_p·max|envelope·sin| < g·tanα: no uplift (docs/model.md §4), θ stays 0
+    ds = datasets.time_history(Scenario(BLC06, control=Control("CS01")), 2.0, 0.9)
+    assert ds.attrs["status"] != "overturned"
+    np.testing.assert_array_equal(ds["theta"], 0.0)
+    assert float(abs(ds["ground_ratio"]).max()) == pytest.approx(0.9 * modulated_peak(), rel=1e-3)
+    assert ds["rotation_ratio"].attrs["long_name"] == "theta/alpha"
+
+
+def test_history_overturning_reaches_flat():
+    ds = datasets.time_history(Scenario(BLC06, control=Control("FS")), 1.0, 5.0)
+    assert ds.attrs["overturned"] == 1
+    assert float(abs(ds["theta"]).max()) >= math.pi / 2 - 1e-6
+    assert set(np.unique(ds["stiffness_ratio"])) <= {0.0}  # FS: no anchorage
+
+
+def test_chunked_spectrum_equals_one_job():
+    """Results do not depend on how realisations are split into jobs (-j1 vs -j2, chunk size)."""
+    from rockstudy.analysis.spectra import spectrum
+    sc = Scenario(BLC06, control=Control("CS01"), noise_level=0.05, seed=11)
+    grid = AmplitudeGrid(0.9, 3.0, 0.3, 0.05)
+    freqs = [1.0, 2.5]
+    whole = spectrum(sc, freqs, realisations=[0, 1, 2], grid=grid)
+    parts = [spectrum(sc, freqs, realisations=[2], grid=grid), spectrum(sc, freqs, realisations=[0, 1], grid=grid)]
+    gathered = datasets.gather_spectra(parts)
+    for name in ("threshold", "threshold_realisation", "energy_ratio", "n_simulations"):
+        np.testing.assert_array_equal(gathered[name].values, whole[name].values)
