@@ -6,11 +6,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
+from builders import BLC06, fake_spectrum  # noqa: E402
 from rockstudy import plotting  # noqa: E402
 from rockstudy.analysis.spectra import OUTCOME_MEANINGS, Scenario  # noqa: E402
 from rockstudy.model.control import Control  # noqa: E402
-from rockstudy.studies import datasets
-from test_study import BLC06, fake_spectrum  # noqa: E402
+from rockstudy.studies import datasets  # noqa: E402
 
 
 @pytest.fixture(scope="module")

@@ -1,0 +1,22 @@
+"""Small dataset builders shared by several test folders (no simulation behind them)."""
+import math
+
+import numpy as np
+
+from rockstudy.analysis.spectra import AmplitudeGrid, Scenario, spectrum_dataset
+from rockstudy.model.anchorage import Anchorage
+from rockstudy.model.block import BLOCK_PRESETS
+from rockstudy.model.control import Control
+
+BLC06 = BLOCK_PRESETS["BLC06"]
+FREQS = np.array([0.5, 1.0, 2.0, 3.0])
+A_MAX0 = 1.0 / math.tan(BLC06.alpha)  # a_max,0 = g as an amplitude ratio (= 4 for BLC06)
+
+
+def fake_spectrum(strategy, level, thresholds, realisations=None, sampling_time=0.0, delay=0.0):
+    """A spectrum Dataset with given thresholds (realisation, frequency), no simulation."""
+    thr = np.atleast_2d(np.asarray(thresholds, float))
+    ks = list(range(thr.shape[0])) if realisations is None else realisations
+    sc = Scenario(BLC06, Anchorage(), Control(strategy, sampling_time, delay), noise_level=level)
+    ones = np.ones_like(thr)
+    return spectrum_dataset(sc, FREQS, ks, thr, thr - 0.01, ones.astype(int), ones, ones, AmplitudeGrid())
