@@ -13,11 +13,26 @@ import logging
 import math
 import sys
 
-from rockstudy.core import validation as v
+from rockstudy.analysis.scenario import DEFAULT_BLOCK, DEFAULT_EXCITATION, DEFAULT_OVERTURN_CRITERION
+from rockstudy.analysis.spectra import DEFAULT_FREQUENCY_GRID, AmplitudeGrid
+from rockstudy.core import validation
+from rockstudy.engine.simulate import DEFAULT_FREE_TIME, ENGINES, OVERTURN_CRITERIA
+from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS
-from rockstudy.model.control import STRATEGIES
+from rockstudy.model.control import STRATEGIES, Control
+from rockstudy.model.excitation import EXCITATIONS
+from rockstudy.model.noise import DEFAULT_READING, DEFAULT_SEED, LEVEL_MEANINGS, RESCALES
 
-EXCITATION_CHOICES = ("one-sine", "modulated")
+ANCHORAGE, CONTROL, GRID = Anchorage(), Control(), AmplitudeGrid()
+"""The library's defaults the options show."""
+
+OPTION_NAMES = {"kappa_max": "--kappa-max", "kappa_min": "--kappa-min", "damping_ratio": "--damping-ratio",
+                "strategy": "--strategy", "sampling_time": "--sampling-time", "delay": "--delay",
+                "sensor_band": "--sensor-band", "step": "--noise-step", "rescale": "--noise-rescale",
+                "level_means": "--noise-level-means", "band": "--noise-band", "span": "--noise-span"}
+"""The option that sets each field of :class:`Anchorage`, :class:`Control` and :class:`NoiseReading`: the
+library's checks name it in their messages."""
+
 SECONDS_PER_SIMULATION = 1e-3
 """Rough cost of one simulation on one core, for the estimate printed before a spectrum. [s]"""
 
@@ -56,132 +71,113 @@ def _integer(name):
 
 
 def _common(p: argparse.ArgumentParser, single_frequency=True):
-    p.add_argument("--block", default="BLC06", choices=sorted(BLOCK_PRESETS), help="block preset (default BLC06)")
-    p.add_argument("--strategy", default="CS01", choices=STRATEGIES, help="control strategy")
-    p.add_argument("--excitation", default="modulated", choices=EXCITATION_CHOICES,
-                   help="one-sine pulse or the amplitude-modulated harmonic of Eq. 23")
+    noise = DEFAULT_READING
+    p.add_argument("--block", default=DEFAULT_BLOCK, choices=sorted(BLOCK_PRESETS),
+                   help=f"block preset (default {DEFAULT_BLOCK})")
+    p.add_argument("--strategy", default=CONTROL.strategy, choices=STRATEGIES,
+                   help=f"control strategy (default {CONTROL.strategy})")
+    p.add_argument("--excitation", default=DEFAULT_EXCITATION, choices=EXCITATIONS,
+                   help=f"one-sine pulse or the amplitude-modulated harmonic of Eq. 23 (default {DEFAULT_EXCITATION})")
     if single_frequency:
         p.add_argument("--frequency-ratio", type=_number("--frequency-ratio"), default=2.0, help="omega_p/p [-]")
     p.add_argument("--noise-level", type=_number("--noise-level"), default=0.0,
                    help="noise energy / baseline energy, in [0, 1)")
     p.add_argument("--realisation", type=_integer("--realisation"), default=0, help="noise realisation k")
-    p.add_argument("--seed", type=_integer("--seed"), default=0, help="root seed of the noise")
-    p.add_argument("--noise-step", type=_number("--noise-step"), default=0.0025, metavar="SECONDS",
-                   help="sampling step of the noisy record [s] (default 0.0025)")
-    p.add_argument("--noise-rescale", "--match", dest="match", default="energy",
-                   choices=("energy", "pga", "both", "none"),
-                   help="what the noisy record keeps of the baseline: energy (default), pga, both, none")
-    p.add_argument("--noise-level-means", default="energy", choices=("energy", "rms"),
-                   help="--noise-level is noise/baseline energy (default) or noise/baseline RMS")
-    p.add_argument("--noise-band", type=_number("--noise-band"), default=None, metavar="HZ",
+    p.add_argument("--seed", type=_integer("--seed"), default=DEFAULT_SEED,
+                   help=f"root seed of the noise (default {DEFAULT_SEED}, the study's)")
+    p.add_argument("--noise-step", type=_number("--noise-step"), default=noise.step, metavar="SECONDS",
+                   help=f"sampling step of the noisy record [s] (default {noise.step:g})")
+    p.add_argument("--noise-rescale", default=noise.rescale, choices=RESCALES,
+                   help=f"what the noisy record keeps of the baseline (default {noise.rescale})")
+    p.add_argument("--noise-level-means", default=noise.level_means, choices=LEVEL_MEANINGS,
+                   help=f"--noise-level is noise/baseline energy or noise/baseline RMS (default {noise.level_means})")
+    p.add_argument("--noise-band", type=_number("--noise-band"), default=noise.band, metavar="HZ",
                    help="upper band limit of the noise [Hz] (default: white up to 1/(2 step))")
-    p.add_argument("--noise-span", type=_number("--noise-span"), default=0.0, metavar="SECONDS",
-                   help="noise also this long after the intense part [s] (default 0)")
-    p.add_argument("--sampling-time", type=_number("--sampling-time"), default=0.0,
+    p.add_argument("--noise-span", type=_number("--noise-span"), default=noise.span, metavar="SECONDS",
+                   help=f"noise also this long after the intense part [s] (default {noise.span:g})")
+    p.add_argument("--sampling-time", type=_number("--sampling-time"), default=CONTROL.sampling_time,
                    help="controller sampling time T_s [s] (0: continuous)")
-    p.add_argument("--delay", type=_number("--delay"), default=0.0, help="actuation delay [s] (needs T_s > 0)")
-    p.add_argument("--sensor-band", type=_number("--sensor-band"), default=None, metavar="HZ",
+    p.add_argument("--delay", type=_number("--delay"), default=CONTROL.delay,
+                   help="actuation delay [s] (needs T_s > 0)")
+    p.add_argument("--sensor-band", type=_number("--sensor-band"), default=CONTROL.sensor_band, metavar="HZ",
                    help="the controller reads the ground acceleration through a causal 2nd-order Butterworth "
                         "low-pass with this cut-off [Hz], below 1/(2 step) of the record it reads (default: "
                         "it reads the driving acceleration itself)")
-    p.add_argument("--kappa-max", type=_number("--kappa-max"), default=1.0, help="4 K_max b^2/(m g R) [-]")
-    p.add_argument("--kappa-min", type=_number("--kappa-min"), default=0.0, help="4 K_min b^2/(m g R) [-]")
-    p.add_argument("--damping-ratio", type=_number("--damping-ratio"), default=0.05, help="xi [-]")
-    p.add_argument("--overturn-criterion", default="flat", choices=("flat", "alpha"),
-                   help="overturned at |theta| >= pi/2 (flat) or >= alpha")
-    p.add_argument("--free-time", type=_number("--free-time"), default=30.0,
-                   help="free motion allowed after the excitation [s]")
-    p.add_argument("--engine", default="fast", choices=("fast", "reference"), help="integration engine")
-
-
-_LIBRARY_NAMES = (("Control.sampling_time", "--sampling-time"), ("Control.delay", "--delay"),
-                  ("Control.sensor_band", "--sensor-band"),
-                  ("Anchorage.kappa_max", "--kappa-max"), ("Anchorage.kappa_min", "--kappa-min"),
-                  ("Anchorage.damping_ratio", "--damping-ratio"), ("free_time", "--free-time"),
-                  ("sampling_time", "--sampling-time"), ("exceed kappa_max", "exceed --kappa-max"),
-                  (", delay=", ", --delay="))
-
-
-def _user_names(message: str) -> str:
-    """A library message with the dataclass field names replaced by the options that set them."""
-    for internal, option in _LIBRARY_NAMES:
-        message = message.replace(internal, option)
-    return message
+    p.add_argument("--kappa-max", type=_number("--kappa-max"), default=ANCHORAGE.kappa_max,
+                   help=f"4 K_max b^2/(m g R) [-] (default {ANCHORAGE.kappa_max:g})")
+    p.add_argument("--kappa-min", type=_number("--kappa-min"), default=ANCHORAGE.kappa_min,
+                   help=f"4 K_min b^2/(m g R) [-] (default {ANCHORAGE.kappa_min:g})")
+    p.add_argument("--damping-ratio", type=_number("--damping-ratio"), default=ANCHORAGE.damping_ratio,
+                   help=f"xi [-] (default {ANCHORAGE.damping_ratio:g})")
+    p.add_argument("--overturn-criterion", default=DEFAULT_OVERTURN_CRITERION, choices=OVERTURN_CRITERIA,
+                   help=f"overturned at |theta| >= pi/2 (flat) or >= alpha (default {DEFAULT_OVERTURN_CRITERION})")
+    p.add_argument("--free-time", type=_number("--free-time"), default=DEFAULT_FREE_TIME,
+                   help=f"free motion allowed after the excitation [s] (default {DEFAULT_FREE_TIME:g})")
+    p.add_argument("--engine", default=ENGINES[0], choices=ENGINES, help=f"integration engine (default {ENGINES[0]})")
 
 
 def _check_common(args, single_frequency=True) -> None:
     """Ranges of the options every simulating command shares (raises :class:`validation.InputError`)."""
     if single_frequency:
-        v.check_positive("--frequency-ratio", args.frequency_ratio, high=v.MAX_FREQUENCY_RATIO)
-    v.check_range("--noise-level", args.noise_level, 0.0, 1.0, high_open=True,
-                  why="noise energy / baseline energy")
-    v.check_int_range("--realisation", args.realisation, 0, v.MAX_INTEGER,
-                      why="stored as a netCDF int64 and in the noise's spawn key")
-    v.check_int_range("--seed", args.seed, 0, v.MAX_INTEGER, why="stored as a netCDF int64 attribute")
-    v.check_nonnegative("--sampling-time", args.sampling_time, "s", v.MAX_TIME_SPAN)
-    v.check_nonnegative("--delay", args.delay, "s", v.MAX_TIME_SPAN)
-    v.check_nonnegative("--kappa-max", args.kappa_max, high=v.MAX_KAPPA)
-    v.check_nonnegative("--kappa-min", args.kappa_min, high=v.MAX_KAPPA)
-    v.check_nonnegative("--damping-ratio", args.damping_ratio, high=v.MAX_DAMPING_RATIO)
-    v.check_nonnegative("--free-time", args.free_time, "s", v.MAX_FREE_TIME)
+        validation.check_positive("--frequency-ratio", args.frequency_ratio, high=validation.MAX_FREQUENCY_RATIO)
+    validation.check_range("--noise-level", args.noise_level, 0.0, 1.0, high_open=True,
+                           why="noise energy / baseline energy")
+    validation.check_int_range("--realisation", args.realisation, 0, validation.MAX_INTEGER,
+                               why="stored as a netCDF int64 and in the noise's spawn key")
+    validation.check_int_range("--seed", args.seed, 0, validation.MAX_INTEGER, why="stored as a netCDF int64 attribute")
+    validation.check_nonnegative("--sampling-time", args.sampling_time, "s", validation.MAX_TIME_SPAN)
+    validation.check_nonnegative("--delay", args.delay, "s", validation.MAX_TIME_SPAN)
+    validation.check_nonnegative("--kappa-max", args.kappa_max, high=validation.MAX_KAPPA)
+    validation.check_nonnegative("--kappa-min", args.kappa_min, high=validation.MAX_KAPPA)
+    validation.check_nonnegative("--damping-ratio", args.damping_ratio, high=validation.MAX_DAMPING_RATIO)
+    validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_FREE_TIME)
 
 
 def _scenario(args, parser, sensor_step=None):
     """The scenario of the options; ``sensor_step`` [s]: the step of the record the sensor reads
     (default: the noisy record's, or the analytic excitation's sampling for the sensor)."""
-    from rockstudy.analysis.spectra import Scenario
-    from rockstudy.model.anchorage import Anchorage
-    from rockstudy.model.control import Control
+    from rockstudy.analysis.scenario import Scenario
     from rockstudy.model.noise import NoiseReading
     from rockstudy.model.sensor import SENSOR_STEP, check_band
+    noise = {"step": args.noise_step, "rescale": args.noise_rescale, "level_means": args.noise_level_means,
+             "band": args.noise_band, "span": args.noise_span}
+    anchorage = {"kappa_max": args.kappa_max, "kappa_min": args.kappa_min, "damping_ratio": args.damping_ratio}
+    control = {"strategy": args.strategy, "sampling_time": args.sampling_time, "delay": args.delay,
+               "sensor_band": args.sensor_band}
     try:
-        noise = NoiseReading(step=args.noise_step, rescale=args.match, level_means=args.noise_level_means,
-                             band=args.noise_band, span=args.noise_span)
-    except ValueError as exc:
-        parser.error(str(exc).replace("NoiseReading.band", "--noise-band").replace("NoiseReading.", "--noise-"))
-    if args.sensor_band is not None:
-        if sensor_step is None:
-            sensor_step = args.noise_step if args.noise_level > 0 else SENSOR_STEP
-        try:
+        NoiseReading.check(OPTION_NAMES, **noise)
+        Anchorage.check(OPTION_NAMES, **anchorage)
+        Control.check(OPTION_NAMES, **control)
+        if args.sensor_band is not None:
+            if sensor_step is None:
+                sensor_step = args.noise_step if args.noise_level > 0 else SENSOR_STEP
             check_band(args.sensor_band, sensor_step, "--sensor-band")
-        except ValueError as exc:
-            parser.error(str(exc))
-    try:
-        return Scenario(BLOCK_PRESETS[args.block],
-                        Anchorage(kappa_max=args.kappa_max, kappa_min=args.kappa_min,
-                                  damping_ratio=args.damping_ratio),
-                        Control(args.strategy, sampling_time=args.sampling_time, delay=args.delay,
-                                sensor_band=args.sensor_band),
-                        excitation=args.excitation, noise_level=args.noise_level, seed=args.seed,
-                        noise=noise, overturn_criterion=args.overturn_criterion, free_time=args.free_time)
     except ValueError as exc:
-        parser.error(_user_names(str(exc)))
+        parser.error(str(exc))
+    return Scenario(BLOCK_PRESETS[args.block], Anchorage(**anchorage), Control(**control),
+                    excitation=args.excitation, noise_level=args.noise_level, seed=args.seed,
+                    noise=NoiseReading(**noise), overturn_criterion=args.overturn_criterion,
+                    free_time=args.free_time)
 
 
 _GRID_NAMES = ("--min-amplitude-ratio", "--max-amplitude-ratio", "--amplitude-step", "--resolution")
 
 
 def _grid(args, parser):
-    """The amplitude scan, and the simulations one threshold may need."""
-    from rockstudy.analysis.spectra import AmplitudeGrid
-    try:
-        sims = v.check_amplitude_grid(args.min_amplitude_ratio, args.max_amplitude_ratio, args.amplitude_step,
-                                      args.resolution, names=_GRID_NAMES)
-        return AmplitudeGrid(start=args.min_amplitude_ratio, stop=args.max_amplitude_ratio,
-                             step=args.amplitude_step, resolution=args.resolution), sims
-    except ValueError as exc:
-        parser.error(str(exc).replace("AmplitudeGrid.stop", "--max-amplitude-ratio")
-                     .replace("AmplitudeGrid.resolution", "--resolution")
-                     .replace("AmplitudeGrid.start", "--min-amplitude-ratio"))
+    """The amplitude scan, and the simulations one threshold may need (the checks name the options)."""
+    sims = validation.check_amplitude_grid(args.min_amplitude_ratio, args.max_amplitude_ratio, args.amplitude_step,
+                                           args.resolution, names=_GRID_NAMES)
+    return AmplitudeGrid(start=args.min_amplitude_ratio, stop=args.max_amplitude_ratio,
+                         step=args.amplitude_step, resolution=args.resolution), sims
 
 
 def _check_outputs(args, parser) -> None:
     """Output paths are writable before any work; ``--output`` and ``--plot`` differ."""
     output, plot = getattr(args, "output", None), getattr(args, "plot", None)
     if output is not None:
-        v.check_output_path("--output", output, formats=("nc",))
+        validation.check_output_path("--output", output, formats=("nc",))
     if plot is not None:
-        v.check_output_path("--plot", plot, formats=v.FIGURE_FORMATS)
+        validation.check_output_path("--plot", plot, formats=validation.FIGURE_FORMATS)
     if output is not None and plot is not None:
         import os
         if os.path.realpath(output) == os.path.realpath(plot):
@@ -196,12 +192,14 @@ def _check_time_span(scenario, frequency_ratios, frequency_name) -> None:
 
 
 def _grid_args(p):
-    p.add_argument("--min-amplitude-ratio", type=_number("--min-amplitude-ratio"), default=0.9,
-                   help="first amplitude ratio of the upward scan [-]")
-    p.add_argument("--max-amplitude-ratio", type=_number("--max-amplitude-ratio"), default=6.0,
-                   help="upper bound of the scan [-]")
-    p.add_argument("--amplitude-step", type=_number("--amplitude-step"), default=0.1, help="coarse scan step [-]")
-    p.add_argument("--resolution", type=_number("--resolution"), default=0.01, help="refinement resolution [-]")
+    p.add_argument("--min-amplitude-ratio", type=_number("--min-amplitude-ratio"), default=GRID.start,
+                   help=f"first amplitude ratio of the upward scan [-] (default {GRID.start:g})")
+    p.add_argument("--max-amplitude-ratio", type=_number("--max-amplitude-ratio"), default=GRID.stop,
+                   help=f"upper bound of the scan [-] (default {GRID.stop:g})")
+    p.add_argument("--amplitude-step", type=_number("--amplitude-step"), default=GRID.step,
+                   help=f"coarse scan step [-] (default {GRID.step:g})")
+    p.add_argument("--resolution", type=_number("--resolution"), default=GRID.resolution,
+                   help=f"refinement resolution [-] (default {GRID.resolution:g})")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -225,9 +223,13 @@ def build_parser() -> argparse.ArgumentParser:
     pp = sub.add_parser("spectrum", help="overturning spectrum over a frequency grid, written to netCDF")
     _common(pp, single_frequency=False)
     _grid_args(pp)
-    pp.add_argument("--frequency-start", type=_number("--frequency-start"), default=0.25, help="first omega_p/p [-]")
-    pp.add_argument("--frequency-stop", type=_number("--frequency-stop"), default=5.0, help="last omega_p/p [-]")
-    pp.add_argument("--frequency-step", type=_number("--frequency-step"), default=0.1, help="omega_p/p step [-]")
+    start, stop, step = (DEFAULT_FREQUENCY_GRID[key] for key in ("start", "stop", "step"))
+    pp.add_argument("--frequency-start", type=_number("--frequency-start"), default=start,
+                    help=f"first omega_p/p [-] (default {start:g})")
+    pp.add_argument("--frequency-stop", type=_number("--frequency-stop"), default=stop,
+                    help=f"last omega_p/p [-] (default {stop:g})")
+    pp.add_argument("--frequency-step", type=_number("--frequency-step"), default=step,
+                    help=f"omega_p/p step [-] (default {step:g})")
     pp.add_argument("--realisations", type=_integer("--realisations"), default=1,
                     help="number of noise realisations N (0..N-1)")
     pp.add_argument("--map", action="store_true", help="also store the outcome at every grid point")
@@ -246,21 +248,18 @@ def _cmd_simulate(args, parser):
         return _cmd_simulate_record(args, parser)
     if args.record_unit is not None or args.record_scale != 1.0:
         parser.error("--record-unit and --record-scale need --record FILE")
-    from rockstudy.engine.simulate import simulate
     try:
         _check_common(args)
-        v.check_positive("--amplitude-ratio", args.amplitude_ratio, high=v.MAX_AMPLITUDE_RATIO)
+        validation.check_positive("--amplitude-ratio", args.amplitude_ratio, high=validation.MAX_AMPLITUDE_RATIO)
         scenario = _scenario(args, parser)
         _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
         _check_outputs(args, parser)
-    except v.InputError as exc:
+    except validation.InputError as exc:
         parser.error(str(exc))
     motion, rec = scenario.motion(args.frequency_ratio, args.amplitude_ratio, args.realisation)
     out = {}
     try:
-        res = simulate(scenario.block, scenario.anchorage, scenario.control, motion, engine=args.engine,
-                       overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
-                       record_history=bool(args.output or args.plot))
+        res = scenario.simulate_motion(motion, engine=args.engine, record_history=bool(args.output or args.plot))
     except RuntimeError as exc:  # the fast engine's event cap: no result, and no file is written
         res = None
         out.update(status="undetermined", overturned=None, message=str(exc))
@@ -288,7 +287,6 @@ def _cmd_simulate(args, parser):
 
 def _cmd_simulate_record(args, parser):
     """``simulate --record FILE``: one run under a recorded (or synthetic) ground motion."""
-    from rockstudy.engine.simulate import simulate
     from rockstudy.model.records import read_record, unit_factor
     if args.noise_level != 0:
         parser.error("argument --noise-level: noise contaminates the analytic excitations; not with --record")
@@ -299,9 +297,9 @@ def _cmd_simulate_record(args, parser):
             parser.error(f"argument --record-unit: {exc}")
     try:
         _check_common(args, single_frequency=False)
-        v.check_positive("--record-scale", args.record_scale)
+        validation.check_positive("--record-scale", args.record_scale)
         _check_outputs(args, parser)
-    except v.InputError as exc:
+    except validation.InputError as exc:
         parser.error(str(exc))
     try:
         record = read_record(args.record, args.record_unit)
@@ -311,19 +309,17 @@ def _cmd_simulate_record(args, parser):
     motion = record.motion(args.record_scale)
     pga_ratio = motion.peak() / scenario.block.uplift_acceleration
     try:
-        v.check_positive("--record-scale", args.record_scale, high=v.MAX_AMPLITUDE_RATIO * args.record_scale
-                         / pga_ratio if pga_ratio > 0 else None,
-                         why=f"the scaled record's PGA/(g tan alpha) is {pga_ratio:.4g}, at most "
-                             f"{v.MAX_AMPLITUDE_RATIO:g} is allowed")
-        v.check_nonnegative("--free-time", args.free_time, "s", v.MAX_TIME_SPAN - record.duration,
-                            why=f"the record lasts {record.duration:.4g} s and a simulation at most "
-                                f"{v.MAX_TIME_SPAN:g} s")
-    except v.InputError as exc:
+        top = validation.MAX_AMPLITUDE_RATIO * args.record_scale / pga_ratio if pga_ratio > 0 else None
+        validation.check_positive("--record-scale", args.record_scale, high=top,
+                                  why=f"the scaled record's PGA/(g tan alpha) is {pga_ratio:.4g}, at most "
+                                      f"{validation.MAX_AMPLITUDE_RATIO:g} is allowed")
+        validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_TIME_SPAN - record.duration,
+                                     why=f"the record lasts {record.duration:.4g} s and a simulation at most "
+                                         f"{validation.MAX_TIME_SPAN:g} s")
+    except validation.InputError as exc:
         parser.error(str(exc))
     try:
-        res = simulate(scenario.block, scenario.anchorage, scenario.control, motion, engine=args.engine,
-                       overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
-                       record_history=bool(args.output or args.plot))
+        res = scenario.simulate_motion(motion, engine=args.engine, record_history=bool(args.output or args.plot))
     except RuntimeError as exc:  # the fast engine's event cap: an undetermined result, no file written
         print(json.dumps({"status": "undetermined", "overturned": None, "message": str(exc),
                           "strategy": args.strategy, "record": args.record}, indent=2))
@@ -355,19 +351,6 @@ def _cmd_simulate_record(args, parser):
     print(json.dumps(out, indent=2))
 
 
-def _uplift_amplitude_ratio(scenario, frequency_ratio, realisation) -> float:
-    """Lowest amplitude ratio at which the ground motion can uplift the block (1 / its unit peak). [-]"""
-    import numpy as np
-
-    from rockstudy.model.excitation import modulated_peak
-    _, rec = scenario.motion(frequency_ratio, 1.0, realisation)
-    if rec is not None:
-        peak = float(np.max(np.abs(rec.values)))
-    else:
-        peak = modulated_peak() if scenario.excitation == "modulated" else 1.0
-    return 1.0 / peak
-
-
 def _cmd_threshold(args, parser):
     from rockstudy.analysis.spectra import threshold
     try:
@@ -375,10 +358,10 @@ def _cmd_threshold(args, parser):
         scenario = _scenario(args, parser)
         grid, _ = _grid(args, parser)
         _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
-    except v.InputError as exc:
+    except validation.InputError as exc:
         parser.error(str(exc))
     res = threshold(scenario, args.frequency_ratio, realisation=args.realisation, grid=grid, engine=args.engine)
-    uplift = _uplift_amplitude_ratio(scenario, args.frequency_ratio, args.realisation)
+    uplift = 1.0 / scenario.unit_peak(args.frequency_ratio, args.realisation)
     start = float(grid.values()[0])
     complete = start <= uplift
     res.update(scan_start_amplitude_ratio=start, uplift_amplitude_ratio=uplift,
@@ -409,27 +392,28 @@ def _cmd_spectrum(args, parser):
         parser.error("argument --engine: spectra run on the fast engine only")
     try:
         _check_common(args, single_frequency=False)
-        v.check_int_range("--realisations", args.realisations, 1, v.MAX_REALISATIONS)
-        v.check_int_range("--threads", args.threads, 1, numba.config.NUMBA_NUM_THREADS,
-                          why="the CPUs numba can use on this machine")
+        validation.check_int_range("--realisations", args.realisations, 1, validation.MAX_REALISATIONS)
+        validation.check_int_range("--threads", args.threads, 1, numba.config.NUMBA_NUM_THREADS,
+                                   why="the CPUs numba can use on this machine")
         scenario = _scenario(args, parser)
         grid, sims_per_case = _grid(args, parser)
-        n_freq = v.check_grid("frequency grid", args.frequency_start, args.frequency_stop, args.frequency_step,
-                              high=v.MAX_FREQUENCY_RATIO,
-                              names=("--frequency-start", "--frequency-stop", "--frequency-step"))
+        n_freq = validation.check_grid("frequency grid", args.frequency_start, args.frequency_stop, args.frequency_step,
+                                       high=validation.MAX_FREQUENCY_RATIO,
+                                       names=("--frequency-start", "--frequency-stop", "--frequency-step"))
         freqs = frequency_grid(args.frequency_start, args.frequency_stop, args.frequency_step)
         _check_time_span(scenario, [args.frequency_start, float(freqs[-1])],
                          "--frequency-start" if args.frequency_start < 1 else "--frequency-stop")
         n_real = 1 if scenario.noise_level == 0 else args.realisations
         record_bytes = 0
         if scenario.noise_level > 0:
-            samples = v.record_samples(excitation_duration(scenario.excitation, scenario.omega(f)) for f in freqs)
-            record_bytes = n_real * samples * v.RECORD_BYTES_PER_SAMPLE
-        v.check_workload("--realisations" if n_real > 1 else "--frequency-step",
-                         args.realisations if n_real > 1 else args.frequency_step,
-                         n_real * n_freq, sims_per_case * (2 if args.map else 1), record_bytes)
+            samples = validation.record_samples(excitation_duration(scenario.excitation, scenario.omega(f))
+                                                for f in freqs)
+            record_bytes = n_real * samples * validation.RECORD_BYTES_PER_SAMPLE
+        validation.check_workload("--realisations" if n_real > 1 else "--frequency-step",
+                                  args.realisations if n_real > 1 else args.frequency_step,
+                                  n_real * n_freq, sims_per_case * (2 if args.map else 1), record_bytes)
         _check_outputs(args, parser)
-    except v.InputError as exc:
+    except validation.InputError as exc:
         parser.error(str(exc))
     numba.set_num_threads(args.threads)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s", stream=sys.stderr)
@@ -453,8 +437,8 @@ def _cmd_jos(args, parser):
     from rockstudy.core.io import read_netcdf
     from rockstudy.studies.tables import jos_of
     try:
-        v.check_positive("--a-max0", args.a_max0, "g")
-    except v.InputError as exc:
+        validation.check_positive("--a-max0", args.a_max0, "g")
+    except validation.InputError as exc:
         parser.error(str(exc))
     datasets = {}
     for name, path in (("--reference", args.reference), ("--system", args.system)):

@@ -58,7 +58,8 @@ def test_baseline_exact_multiple_adds_no_trailing_sample():
 @pytest.mark.parametrize("kind", ["one-sine", "modulated"])
 def test_energy_match_exact(kind, level):
     base, dt = baseline_samples(kind, OMEGA)
-    rec, energy_ratio, pga_ratio = contaminate(base, dt, level, noise_generator(SEED, level, 3), "energy")
+    rec, energy_ratio, pga_ratio = contaminate(base, dt, level, noise_generator(SEED, level, 3),
+                                               NoiseReading(rescale="energy"))
     assert abs(_energy(rec, dt) / _energy(base, dt) - 1.0) < 1e-12
     assert abs(energy_ratio - 1.0) < 1e-12
     assert pga_ratio == pytest.approx(np.max(np.abs(rec)) / np.max(np.abs(base)), rel=1e-15)
@@ -68,7 +69,8 @@ def test_energy_match_exact(kind, level):
 @pytest.mark.parametrize("level", [0.01, 0.05, 0.10])
 def test_pga_match_exact(level):
     base, dt = baseline_samples("modulated", OMEGA)
-    rec, energy_ratio, pga_ratio = contaminate(base, dt, level, noise_generator(SEED, level, 0), "pga")
+    rec, energy_ratio, pga_ratio = contaminate(base, dt, level, noise_generator(SEED, level, 0),
+                                               NoiseReading(rescale="pga"))
     assert abs(np.max(np.abs(rec)) / np.max(np.abs(base)) - 1.0) < 1e-12
     assert abs(pga_ratio - 1.0) < 1e-12
     assert energy_ratio == pytest.approx(_energy(rec, dt) / _energy(base, dt), rel=1e-12)
@@ -82,7 +84,7 @@ def test_noise_energy_fraction_before_rescaling_is_level(level):
     assert _energy(noise, dt) / _energy(base, dt) == pytest.approx(level, rel=1e-12)
     assert abs(np.mean(noise)) < 4.0 * np.std(noise) / math.sqrt(noise.size)  # zero mean, 4 sigma
     # contaminate() = (baseline + that noise) rescaled to the baseline energy
-    rec, _, _ = contaminate(base, dt, level, noise_generator(SEED, level, 7), "energy")
+    rec, _, _ = contaminate(base, dt, level, noise_generator(SEED, level, 7), NoiseReading(rescale="energy"))
     summed = base + noise
     np.testing.assert_allclose(rec, summed * math.sqrt(_energy(base, dt) / _energy(summed, dt)),
                                rtol=1e-12, atol=1e-15)
@@ -125,7 +127,7 @@ def test_realisation_independent_of_order():
 def test_level_zero_is_baseline():
     base, dt = baseline_samples("modulated", OMEGA)
     rng = noise_generator(SEED, 0.0, 0)
-    rec, energy_ratio, pga_ratio = contaminate(base, dt, 0.0, rng, "pga")
+    rec, energy_ratio, pga_ratio = contaminate(base, dt, 0.0, rng, NoiseReading(rescale="pga"))
     assert np.array_equal(rec, base) and rec is not base
     assert energy_ratio == 1.0 and pga_ratio == 1.0
     r = noisy_record("modulated", OMEGA, 0.0, 5, SEED)
@@ -133,9 +135,9 @@ def test_level_zero_is_baseline():
 
 
 def test_noisy_record_fields():
-    r = noisy_record("one-sine", OMEGA, 0.05, 2, SEED, match="pga")
+    r = noisy_record("one-sine", OMEGA, 0.05, 2, SEED, NoiseReading(rescale="pga"))
     assert isinstance(r, NoisyRecord)
-    assert (r.dt, r.level, r.realisation, r.seed, r.match) == (NOISE_DT, 0.05, 2, SEED, "pga")
+    assert (r.dt, r.level, r.realisation, r.seed, r.reading.rescale) == (NOISE_DT, 0.05, 2, SEED, "pga")
     assert r.pga_ratio == pytest.approx(1.0, abs=1e-12)
     assert r.duration == pytest.approx((len(r.values) - 1) * NOISE_DT)
     assert r.to_attrs()["noise_level"] == 0.05
@@ -178,10 +180,12 @@ def test_generator_errors_name_argument(kwargs, name):
 def test_other_errors():
     base, dt = baseline_samples("one-sine", OMEGA)
     rng = np.random.default_rng(0)
-    with pytest.raises(ValueError, match="match"):
-        contaminate(base, dt, 0.05, rng, match="rms")
-    with pytest.raises(ValueError, match="match"):
-        noisy_record("one-sine", OMEGA, 0.05, 0, 0, match="rms")
+    with pytest.raises(ValueError, match="NoiseReading.rescale"):
+        NoiseReading(rescale="rms")
+    with pytest.raises(ValueError, match="reading"):
+        contaminate(base, dt, 0.05, rng, "energy")
+    with pytest.raises(ValueError, match="reading"):
+        noisy_record("one-sine", OMEGA, 0.05, 0, 0, "energy")
     with pytest.raises(ValueError, match="level"):
         contaminate(base, dt, 1.5, rng)
     with pytest.raises(ValueError, match="dt"):
@@ -234,9 +238,8 @@ def test_default_reading_is_bit_for_bit_the_old_records(case, n, digest, pga_rat
     base, dt = baseline_samples(kind, 3.0 * f)
     old = _old_contaminate(base, dt, level, noise_generator(20190101, level, k), match)
     assert np.array_equal(rec.values, old)
-    if match == "energy":  # the default reading and the former keyword give the same bits
+    if match == "energy":  # the default reading gives the same bits
         assert np.array_equal(noisy_record(kind, 3.0 * f, level, k, 20190101).values, old)
-        assert np.array_equal(noisy_record(kind, 3.0 * f, level, k, 20190101, match="energy").values, old)
 
 
 def test_reading_defaults_and_attrs():
@@ -244,7 +247,8 @@ def test_reading_defaults_and_attrs():
     assert r == DEFAULT_READING == reading_from_dict(None) == reading_from_dict({})
     assert (r.step, r.rescale, r.level_means, r.band, r.span) == (0.0025, "energy", "energy", None, 0.0)
     attrs = r.to_attrs()
-    assert attrs["noise_match"] == "energy" and attrs["noise_dt_s"] == 0.0025 and attrs["noise_band_hz"] == "none"
+    assert attrs["noise_rescale"] == "energy" and attrs["noise_step_s"] == 0.0025 and attrs["noise_band_hz"] == "none"
+    assert "noise_match" not in attrs and "noise_dt_s" not in attrs
     assert NoiseReading(band=5.0).to_attrs()["noise_band_hz"] == 5.0
 
 
@@ -265,7 +269,8 @@ def test_step_gives_samples_that_far_apart(step):
 def test_none_leaves_the_sum_unscaled():
     base, dt = baseline_samples("modulated", OMEGA)
     level = 0.05
-    rec, energy_ratio, _ = contaminate(base, dt, level, noise_generator(SEED, level, 2), "none")
+    rec, energy_ratio, _ = contaminate(base, dt, level, noise_generator(SEED, level, 2),
+                                      NoiseReading(rescale="none"))
     noise = scaled_white_noise(base.size, dt, level * _energy(base, dt), noise_generator(SEED, level, 2))
     np.testing.assert_array_equal(rec, base + noise)
     # energy of b + n = (1 + r) E_b + 2 Σ b n dt: close to 1 + r, not 1
@@ -328,7 +333,8 @@ def test_span_adds_noise_after_the_intense_part_only_when_asked():
 @pytest.mark.parametrize("level", [0.01, 0.05, 0.10])
 def test_both_keeps_energy_and_pga(level):
     base, dt = baseline_samples("modulated", OMEGA)
-    rec, energy_ratio, pga_ratio = contaminate(base, dt, level, noise_generator(SEED, level, 4), "both")
+    rec, energy_ratio, pga_ratio = contaminate(base, dt, level, noise_generator(SEED, level, 4),
+                                               NoiseReading(rescale="both"))
     assert energy_ratio == pytest.approx(1.0, abs=1e-12)
     assert pga_ratio == pytest.approx(1.0, abs=1e-12)
     # it is the energy-rescaled record with its peaks limited: same signs, order preserved

@@ -5,15 +5,52 @@ criterion, free time), and the ground motion it gives at one frequency and ampli
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
-from rockstudy.engine.simulate import DEFAULT_FREE_TIME, OVERTURN_CRITERIA
+from rockstudy.engine.simulate import (
+    DEFAULT_FREE_TIME,
+    OVERTURN_CRITERIA,
+    kernel_record,
+    pack_parameters,
+    simulate,
+)
+from rockstudy.engine.simulation_result import SimulationResult
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
 from rockstudy.model.control import Control
-from rockstudy.model.excitation import EXCITATIONS, GroundMotion, excitation_duration
-from rockstudy.model.noise import DEFAULT_READING, NoiseReading, noisy_record, record_motion
+from rockstudy.model.excitation import EXCITATIONS, GroundMotion, excitation_duration, modulated_peak
+from rockstudy.model.noise import DEFAULT_READING, DEFAULT_SEED, NoiseReading, NoisyRecord, noisy_record, record_motion
+
+DEFAULT_BLOCK = "BLC06"
+"""The study's block preset (:data:`rockstudy.model.block.BLOCK_PRESETS`)."""
+DEFAULT_EXCITATION = "modulated"
+"""The study's excitation: the amplitude-modulated harmonic of Eq. 23."""
+DEFAULT_OVERTURN_CRITERION = "flat"
+"""Overturned at |θ| >= π/2 (the block lies flat)."""
+
+
+class ScenarioRun(NamedTuple):
+    """One simulation of a scenario: its result, the ground motion that drove it and the noisy record
+    behind that motion (None without noise)."""
+
+    result: SimulationResult
+    motion: GroundMotion
+    record: NoisyRecord | None
+
+
+class KernelCase(NamedTuple):
+    """One (frequency, realisation) case of a scenario packed for the fast engine's amplitude scans: the
+    kernel's parameter row and samples at unit amplitude, the unit motion's peak, and the noisy record's
+    achieved energy and PGA ratios (1 without noise)."""
+
+    parameters: np.ndarray
+    samples: np.ndarray
+    vertical: np.ndarray
+    peak: float
+    energy_ratio: float
+    pga_ratio: float
 
 
 @dataclass(frozen=True)
@@ -28,11 +65,11 @@ class Scenario:
         Baseline excitation.
     noise_level : float
         Noise energy over baseline energy, in [0, 1). [-]
-    seed : int
+    seed : int, default DEFAULT_SEED
         Root seed of the noise realisations.
     noise : NoiseReading, default DEFAULT_READING
         How noisy records are made: step, rescaling, meaning of the level, band, span
-        (:class:`rockstudy.model.noise.NoiseReading`; the former ``match`` is ``noise.rescale``).
+        (:class:`rockstudy.model.noise.NoiseReading`).
     overturn_criterion : {"flat", "alpha"}
     free_time : float
         Free motion allowed after the excitation. [s]
@@ -41,11 +78,11 @@ class Scenario:
     block: Block
     anchorage: Anchorage = field(default_factory=Anchorage)
     control: Control = field(default_factory=Control)
-    excitation: str = "modulated"
+    excitation: str = DEFAULT_EXCITATION
     noise_level: float = 0.0
-    seed: int = 0
+    seed: int = DEFAULT_SEED
     noise: NoiseReading = DEFAULT_READING
-    overturn_criterion: str = "flat"
+    overturn_criterion: str = DEFAULT_OVERTURN_CRITERION
     free_time: float = DEFAULT_FREE_TIME
 
     def __post_init__(self):
@@ -61,11 +98,6 @@ class Scenario:
             raise ValueError(f"overturn_criterion must be one of {', '.join(OVERTURN_CRITERIA)}, "
                              f"got {self.overturn_criterion!r}")
 
-    @property
-    def match(self) -> str:
-        """The rescaling of the noisy records (``noise.rescale``; the former field ``match``)."""
-        return self.noise.rescale
-
     def omega(self, frequency_ratio: float) -> float:
         """ω_p for a frequency ratio. [rad/s]"""
         return frequency_ratio * self.block.p
@@ -79,6 +111,38 @@ class Scenario:
         rec = noisy_record(self.excitation, omega, self.noise_level, realisation, self.seed, self.noise)
         return record_motion(rec, amplitude, omega), rec
 
+    def simulate(self, frequency_ratio: float, amplitude_ratio: float, realisation: int = 0, *,
+                 engine: str = "fast", record_history: bool = False) -> ScenarioRun:
+        """Run the scenario once at a frequency ratio ω_p/p, an amplitude ratio a_p/(g·tanα) and a noise
+        realisation (see :func:`rockstudy.engine.simulate.simulate` for ``engine`` and ``record_history``)."""
+        motion, rec = self.motion(frequency_ratio, amplitude_ratio, realisation)
+        return ScenarioRun(self.simulate_motion(motion, engine=engine, record_history=record_history), motion, rec)
+
+    def simulate_motion(self, motion: GroundMotion, *, engine: str = "fast",
+                        record_history: bool = False) -> SimulationResult:
+        """Run the scenario's block, anchorage, control, criterion and free time under any ground motion
+        (a scaled record, say) instead of the scenario's excitation."""
+        return simulate(self.block, self.anchorage, self.control, motion, engine=engine,
+                        overturn_criterion=self.overturn_criterion, free_time=self.free_time,
+                        record_history=record_history)
+
+    def unit_peak(self, frequency_ratio: float, realisation: int = 0) -> float:
+        """Peak |Ẍ_g|/a_p of the unit-amplitude ground motion at a frequency ratio and realisation: the
+        block uplifts only above the amplitude ratio 1/peak. [-]"""
+        _, rec = self.motion(frequency_ratio, 1.0, realisation)
+        return _unit_peak(self.excitation, rec)
+
+    def kernel_case(self, frequency_ratio: float, realisation: int = 0, *, energy_bound: bool = True) -> KernelCase:
+        """The case at a frequency ratio and realisation packed for the fast engine's amplitude scans
+        (``energy_bound``: end runs that provably cannot overturn any more, docs/model.md)."""
+        motion, rec = self.motion(frequency_ratio, 1.0, realisation)
+        parameters = pack_parameters(self.block, self.anchorage, self.control, motion,
+                                     overturn_criterion=self.overturn_criterion, free_time=self.free_time,
+                                     energy_bound=energy_bound)
+        return KernelCase(parameters, kernel_record(self.control, motion), motion.vertical,
+                          _unit_peak(self.excitation, rec), 1.0 if rec is None else rec.energy_ratio,
+                          1.0 if rec is None else rec.pga_ratio)
+
     def to_attrs(self) -> dict:
         attrs = {}
         attrs.update(self.block.to_attrs())
@@ -87,3 +151,9 @@ class Scenario:
         attrs.update(excitation=self.excitation, noise_level=self.noise_level, noise_seed=int(self.seed),
                      **self.noise.to_attrs(), overturn_criterion=self.overturn_criterion, free_time_s=self.free_time)
         return attrs
+
+
+def _unit_peak(excitation: str, rec: NoisyRecord | None) -> float:
+    if rec is not None:
+        return float(np.max(np.abs(rec.values)))
+    return modulated_peak() if excitation == "modulated" else 1.0

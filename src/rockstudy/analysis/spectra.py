@@ -19,10 +19,9 @@ import xarray as xr
 from rockstudy._version import __version__
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.core.constants import PAPER
-from rockstudy.engine import _kernel as kn
+from rockstudy.engine import _kernel as kernel
 from rockstudy.engine.outcome import OUTCOME_MEANINGS, Outcome
-from rockstudy.engine.simulate import kernel_record, pack_parameters, simulate
-from rockstudy.model.excitation import GroundMotion, modulated_peak
+from rockstudy.model.excitation import GroundMotion
 
 log = logging.getLogger("rockstudy")
 
@@ -61,7 +60,12 @@ class AmplitudeGrid:
         return np.round(self.start + self.step * np.arange(n + 1), 10)
 
 
-def frequency_grid(start: float = 0.25, stop: float = 5.0, step: float = 0.1) -> np.ndarray:
+DEFAULT_FREQUENCY_GRID = {"start": 0.25, "stop": 5.0, "step": 0.1}
+"""The study's frequency ratios ω_p/p (``frequency_grid`` of config.yaml). [-]"""
+
+
+def frequency_grid(start: float = DEFAULT_FREQUENCY_GRID["start"], stop: float = DEFAULT_FREQUENCY_GRID["stop"],
+                   step: float = DEFAULT_FREQUENCY_GRID["step"]) -> np.ndarray:
     """Frequency ratios ω_p/p from ``start`` to ``stop`` (inclusive) in ``step``. [-]"""
     if not (start > 0 and stop >= start and step > 0):
         raise ValueError(f"frequency grid needs 0 < start <= stop and step > 0, got {start}, {stop}, {step}")
@@ -69,19 +73,12 @@ def frequency_grid(start: float = 0.25, stop: float = 5.0, step: float = 0.1) ->
     return np.round(start + step * np.arange(n + 1), 10)
 
 
-def _unit_peak(scenario: Scenario, rec) -> float:
-    if rec is not None:
-        return float(np.max(np.abs(rec.values)))
-    return modulated_peak() if scenario.excitation == "modulated" else 1.0
-
-
 def _reference_outcome(scenario: Scenario, motion: GroundMotion, amplitude_ratio: float, peak: float) -> Outcome:
     """Outcome of one reference-engine run at one amplitude ratio."""
     if amplitude_ratio * peak <= 1.0:
         return Outcome.NO_UPLIFT
-    r = simulate(scenario.block, scenario.anchorage, scenario.control,
-                 motion.scaled(amplitude_ratio * scenario.block.uplift_acceleration), engine="reference",
-                 overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
+    r = scenario.simulate_motion(motion.scaled(amplitude_ratio * scenario.block.uplift_acceleration),
+                                 engine="reference")
     if not r.overturned:
         return Outcome.SAFE
     return Outcome.OVERTURNED_AFTER_IMPACT if r.n_impacts else Outcome.OVERTURNED_WITHOUT_IMPACT
@@ -101,24 +98,21 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     """
     if not (frequency_ratio > 0 and math.isfinite(frequency_ratio)):
         raise ValueError(f"frequency_ratio must be a positive number, got {frequency_ratio!r}")
-    motion, rec = scenario.motion(frequency_ratio, 1.0, realisation)
-    peak = _unit_peak(scenario, rec)
     values = grid.values()
+    case = scenario.kernel_case(frequency_ratio, realisation, energy_bound=energy_bound)
     if engine == "fast":
-        P = pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
-                            overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
-                            energy_bound=energy_bound)
-        thr, lo, n_sim, n_und = kn.threshold_kernel(P, kn.writable(kernel_record(scenario.control, motion)),
-                                                    kn.writable(motion.vertical), values, float(grid.resolution),
-                                                    float(peak))
+        thr, lo, n_sim, n_und = kernel.threshold_kernel(
+            case.parameters, kernel.writable(case.samples), kernel.writable(case.vertical), values,
+            float(grid.resolution), float(case.peak))
     elif engine == "reference":
-        # the same scan as the fast engine's (kn.threshold_kernel), driven from Python
-        state, done, n_sim, lower = kn.scan_start(), False, 0, 1.0 / peak
+        # the same scan as the fast engine's (kernel.threshold_kernel), driven from Python
+        motion, _ = scenario.motion(frequency_ratio, 1.0, realisation)
+        state, done, n_sim, lower = kernel.scan_start(), False, 0, 1.0 / case.peak
         while not done:
-            o = _reference_outcome(scenario, motion, float(kn.scan_amplitude(state, values)), peak)
+            o = _reference_outcome(scenario, motion, float(kernel.scan_amplitude(state, values)), case.peak)
             n_sim += o != Outcome.NO_UPLIFT
-            done = kn.scan_update(state, values, grid.resolution, lower, o.overturned)
-        thr, lo, n_und = state[kn.S_HI], state[kn.S_LO], 0
+            done = kernel.scan_update(state, values, grid.resolution, lower, o.overturned)
+        thr, lo, n_und = state[kernel.S_HI], state[kernel.S_LO], 0
     else:
         raise ValueError(f"engine must be 'fast' or 'reference', got {engine!r}")
     return {
@@ -129,8 +123,8 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
         "frequency_ratio": float(frequency_ratio),
         "n_simulations": int(n_sim),
         "n_undetermined": int(n_und),
-        "energy_ratio": 1.0 if rec is None else rec.energy_ratio,
-        "pga_ratio": 1.0 if rec is None else rec.pga_ratio,
+        "energy_ratio": case.energy_ratio,
+        "pga_ratio": case.pga_ratio,
         "engine": engine,
     }
 
@@ -140,14 +134,12 @@ def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: boo
     rows, recs, peaks, e_ratio, p_ratio = [], [], [], [], []
     for k in realisations:
         for f in frequency_ratios:
-            motion, rec = scenario.motion(float(f), 1.0, int(k))
-            rows.append(pack_parameters(scenario.block, scenario.anchorage, scenario.control, motion,
-                                        overturn_criterion=scenario.overturn_criterion,
-                                        free_time=scenario.free_time, energy_bound=energy_bound))
-            recs.append(kernel_record(scenario.control, motion))
-            peaks.append(_unit_peak(scenario, rec))
-            e_ratio.append(1.0 if rec is None else rec.energy_ratio)
-            p_ratio.append(1.0 if rec is None else rec.pga_ratio)
+            case = scenario.kernel_case(float(f), int(k), energy_bound=energy_bound)
+            rows.append(case.parameters)
+            recs.append(case.samples)
+            peaks.append(case.peak)
+            e_ratio.append(case.energy_ratio)
+            p_ratio.append(case.pga_ratio)
     lengths = np.array([len(r) for r in recs], dtype=np.int64)
     offsets = np.concatenate([[0], np.cumsum(lengths)[:-1]]).astype(np.int64)
     flat = np.concatenate(recs) if lengths.sum() else np.zeros(0)
@@ -209,7 +201,7 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     t0 = time.perf_counter()
 
     def run(sl):
-        return kn.threshold_batch(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, grid.resolution, peaks[sl])
+        return kernel.threshold_batch(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, grid.resolution, peaks[sl])
 
     parts = _run_chunked(run, n, label, progress_chunks)
     thr = np.concatenate([p[0] for p in parts])
@@ -225,7 +217,7 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
                           n_undetermined=nund.reshape(shape))
     if with_map:
         def run_map(sl):
-            return kn.outcome_batch(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, peaks[sl])
+            return kernel.outcome_batch(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, peaks[sl])
         out = np.concatenate(_run_chunked(run_map, n, label + " map", progress_chunks))
         ds["outcome"] = (("realisation", "frequency_ratio", "amplitude_ratio"), out.reshape(shape + (len(values),)),
                          {"long_name": "outcome of the simulation at each grid point",

@@ -94,6 +94,13 @@ def _unit(unit: str) -> str:
     return f" {unit}" if unit else ""
 
 
+def field_names(owner: str, names=None):
+    """The name of each field of ``owner`` in messages: ``names[field]`` (the caller's option or config key,
+    e.g. ``"--kappa-max"`` or ``"anchorage.kappa_max"``), else ``"<owner>.<field>"``."""
+    names = names or {}
+    return lambda field: names.get(field, f"{owner}.{field}")
+
+
 def fail(name: str, value, allowed: str, unit: str = ""):
     """Raise :class:`InputError` ``"<name>: <value> <unit> is not allowed: <allowed>"``."""
     raise InputError(f"{name} = {_fmt(value)}{_unit(unit)} is not allowed: {allowed}")

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 from numba import njit
 
+from rockstudy.core.validation import field_names
 from rockstudy.model.block import Block
 
 
@@ -42,18 +43,24 @@ class Anchorage:
     damper_ultimate_rotation: float | None = None
 
     def __post_init__(self):
-        for name in ("kappa_max", "kappa_min", "damping_ratio"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 0):
-                raise ValueError(f"Anchorage.{name} must be a finite number >= 0, got {v!r}")
-        if self.kappa_min > self.kappa_max:
-            raise ValueError(
-                f"Anchorage.kappa_min ({self.kappa_min}) must not exceed kappa_max ({self.kappa_max})"
-            )
-        for name in ("spring_ultimate_rotation", "damper_ultimate_rotation"):
-            v = getattr(self, name)
-            if v is not None and not (isinstance(v, (int, float)) and 0 < v <= math.pi / 2):
-                raise ValueError(f"Anchorage.{name} must lie in (0, pi/2] rad or be None (= alpha), got {v!r}")
+        self.check(**self.__dict__)
+
+    @staticmethod
+    def check(names=None, *, kappa_max=1.0, kappa_min=0.0, damping_ratio=0.05, spring_ultimate_rotation=None,
+              damper_ultimate_rotation=None) -> None:
+        """Refuse a bad field with a ``ValueError`` naming it ``names[field]`` (the caller's option or config
+        key), else ``Anchorage.<field>``."""
+        name = field_names("Anchorage", names)
+        values = {"kappa_max": kappa_max, "kappa_min": kappa_min, "damping_ratio": damping_ratio}
+        for key, value in values.items():
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
+                raise ValueError(f"{name(key)} must be a finite number >= 0, got {value!r}")
+        if kappa_min > kappa_max:
+            raise ValueError(f"{name('kappa_min')} ({kappa_min}) must not exceed {name('kappa_max')} ({kappa_max})")
+        for key, value in (("spring_ultimate_rotation", spring_ultimate_rotation),
+                           ("damper_ultimate_rotation", damper_ultimate_rotation)):
+            if value is not None and not (isinstance(value, (int, float)) and 0 < value <= math.pi / 2):
+                raise ValueError(f"{name(key)} must lie in (0, pi/2] rad or be None (= alpha), got {value!r}")
 
     def theta_spring(self, block: Block) -> float:
         """Spring ultimate rotation theta_K,u. [rad]"""

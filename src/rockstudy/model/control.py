@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from rockstudy.core.validation import check_positive
+from rockstudy.core.validation import check_positive, field_names
 
 STRATEGIES = ("FS", "PASSIVE", "CS01", "CS02")
 STRATEGY_CODE = {name: i for i, name in enumerate(STRATEGIES)}
@@ -60,20 +60,27 @@ class Control:
     sensor_band: float | None = None
 
     def __post_init__(self):
-        if self.strategy not in STRATEGIES:
-            raise ValueError(f"Control.strategy must be one of {', '.join(STRATEGIES)}, got {self.strategy!r}")
-        for name in ("sampling_time", "delay"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 0):
-                raise ValueError(f"Control.{name} must be a finite number >= 0 [s], got {v!r}")
-        if self.sampling_time == 0 and self.delay > 0:
+        band = self.check(**self.__dict__)
+        object.__setattr__(self, "sensor_band", band)
+
+    @staticmethod
+    def check(names=None, *, strategy="CS01", sampling_time=0.0, delay=0.0, sensor_band=None) -> float | None:
+        """Refuse a bad field with a ``ValueError`` naming it ``names[field]`` (the caller's option or config
+        key), else ``Control.<field>``; returns the sensor band as a float (or None)."""
+        name = field_names("Control", names)
+        if strategy not in STRATEGIES:
+            raise ValueError(f"{name('strategy')} must be one of {', '.join(STRATEGIES)}, got {strategy!r}")
+        for key, value in (("sampling_time", sampling_time), ("delay", delay)):
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
+                raise ValueError(f"{name(key)} must be a finite number >= 0 [s], got {value!r}")
+        if sampling_time == 0 and delay > 0:
             raise ValueError(
-                "Control.delay > 0 needs a sampling_time > 0: a delay acts on sampled decisions "
-                f"(got sampling_time=0, delay={self.delay})"
+                f"{name('delay')} > 0 needs a {name('sampling_time')} > 0: a delay acts on sampled decisions "
+                f"(got {name('sampling_time')}=0, {name('delay')}={delay})"
             )
-        if self.sensor_band is not None:  # the Nyquist limit depends on the record: rockstudy.model.sensor.check_band
-            band = check_positive("Control.sensor_band", self.sensor_band, "Hz", why="or None, the ideal sensor")
-            object.__setattr__(self, "sensor_band", band)
+        if sensor_band is None:  # the Nyquist limit depends on the record: rockstudy.model.sensor.check_band
+            return None
+        return check_positive(name("sensor_band"), sensor_band, "Hz", why="or None, the ideal sensor")
 
     @property
     def code(self) -> int:

@@ -47,8 +47,6 @@ NOISE_LEVELS = {"R000": 0.0, "R001": 0.01, "R005": 0.05, "R010": 0.10}
 
 RESCALES = ("energy", "pga", "both", "none")
 """How the sum baseline + noise is rescaled (:attr:`NoiseReading.rescale`)."""
-MATCHES = RESCALES
-"""Former name of :data:`RESCALES` (kept for callers of the ``match`` argument)."""
 LEVEL_MEANINGS = ("energy", "rms")
 """What the noise level r measures (:attr:`NoiseReading.level_means`)."""
 
@@ -72,10 +70,14 @@ def _check_nonnegative_int(name: str, value) -> int:
     return int(value)
 
 
-def _check_match(match, name: str = "match") -> str:
-    if match not in RESCALES:
-        raise ValueError(f"{name} must be one of {', '.join(repr(m) for m in RESCALES)}, got {match!r}")
-    return match
+DEFAULT_SEED = 20190101
+"""Root seed of the study's noise realisations (``seed`` of config.yaml, ``--seed`` of the CLI)."""
+
+
+def _check_rescale(rescale, name: str = "rescale") -> str:
+    if rescale not in RESCALES:
+        raise ValueError(f"{name} must be one of {', '.join(repr(m) for m in RESCALES)}, got {rescale!r}")
+    return rescale
 
 
 @dataclass(frozen=True)
@@ -113,18 +115,25 @@ class NoiseReading:
     span: float = 0.0
 
     def __post_init__(self):
-        object.__setattr__(self, "step", v.check_positive("NoiseReading.step", self.step, "s"))
-        _check_match(self.rescale, "NoiseReading.rescale")
-        if self.level_means not in LEVEL_MEANINGS:
-            raise ValueError(f"NoiseReading.level_means must be one of {', '.join(map(repr, LEVEL_MEANINGS))}, "
-                             f"got {self.level_means!r}")
-        if self.band is not None:
-            band = v.check_positive("NoiseReading.band", self.band, "Hz")
-            if band >= self.nyquist:
-                raise ValueError(f"NoiseReading.band must be below the Nyquist frequency 1/(2 step) = "
-                                 f"{self.nyquist:g} Hz, got {self.band!r} (use None for white noise)")
-            object.__setattr__(self, "band", band)
-        object.__setattr__(self, "span", v.check_nonnegative("NoiseReading.span", self.span, "s"))
+        for key, value in self.check(**self.__dict__).items():
+            object.__setattr__(self, key, value)
+
+    @staticmethod
+    def check(names=None, *, step=NOISE_DT, rescale="energy", level_means="energy", band=None, span=0.0) -> dict:
+        """Refuse a bad field with a ``ValueError`` naming it ``names[field]`` (the caller's option or config
+        key), else ``NoiseReading.<field>``; returns the numbers as floats."""
+        name = v.field_names("NoiseReading", names)
+        step = v.check_positive(name("step"), step, "s")
+        _check_rescale(rescale, name("rescale"))
+        if level_means not in LEVEL_MEANINGS:
+            raise ValueError(f"{name('level_means')} must be one of {', '.join(map(repr, LEVEL_MEANINGS))}, "
+                             f"got {level_means!r}")
+        if band is not None:
+            band = v.check_positive(name("band"), band, "Hz")
+            if band >= 0.5 / step:
+                raise ValueError(f"{name('band')} must be below the Nyquist frequency 1/(2 {name('step')}) = "
+                                 f"{0.5 / step:g} Hz, got {band!r} (use None for white noise)")
+        return {"step": step, "band": band, "span": v.check_nonnegative(name("span"), span, "s")}
 
     @property
     def nyquist(self) -> float:
@@ -138,8 +147,7 @@ class NoiseReading:
 
     def to_attrs(self) -> dict:
         """Flat attributes recording the reading (``noise_band_hz`` is "none" for white noise)."""
-        return {"noise_match": self.rescale, "noise_dt_s": self.step, "noise_step_s": self.step,
-                "noise_rescale": self.rescale, "noise_level_means": self.level_means,
+        return {"noise_step_s": self.step, "noise_rescale": self.rescale, "noise_level_means": self.level_means,
                 "noise_band_hz": "none" if self.band is None else self.band, "noise_span_s": self.span}
 
     def label(self) -> str:
@@ -153,34 +161,30 @@ class NoiseReading:
 
 
 DEFAULT_READING = NoiseReading()
-"""Today's reading: 2.5 ms, energy rescaling, r = energy fraction, white, intense part only."""
+"""The study's reading: 2.5 ms, energy rescaling (§5 keeps the excitation's energy), r = energy
+fraction, white, intense part only."""
 
 
-def reading_from_dict(spec: dict | None) -> NoiseReading:
-    """A :class:`NoiseReading` from a plain dict (the ``noise:`` section of the config); None: the default."""
+def reading_from_dict(spec: dict | None, key: str = "noise") -> NoiseReading:
+    """A :class:`NoiseReading` from a plain dict (the ``noise:`` section of the config); None: the default.
+
+    Errors name each field ``<key>.<field>`` (``key``: where the dict sits in the caller's config)."""
     if spec is None:
         return DEFAULT_READING
-    unknown = set(spec) - {"step", "rescale", "level_means", "band", "span"}
+    fields = ("step", "rescale", "level_means", "band", "span")
+    unknown = set(spec) - set(fields)
     if unknown:
-        raise ValueError(f"noise: unknown key(s) {sorted(unknown)}; allowed: step, rescale, level_means, band, span")
+        raise ValueError(f"{key}: unknown key(s) {sorted(unknown)}; allowed: {', '.join(fields)}")
+    NoiseReading.check({field: f"{key}.{field}" for field in fields}, **spec)
     return NoiseReading(**spec)
 
 
-def _as_reading(reading, match=None, dt=None) -> NoiseReading:
-    """The reading from a NoiseReading, a rescale name (the former ``match``), or None, with overrides."""
+def _as_reading(reading) -> NoiseReading:
+    """The reading given, or :data:`DEFAULT_READING` for None."""
     if reading is None:
-        reading = DEFAULT_READING
-    elif isinstance(reading, str):
-        reading = NoiseReading(rescale=_check_match(reading))
-    elif not isinstance(reading, NoiseReading):
-        raise ValueError(f"reading must be a NoiseReading, a rescale name or None, got {reading!r}")
-    changes = {}
-    if match is not None:
-        changes["rescale"] = _check_match(match)
-    if dt is not None:
-        changes["step"] = dt
-    if changes:
-        reading = NoiseReading(**{**reading.__dict__, **changes})
+        return DEFAULT_READING
+    if not isinstance(reading, NoiseReading):
+        raise ValueError(f"reading must be a NoiseReading or None, got {reading!r}")
     return reading
 
 
@@ -337,8 +341,7 @@ def rescale_both(summed, dt: float, target_energy: float, peak: float) -> np.nda
 
 
 def contaminate(baseline, dt: float, level: float, rng: np.random.Generator,
-                match="energy", *, reading: NoiseReading | None = None,
-                extra_samples: int = 0) -> tuple[np.ndarray, float, float]:
+                reading: NoiseReading | None = None, *, extra_samples: int = 0) -> tuple[np.ndarray, float, float]:
     """Add noise to a sampled baseline and rescale the sum (§5).
 
     The noise n has energy Σ n_i²·dt = f × Σ b_i²·dt on the baseline's samples, with
@@ -356,10 +359,8 @@ def contaminate(baseline, dt: float, level: float, rng: np.random.Generator,
         Noise level r in [0, 1). [-]
     rng : numpy.random.Generator
         Source of the noise (not used when ``level == 0``).
-    match : {"energy", "pga", "both", "none"}, default "energy"
-        The rescaling, when ``reading`` is not given.
     reading : NoiseReading, optional
-        The full reading; its ``step`` is not used here (``dt`` is). Overrides ``match``.
+        The reading (None: :data:`DEFAULT_READING`); its ``step`` is not used here (``dt`` is).
     extra_samples : int, default 0
         Noise samples after the baseline (the ``span`` of the reading, in samples).
 
@@ -377,7 +378,7 @@ def contaminate(baseline, dt: float, level: float, rng: np.random.Generator,
         raise ValueError("baseline must be a 1-D array of at least 2 finite samples")
     dt = v.check_positive("dt", dt, "s")
     level = _check_level(level)
-    reading = NoiseReading(rescale=_check_match(match)) if reading is None else reading
+    reading = _as_reading(reading)
     extra_samples = _check_nonnegative_int("extra_samples", extra_samples)
     base_energy = energy(b, dt)
     if base_energy == 0.0:
@@ -418,8 +419,6 @@ class NoisyRecord:
         Realisation index k.
     seed : int
         Study seed.
-    match : {"energy", "pga", "both", "none"}
-        The rescaling of the sum (``reading.rescale``).
     energy_ratio : float
         Achieved energy over baseline energy. [-]
     pga_ratio : float
@@ -433,7 +432,6 @@ class NoisyRecord:
     level: float
     realisation: int
     seed: int
-    match: str
     energy_ratio: float
     pga_ratio: float
     reading: NoiseReading = DEFAULT_READING
@@ -456,12 +454,12 @@ class NoisyRecord:
     def to_attrs(self) -> dict:
         """Flat attributes for a self-describing dataset."""
         return {**self.reading.to_attrs(), "noise_level": self.level, "noise_realisation": self.realisation,
-                "noise_seed": self.seed, "noise_match": self.match, "noise_dt_s": self.dt,
+                "noise_seed": self.seed,
                 "noise_energy_ratio": self.energy_ratio, "noise_pga_ratio": self.pga_ratio}
 
 
 def noisy_record(kind: str, omega: float, level: float, realisation: int, seed: int,
-                 reading=None, *, match: str | None = None, dt: float | None = None) -> NoisyRecord:
+                 reading: NoiseReading | None = None) -> NoisyRecord:
     """Realisation ``realisation`` of the unit-amplitude ``kind`` excitation at noise ``level``.
 
     Parameters
@@ -476,13 +474,8 @@ def noisy_record(kind: str, omega: float, level: float, realisation: int, seed: 
         Realisation index k, >= 0.
     seed : int
         Study seed, >= 0.
-    reading : NoiseReading or str or None, default None
-        The reading (None: :data:`DEFAULT_READING`; a string: a rescale name, as the former
-        ``match`` argument).
-    match : {"energy", "pga", "both", "none"}, optional
-        Overrides ``reading.rescale``.
-    dt : float, optional
-        Overrides ``reading.step``. [s]
+    reading : NoiseReading or None, default None
+        The reading (None: :data:`DEFAULT_READING`).
 
     Returns
     -------
@@ -491,16 +484,15 @@ def noisy_record(kind: str, omega: float, level: float, realisation: int, seed: 
         i·step, i = 0 … ceil(T_d/step) + round(span/step).
     """
     rng = noise_generator(seed, level, realisation)
-    reading = _as_reading(reading, match, dt)
+    reading = _as_reading(reading)
     baseline, step = baseline_samples(kind, omega, reading.step)
     extra = int(round(reading.span / step)) if level > 0 else 0
     values, energy_ratio, pga_ratio = contaminate(baseline, step, level, rng, reading=reading, extra_samples=extra)
-    return NoisyRecord(values, step, float(level), int(realisation), int(seed), reading.rescale, energy_ratio,
-                       pga_ratio, reading)
+    return NoisyRecord(values, step, float(level), int(realisation), int(seed), energy_ratio, pga_ratio, reading)
 
 
 def noisy_motion(kind: str, omega: float, amplitude: float, level: float, realisation: int, seed: int,
-                 reading=None, *, match: str | None = None, dt: float | None = None) -> GroundMotion:
+                 reading: NoiseReading | None = None) -> GroundMotion:
     """A noise-contaminated ground motion ready for the integrators.
 
     Parameters
@@ -517,7 +509,7 @@ def noisy_motion(kind: str, omega: float, amplitude: float, level: float, realis
         Realisation index k, >= 0.
     seed : int
         Study seed, >= 0.
-    reading, match, dt
+    reading : NoiseReading or None, default None
         As for :func:`noisy_record`.
 
     Returns
@@ -529,11 +521,10 @@ def noisy_motion(kind: str, omega: float, amplitude: float, level: float, realis
     """
     if level == 0:
         noise_generator(seed, level, realisation)  # same argument checks as for level > 0
-        _as_reading(reading, match, dt)
+        _as_reading(reading)
         return GroundMotion(kind=kind, amplitude=amplitude, omega=omega,
                             duration=excitation_duration(kind, omega))
-    return record_motion(noisy_record(kind, omega, level, realisation, seed, reading, match=match, dt=dt),
-                         amplitude, omega)
+    return record_motion(noisy_record(kind, omega, level, realisation, seed, reading), amplitude, omega)
 
 
 def record_motion(rec: NoisyRecord, amplitude: float, omega: float) -> GroundMotion:

@@ -12,7 +12,6 @@ from rockstudy._version import __version__
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.analysis.spectra import convergence
 from rockstudy.core.constants import PAPER
-from rockstudy.engine.simulate import simulate
 from rockstudy.model.excitation import excitation_duration
 from rockstudy.model.noise import NOISE_DT, baseline_samples, level_key, noisy_record
 
@@ -161,10 +160,8 @@ def history_dataset(result, scenario: Scenario, motion, frequency_ratio: float, 
 def time_history(scenario: Scenario, frequency_ratio: float, amplitude_ratio: float,
                  realisation: int = 0) -> xr.Dataset:
     """Simulate one (frequency, amplitude, realisation) case and return its labelled history."""
-    motion, _ = scenario.motion(frequency_ratio, amplitude_ratio, realisation)
-    result = simulate(scenario.block, scenario.anchorage, scenario.control, motion, record_history=True,
-                      overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
-    return history_dataset(result, scenario, motion, frequency_ratio, amplitude_ratio, realisation)
+    run = scenario.simulate(frequency_ratio, amplitude_ratio, realisation, record_history=True)
+    return history_dataset(run.result, scenario, run.motion, frequency_ratio, amplitude_ratio, realisation)
 
 
 def check_noise(noise: xr.Dataset, scenario: Scenario) -> None:

@@ -181,6 +181,6 @@ def check_config(section: dict) -> None:
     """
     for name, spec in section["readings"].items():
         try:
-            reading_from_dict(spec)
+            reading_from_dict(spec, key=f"reproduction.readings.{name}")
         except ValueError as exc:
-            raise v.InputError(f"reproduction.readings.{name}: {exc}") from None
+            raise v.InputError(str(exc)) from None

@@ -6,6 +6,9 @@ units of g.
 """
 from __future__ import annotations
 
+from dataclasses import fields
+from types import SimpleNamespace
+
 import numpy as np
 import xarray as xr
 
@@ -16,6 +19,9 @@ from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS, Block
 from rockstudy.model.control import Control
 from rockstudy.model.noise import reading_from_dict
+
+BLOCK_FIELDS = tuple(f.name for f in fields(Block))
+"""The keys of a block given by its dimensions."""
 
 __all__ = ["block_from_dict", "scenario_from_dict", "amplitude_grid", "frequency_ratios",
            "realisation_chunks", "noise_free_level", "a_max0_ratio", "grid_size_points",
@@ -32,10 +38,23 @@ def block_from_dict(spec: dict) -> Block:
         if spec:
             raise ValueError(f"block: give either a preset or dimensions, not both (got {sorted(spec)})")
         return BLOCK_PRESETS[preset]
-    try:
-        return Block(**spec)
-    except (TypeError, ValueError) as exc:
-        raise v.InputError(str(exc).replace("Block.", "block.").replace("Block:", "block:")) from None
+    unknown = set(spec) - set(BLOCK_FIELDS)
+    if unknown:
+        raise v.InputError(f"block: unknown key(s) {sorted(unknown)}; allowed: preset or {', '.join(BLOCK_FIELDS)}")
+    missing = {"width", "height", "depth"} - set(spec)
+    if missing:
+        raise v.InputError(f"block: missing key(s) {sorted(missing)}; give a preset or width, height and depth")
+    for field in ("width", "height", "depth", "density", "gravity"):
+        if field in spec:
+            v.check_positive(f"block.{field}", spec[field])
+    restitution = spec.get("restitution")
+    if restitution is not None:
+        v.check_range("block.restitution", restitution, 0.0, 1.0, why="or null for Eq. 14")
+    shape = Block(**{**spec, "restitution": 0.0})  # the proportions, before Eq. 14 is applied
+    if restitution is None:  # a squat block would get e < 0 from Eq. (14)
+        v.check_block(SimpleNamespace(width=shape.width, height=shape.height, alpha=shape.alpha, restitution=None,
+                                      housner_restitution=shape.housner_restitution), "block")
+    return Block(**spec)
 
 
 def scenario_from_dict(spec: dict) -> Scenario:
@@ -45,13 +64,14 @@ def scenario_from_dict(spec: dict) -> Scenario:
     :class:`rockstudy.model.noise.NoiseReading`); absent: today's default reading."""
     spec = dict(spec)
     block = block_from_dict(spec.pop("block"))
+    anchorage, control = spec.pop("anchorage", {}), spec.pop("control", {})
     try:
-        anchorage = Anchorage(**spec.pop("anchorage", {}))
+        Anchorage.check({field: f"anchorage.{field}" for field in anchorage}, **anchorage)
+        Control.check({field: f"control.{field}" for field in control}, **control)
     except ValueError as exc:
-        raise v.InputError(str(exc).replace("Anchorage.", "anchorage.")) from None
-    control = Control(**spec.pop("control", {}))
-    noise = reading_from_dict(spec.pop("noise", None))
-    return Scenario(block, anchorage, control, noise=noise, **spec)
+        raise v.InputError(str(exc)) from None
+    noise = reading_from_dict(spec.pop("noise", None), key="noise")
+    return Scenario(block, Anchorage(**anchorage), Control(**control), noise=noise, **spec)
 
 
 def amplitude_grid(spec: dict) -> AmplitudeGrid:

@@ -175,9 +175,9 @@ def check_study(config: dict) -> None:
                f"{v.MAX_JOBS_PER_SPECTRUM} (Snakemake's DAG would grow too large); use larger jobs")
     v.check_workload("amplitude_grid.step", ag["step"], n_freq, grid_size_points(ag), 0)
     try:
-        reading = reading_from_dict(config["noise"])
+        reading = reading_from_dict(config["noise"], key="noise")
     except ValueError as exc:
-        raise v.InputError(f"noise: {exc}") from None
+        raise v.InputError(str(exc)) from None
     band = config["control"]["sensor_band"]
     if band is not None:  # the sensor reads the noisy records at noise.step, the analytic excitation at SENSOR_STEP
         try:
