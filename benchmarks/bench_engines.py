@@ -1,16 +1,16 @@
-"""Speed of the engines and of spectra (issues 2, 3 and 11). Prints figures; asserts nothing.
+"""Speed of the engines and of spectra. Prints figures; asserts nothing.
 
     python benchmarks/bench_engines.py [--quick] [--skip-reference]
 
 Single-core figures: numba is limited to one thread. Medians of repeats (CPU time) are reported;
-the machine is shared, so compare ratios measured in the same run. Each shortcut of issue 11 is
+the machine is shared, so compare ratios measured in the same run. Each shortcut of the fast engine is
 measured switched off ("old") and on ("new") side by side:
 
 * ``energy bound``: outcome runs (threshold scans, maps) end once the block provably cannot
   overturn any more (docs/model.md). Histories and ``simulate()`` never use it.
   Under sampled control (T_s > 0) the bound is the weaker half-cycle bound (docs/model.md, "Early
   stop under sampled control"); "old" there means no early stop at all, as before it existed.
-  (An opt-in ``step_across_knots`` was measured here in issue 11 at 6-12x slower and removed.)
+  (An opt-in ``step_across_knots`` was measured here at 6-12x slower and removed.)
 
 The selective inlining of the hot calls (docs/model.md, "What a step costs") is compiled in and
 has no switch: measure it as code before/after, e.g. this script run from a ``git worktree`` of

@@ -40,7 +40,7 @@ def test_valid_tiny_config_dry_runs(tmp_path):
     (lambda c: c["amplitude_grid"].update(step="0.1"), "step"),
     (lambda c: c["sampling_sweep"].update(frequency=1.0), "frequency"),
     (lambda c: c["delay_sweep"].update(noise_level="R999"), "delay_sweep.noise_level"),
-    # issue 12: refused by the config check before any job, not in the first job
+    # refused by the config check before any job, not in the first job
     (lambda c: c.update(free_time=float("nan")), "free_time"),
     (lambda c: c.update(seed=2**70), "seed"),
     (lambda c: c.update(block={"width": 1.6, "height": 0.4, "depth": 1.0}), "block.restitution"),

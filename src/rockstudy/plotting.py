@@ -264,7 +264,7 @@ def save_figure(fig, *paths) -> list[Path]:
     return written
 
 
-# --- reproduction (issue 9) ----------------------------------------------------------------------
+# --- reproducing the paper's numbers ----------------------------------------------------------------------
 def plot_readings(ax, table, closest: str | None = None):
     """FS J_OS against the noise level, one line per noise reading, the paper's values as markers.
 

@@ -1,4 +1,4 @@
-"""The validation layer (issue 12): limits, paths, physical meaning, atomic writes, and property-based
+"""The validation layer: limits, paths, physical meaning, atomic writes, and property-based
 tests over CLI arguments and config values (hypothesis).
 
 Set ``ROCKSTUDY_HYPOTHESIS_EXAMPLES`` to run a longer sweep than the CI default.
@@ -318,12 +318,12 @@ def test_threshold_reports_the_scan_start_and_unchecked_amplitudes(capsys):
 
 
 def test_simulate_event_cap_is_an_undetermined_result(monkeypatch, capsys):
-    # the module rockstudy.engine.simulate (rockstudy.simulate is the function)
-    simulate = importlib.import_module("rockstudy.engine.simulate")
+    # the CLI runs a scenario through rockstudy.analysis.scenario, which calls the engine's simulate
+    scenario = importlib.import_module("rockstudy.analysis.scenario")
 
     def capped(*args, **kwargs):
         raise RuntimeError("the fast engine hit its cap of 2000000 events at t = 1 s")
-    monkeypatch.setattr(simulate, "simulate", capped)
+    monkeypatch.setattr(scenario, "simulate", capped)
     assert cli.main(["simulate"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["status"] == "undetermined" and "cap" in out["message"]

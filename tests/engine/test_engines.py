@@ -1,4 +1,4 @@
-"""The fast engine against the scipy reference engine (issue: agree within 0.5 %)."""
+"""The fast engine against the scipy reference engine (they agree within 0.5 %)."""
 import pytest
 
 from rockstudy import Anchorage, Control

@@ -200,7 +200,7 @@ def test_other_errors():
         noisy_motion("one-sine", OMEGA, 1.0, 0.0, 0, -1)
 
 
-# --- the readings of the noise model (issue 9) ---------------------------------------------------
+# --- the readings of the noise model ---------------------------------------------------
 from rockstudy.core.validation import InputError  # noqa: E402
 from rockstudy.model.noise import DEFAULT_READING, NoiseReading, reading_from_dict, rescale_both  # noqa: E402
 

@@ -196,7 +196,7 @@ def test_check_study_names_bad_readings_and_designs():
         study.check_study(bad)
     bad = copy.deepcopy(config)
     bad["noise"]["band"] = 300.0
-    with pytest.raises(ValueError, match="noise: NoiseReading.band"):
+    with pytest.raises(ValueError, match=r"noise.band must be below the Nyquist frequency 1/\(2 noise.step\)"):
         study.check_study(bad)
 
 

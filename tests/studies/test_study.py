@@ -116,7 +116,7 @@ def test_table1_hand_worked():
     assert float(j.sel(reference="fs_same_noise", strategy="CS01", noise_level="R005")) == pytest.approx(100.0)
     md = tables.table_markdown(table)
     assert "| FS | -16.67% | +0.00% |" in md and "+100.00%" in md
-    # provenance and the meaning of NaN travel with the table (issue 12)
+    # provenance and the meaning of NaN travel with the table
     for key in ("noise_seed", "block_width", "block_alpha", "anchorage_kappa_max", "n_realisations"):
         assert key in table.attrs, key
     assert "N* = 0" in table["j_os"].attrs["missing_value_meaning"]

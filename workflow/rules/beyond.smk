@@ -47,7 +47,7 @@ if BEYOND:
         benchmark:
             f"{OUT}/benchmarks/probability/{{strategy}}_{{level}}.tsv"
         params:
-            scenario=lambda w: scenario(w.strategy, w.level),
+            scenario=get_scenario,
             realisations=config["realisations"],
             frequency_grid=PROB["frequency_grid"],
             amplitude_grid=PROB["amplitude_grid"],

@@ -52,6 +52,50 @@ def chunks(level):
     return parameters.realisation_chunks(config["realisations"], config["realisations_per_job"], LEVELS[level] > 0)
 
 
+# Input and parameter functions of the rules (Snakemake calls them with the job's wildcards).
+def get_scenario(wildcards):
+    """The scenario of a job: its strategy, and its noise level (default: noise-free), sampling time and delay."""
+    return scenario(wildcards.strategy, getattr(wildcards, "level", FREE), getattr(wildcards, "ts", 0.0),
+                    getattr(wildcards, "delay", 0.0))
+
+
+def get_noise_scenario(wildcards):
+    """The scenario whose noise records a level's noise file holds (the records do not depend on the strategy)."""
+    return scenario("FS", wildcards.level)
+
+
+def get_realisations(wildcards):
+    """Every realisation of the job's noise level (one, 0, without noise)."""
+    return [k for chunk in chunks(wildcards.level) for k in chunk]
+
+
+def get_chunk_realisations(wildcards):
+    """The realisations of the job's chunk."""
+    return chunks(wildcards.level)[int(wildcards.chunk)]
+
+
+def get_noise_level(wildcards):
+    """The job's noise level: noise energy / baseline energy. [-]"""
+    return LEVELS[wildcards.level]
+
+
+def get_realisation(wildcards):
+    return int(wildcards.k)
+
+
+def get_frequency_ratio(wildcards):
+    return float(wildcards.frequency)
+
+
+def get_amplitude_ratio(wildcards):
+    return float(wildcards.amplitude)
+
+
+def get_control_history_file(wildcards):
+    """The noise-free history of Figs. 2-3 for the job's strategy."""
+    return history_file(wildcards.strategy, FREE, 0, HIST["frequency_ratio"], HIST["amplitude_ratio"])
+
+
 def chunk_files(wildcards, ts="0", delay="0"):
     path = f"{OUT}/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.nc"
     ts, delay = getattr(wildcards, "ts", ts), getattr(wildcards, "delay", delay)
@@ -81,7 +125,7 @@ FIGURES = [FIG.format(name=n, ext=e) for n in FIGURE_NAMES for e in ("png", "pdf
 TABLES = [f"{OUT}/tables/{t}.{e}" for t in ("table1", "timing_sampling", "timing_delay") for e in ("nc", "csv", "md")]
 
 
-# Reproducing the paper's numbers (issue 9): readings study, claims checklist, device calibration.
+# Reproducing the paper's numbers: readings study, claims checklist, device calibration.
 REPRO = config["reproduction"]
 READINGS = REPRO["readings"]
 STUDY_READING = parameters.reading_from_dict(config["noise"])
@@ -106,7 +150,7 @@ def fs_spectra_of_the_study():
 READING_SPECTRA = [reading_spectrum_file(name, level) for name in READINGS for level in NOISY]
 
 
-def reading_scenario(wildcards):
+def get_reading_scenario(wildcards):
     spec = scenario(wildcards.strategy, wildcards.level)
     spec["noise"] = dict(READINGS[wildcards.reading])  # missing keys: the library defaults
     return spec
@@ -129,3 +173,8 @@ def calibration_base():
     spec = scenario("FS", FREE)
     base = {k: v for k, v in spec.items() if k not in ("anchorage", "control", "noise_level")}
     return {**base, "control_options": dict(config["control"])}  # the sensor, for every strategy
+
+
+def get_device_anchorage(wildcards):
+    """The anchorage of the job's calibration device."""
+    return CAL_DEVICES[int(wildcards.device)]

@@ -3,7 +3,7 @@
 
 rule figure_history:
     input:
-        lambda w: history_file(w.strategy, FREE, 0, HIST["frequency_ratio"], HIST["amplitude_ratio"]),
+        get_control_history_file,
     output:
         png=report(f"{OUT}/figures/fig{{fignum}}_history_{{strategy}}.png", caption="../report/fig_history.rst",
                    category="Figures", subcategory="Control strategies (Figs. 2-3)"),
@@ -12,7 +12,6 @@ rule figure_history:
         f"{OUT}/logs/figures/fig{{fignum}}_history_{{strategy}}.log",
     params:
         plotting=PLOTTING,
-        paper_figure=lambda w: w.fignum,
     conda:
         "../envs/rockstudy.yaml"
     threads: 1

@@ -1,4 +1,4 @@
-# Reproducing the paper's numbers (issue 9): the readings study of the loose noise model, the device
+# Reproducing the paper's numbers: the readings study of the loose noise model, the device
 # calibration, and the claims checklist of §5 and the Conclusions.
 
 
@@ -10,8 +10,7 @@ rule reading_spectrum:
     benchmark:
         f"{OUT}/benchmarks/reproduction/readings/{{strategy}}_{{reading}}_{{level}}.tsv"
     params:
-        scenario=reading_scenario,
-        reading_name=lambda w: w.reading,
+        scenario=get_reading_scenario,
         realisations=REPRO["realisations"],
         frequency_grid=config["frequency_grid"],
         amplitude_grid=config["amplitude_grid"],
@@ -147,7 +146,7 @@ rule calibration_device:
         device="[0-9]+",
     params:
         scenario=calibration_base(),
-        anchorage=lambda w: CAL_DEVICES[int(w.device)],
+        anchorage=get_device_anchorage,
         levels=LEVELS,
         realisations=CAL["coarse_realisations"],
         frequency_grid=CAL["coarse_frequency_grid"],
@@ -200,10 +199,7 @@ rule calibration_refine_spectrum:
         rank="[0-9]+",
     params:
         scenario=calibration_base(),
-        rank=lambda w: int(w.rank),
-        strategy=lambda w: w.strategy,
-        level=lambda w: w.level,
-        noise_level=lambda w: LEVELS[w.level],
+        noise_level=get_noise_level,
         realisations=config["realisations"],
         frequency_grid=config["frequency_grid"],
         amplitude_grid=config["amplitude_grid"],

@@ -12,9 +12,9 @@ rule noise:
         "small"
     params:
         bookkeeping=BOOKKEEPING,
-        scenario=lambda w: scenario("FS", w.level),
+        scenario=get_noise_scenario,
         frequency_grid=config["frequency_grid"],
-        realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
+        realisations=get_realisations,
         reference_frequency_ratio=config["noise_reference_frequency_ratio"],
         n_records=config["noise_records_stored"],
         library=LIBRARY,
@@ -40,8 +40,8 @@ rule spectrum_chunk:
     group:
         "spectra"
     params:
-        scenario=lambda w: scenario(w.strategy, w.level, w.ts, w.delay),
-        realisations=lambda w: chunks(w.level)[int(w.chunk)],
+        scenario=get_scenario,
+        realisations=get_chunk_realisations,
         frequency_grid=config["frequency_grid"],
         amplitude_grid=config["amplitude_grid"],
         library=LIBRARY,
@@ -64,7 +64,7 @@ rule gather_spectrum:
         f"{OUT}/logs/spectra/{{strategy}}_{{level}}.log",
     params:
         bookkeeping=BOOKKEEPING,
-        realisations=lambda w: [k for chunk in chunks(w.level) for k in chunk],
+        realisations=get_realisations,
     conda:
         "../envs/rockstudy.yaml"
     threads: 1
@@ -111,7 +111,7 @@ rule overturning_map:
     benchmark:
         f"{OUT}/benchmarks/maps/{{strategy}}.tsv"
     params:
-        scenario=lambda w: scenario(w.strategy, FREE),
+        scenario=get_scenario,
         frequency_grid=config["frequency_grid"],
         amplitude_grid=config["amplitude_grid"],
         library=LIBRARY,
@@ -136,10 +136,10 @@ rule time_history:
         "small"
     params:
         bookkeeping=BOOKKEEPING,
-        scenario=lambda w: scenario(w.strategy, w.level),
-        realisation=lambda w: int(w.k),
-        frequency_ratio=lambda w: float(w.frequency),
-        amplitude_ratio=lambda w: float(w.amplitude),
+        scenario=get_scenario,
+        realisation=get_realisation,
+        frequency_ratio=get_frequency_ratio,
+        amplitude_ratio=get_amplitude_ratio,
         library=LIBRARY,
     conda:
         "../envs/rockstudy.yaml"

@@ -7,10 +7,11 @@ from rockstudy.studies import parameters, study
 
 study.log_to(snakemake.log[0])
 numba.set_num_threads(snakemake.threads)
-p = snakemake.params
-device, coarse_rms = calibration.best_devices(io.read_netcdf(snakemake.input.grid), p.rank + 1)[p.rank]
-ds, = calibration.device_spectra(p.scenario, device, [p.strategy], {p.level: p.noise_level},
+p, w = snakemake.params, snakemake.wildcards
+rank = int(w.rank)
+device, coarse_rms = calibration.best_devices(io.read_netcdf(snakemake.input.grid), rank + 1)[rank]
+ds, = calibration.device_spectra(p.scenario, device, [w.strategy], {w.level: p.noise_level},
                                  parameters.frequency_ratios(p.frequency_grid), p.realisations,
                                  parameters.amplitude_grid(p.amplitude_grid))
-ds.attrs.update(calibration_rank=p.rank, coarse_rms_residual=coarse_rms, rockstudy_source_sha256=p.library)
+ds.attrs.update(calibration_rank=rank, coarse_rms_residual=coarse_rms, rockstudy_source_sha256=p.library)
 io.write_netcdf(ds, snakemake.output[0])

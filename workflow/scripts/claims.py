@@ -1,4 +1,4 @@
-"""The claims checklist of §5 and the Conclusions, and Table 1 side by side with the paper (issue 9)."""
+"""The claims checklist of §5 and the Conclusions, and Table 1 side by side with the paper."""
 from rockstudy.core import io
 from rockstudy.studies import claims, study
 

@@ -4,5 +4,5 @@ from rockstudy.core import io
 from rockstudy.studies import study
 
 study.log_to(snakemake.log[0])
-fig = plotting.figure_control_history(io.read_netcdf(snakemake.input[0]), snakemake.params.paper_figure)
+fig = plotting.figure_control_history(io.read_netcdf(snakemake.input[0]), snakemake.wildcards.fignum)
 plotting.save_figure(fig, snakemake.output.png, snakemake.output.pdf)

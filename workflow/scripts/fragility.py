@@ -1,6 +1,5 @@
 """Fragility of each strategy over the record suite: stripes, lognormal MLE, median shift over FS."""
 from rockstudy.analysis.fragility import fragility_dataset, fragility_markdown
-from rockstudy.analysis.spectra import frequency_grid
 from rockstudy.core import io
 from rockstudy.model.control import Control
 from rockstudy.model.records import read_record
@@ -17,7 +16,7 @@ if p.synthetic is not None:
              **ranges_from_dict(p.synthetic).to_attrs()}
 controls = [Control(s, sensor_band=scenario.control.sensor_band) for s in p.strategies]
 ds = fragility_dataset(scenario.block, scenario.anchorage, controls, records,
-                       frequency_grid(**p.intensity_levels), measure=p.intensity_measure, n_boot=p.bootstrap,
+                       parameters.intensity_levels(p.intensity_levels), measure=p.intensity_measure, n_boot=p.bootstrap,
                        seed=p.seed, overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time,
                        record_attrs=suite)
 ds.attrs["rockstudy_source_sha256"] = p.library

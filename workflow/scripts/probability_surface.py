@@ -2,7 +2,6 @@
 import numba
 
 from rockstudy.analysis.probability import probability_surface
-from rockstudy.analysis.spectra import AmplitudeGrid, frequency_grid
 from rockstudy.core import io
 from rockstudy.studies import datasets, parameters, study
 
@@ -11,7 +10,8 @@ numba.set_num_threads(snakemake.threads)
 p = snakemake.params
 scenario = parameters.scenario_from_dict(p.scenario)
 datasets.check_noise(io.read_netcdf(snakemake.input.noise), scenario)
-ds = probability_surface(scenario, frequency_grid(**p.frequency_grid), realisations=range(p.realisations),
-                         grid=AmplitudeGrid(**p.amplitude_grid))
+ds = probability_surface(scenario, parameters.frequency_ratios(p.frequency_grid, "beyond.probability.frequency_grid"),
+                         realisations=range(p.realisations),
+                         grid=parameters.amplitude_grid(p.amplitude_grid, "beyond.probability.amplitude_grid"))
 ds.attrs["rockstudy_source_sha256"] = p.library
 io.write_netcdf(ds, snakemake.output[0])

@@ -11,5 +11,5 @@ p = snakemake.params
 scenario = parameters.scenario_from_dict(p.scenario)
 ds = spectrum(scenario, parameters.frequency_ratios(p.frequency_grid), realisations=range(p.realisations),
               grid=parameters.amplitude_grid(p.amplitude_grid))
-ds.attrs.update(rockstudy_source_sha256=p.library, noise_reading_name=p.reading_name)
+ds.attrs.update(rockstudy_source_sha256=p.library, noise_reading_name=snakemake.wildcards.reading)
 io.write_netcdf(ds, snakemake.output[0])

@@ -1,4 +1,4 @@
-"""The readings study: FS row of Table 1 under each reading of the noise model, against the paper (issue 9)."""
+"""The readings study: FS row of Table 1 under each reading of the noise model, against the paper."""
 from rockstudy.core import io
 from rockstudy.studies import noise_readings as readings
 from rockstudy.studies import parameters, study

@@ -1,5 +1,5 @@
-"""What the controller senses of the ground acceleration: the record itself, or its reading through an
-accelerometer and controller filter of a stated bandwidth (issue 9, docs/model.md "What the controller senses").
+"""What the controller senses of the ground acceleration: the record itself, or its measurement through an
+accelerometer and controller filter of a stated bandwidth (docs/model.md "What the controller senses").
 
 CS02 (Eq. 17) switches on the sign of Ẍg, so under noise what the controller reads of Ẍg can decide its
 performance. :class:`rockstudy.model.control.Control` carries ``sensor_band`` [Hz]:
@@ -15,7 +15,7 @@ Why this model: a force-balance or MEMS accelerometer is a damped oscillator who
 ground acceleration is a second-order low-pass; with damping 1/√2 it is exactly the Butterworth
 filter (maximally flat pass band), and a digital controller implements such a filter at its own
 sampling rate (the bilinear transform keeps it stable and makes its gain exactly −3 dB at f_c).
-The filter is causal: the reading at t_i depends only on samples up to t_i, as a real controller's.
+The filter is causal: the measurement at t_i depends only on samples up to t_i, as a real controller's.
 
 Gain: |H(f)| = 1 / √(1 + (tan(π f Δt) / tan(π f_c Δt))⁴) for 0 <= f < 1/(2Δt) (:func:`butterworth_gain`):
 1 at f = 0, 1/√2 (−3 dB) at f = f_c, → 0 at the Nyquist frequency. Its group delay at low
@@ -25,7 +25,7 @@ An analytic excitation (the one-sine pulse, Eq. 23, a rectangular pulse) is samp
 at a step of :data:`SENSOR_STEP` (the noisy records' step, 2.5 ms), i = 0 … ceil(T/Δt), like the
 baselines of the noisy records; the block still feels the exact analytic excitation.
 
-In both engines the sensed reading is zero outside the excitation [0, T] (T the end of the horizontal
+In both engines the sensed acceleration is zero outside the excitation [0, T] (T the end of the horizontal
 excitation): the controller knows when the excitation is over, so CS02 switches to CS01 at T as it
 does with the ideal sensor (the filter's decaying tail after T is not read).
 """

@@ -1,4 +1,4 @@
-"""The device calibration (issue 9): which anchorage brings the CS01 and CS02 rows of Table 1 to the paper's.
+"""The device calibration: which anchorage brings the CS01 and CS02 rows of Table 1 to the paper's.
 
 The paper publishes no device parameters. With the study's noise reading, a grid of devices
 (θ_u/α × κ_min/κ_max × κ_max × ξ, θ_u = θ_K,u = θ_D,u) is screened on a coarse frequency grid with

@@ -1,4 +1,4 @@
-"""The readings study (issue 9): which reading of the paper's loose noise model reproduces Table 1's FS row.
+"""The readings study: which reading of the paper's loose noise model reproduces Table 1's FS row.
 
 The FS row of Table 1 (J_OS of the free-standing block at R001, R005, R010 against the
 noise-free block, Eq. 21) depends only on the block, J_OS and the noise model, so it is the

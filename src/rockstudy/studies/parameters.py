@@ -23,7 +23,7 @@ from rockstudy.model.noise import reading_from_dict
 BLOCK_FIELDS = tuple(f.name for f in fields(Block))
 """The keys of a block given by its dimensions."""
 
-__all__ = ["block_from_dict", "scenario_from_dict", "amplitude_grid", "frequency_ratios",
+__all__ = ["block_from_dict", "scenario_from_dict", "amplitude_grid", "frequency_ratios", "intensity_levels",
            "realisation_chunks", "noise_free_level", "a_max0_ratio", "grid_size_points",
            "reading_from_dict"]
 
@@ -74,17 +74,25 @@ def scenario_from_dict(spec: dict) -> Scenario:
     return Scenario(block, Anchorage(**anchorage), Control(**control), noise=noise, **spec)
 
 
-def amplitude_grid(spec: dict) -> AmplitudeGrid:
+def amplitude_grid(spec: dict, key: str = "amplitude_grid") -> AmplitudeGrid:
     """:class:`AmplitudeGrid` from ``start``, ``stop``, ``step``, ``resolution`` (ratios a_p/(g·tanα)),
-    refused (naming ``amplitude_grid.<key>``) beyond the limits of :mod:`rockstudy.core.validation`."""
-    v.check_amplitude_grid(spec["start"], spec["stop"], spec["step"], spec["resolution"])
+    refused (naming ``<key>.<field>``) beyond the limits of :mod:`rockstudy.core.validation`."""
+    v.check_amplitude_grid(spec["start"], spec["stop"], spec["step"], spec["resolution"],
+                           names=tuple(f"{key}.{field}" for field in ("start", "stop", "step", "resolution")))
     return AmplitudeGrid(**spec)
 
 
-def frequency_ratios(spec: dict) -> np.ndarray:
-    """Frequency ratios ω_p/p from ``start``, ``stop``, ``step``, refused (naming ``frequency_grid.<key>``)
+def frequency_ratios(spec: dict, key: str = "frequency_grid") -> np.ndarray:
+    """Frequency ratios ω_p/p from ``start``, ``stop``, ``step``, refused (naming ``<key>.<field>``)
     above :data:`rockstudy.core.validation.MAX_GRID_POINTS` points before the grid is built. [-]"""
-    v.check_grid("frequency_grid", spec["start"], spec["stop"], spec["step"], high=v.MAX_FREQUENCY_RATIO)
+    v.check_grid(key, spec["start"], spec["stop"], spec["step"], high=v.MAX_FREQUENCY_RATIO)
+    return frequency_grid(**spec)
+
+
+def intensity_levels(spec: dict, key: str = "beyond.fragility.intensity_levels") -> np.ndarray:
+    """Intensity levels (the fragility's stripes) from ``start``, ``stop``, ``step``, refused (naming
+    ``<key>.<field>``) like :func:`frequency_ratios`. [-]"""
+    v.check_grid(key, spec["start"], spec["stop"], spec["step"], high=v.MAX_AMPLITUDE_RATIO)
     return frequency_grid(**spec)
 
 

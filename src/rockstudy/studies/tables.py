@@ -52,7 +52,7 @@ def _jos(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float) -> tuple[fl
 PROVENANCE_PREFIXES = ("block_", "anchorage_")
 
 
-PROVENANCE_KEYS = ("noise_seed", "noise_match", "noise_dt_s", "excitation", "overturn_criterion", "free_time_s",
+PROVENANCE_KEYS = ("noise_seed", "excitation", "overturn_criterion", "free_time_s",
                    "grid_amplitude_start", "grid_amplitude_stop", "grid_amplitude_step", "grid_amplitude_resolution",
                    "noise_step_s", "noise_rescale", "noise_level_means", "noise_band_hz", "noise_span_s")
 

@@ -176,7 +176,7 @@ class GroundZero(Event):
     Parameters
     ----------
     excitation : Excitation
-        Ẍg(t) and its sensed reading ``excitation.sensed``. [m/s^2]
+        Ẍg(t) and its sensed value ``excitation.sensed``. [m/s^2]
     ground_sign : {1, -1}
         Sign of Ẍg in the current half-wave; ``direction`` is −ground_sign.
     t0 : float
