@@ -85,9 +85,12 @@ def test_noise_options_reach_the_records(tmp_path, capsys, blc06):
                     grid=AmplitudeGrid(stop=3.0))
     assert out["amplitude_ratio"] == lib["amplitude_ratio"] and out["energy_ratio"] == lib["energy_ratio"]
     assert out["energy_ratio"] != pytest.approx(1.0, abs=1e-6)  # "none" keeps the sum unscaled
-    # --match is the former name of --noise-rescale; defaults are today's reading
-    out = run(["simulate", "--strategy", "FS", "--noise-level", "0.05", "--match", "pga"], capsys)
+    out = run(["simulate", "--strategy", "FS", "--noise-level", "0.05", "--noise-rescale", "pga"], capsys)
     assert out["noise_rescale"] == "pga" and out["noise_step_s"] == 0.0025 and out["pga_ratio"] == pytest.approx(1.0)
+    assert "noise_match" not in out and "noise_dt_s" not in out
+    with pytest.raises(SystemExit) as exc:  # the former spelling is gone
+        main(["simulate", "--noise-level", "0.05", "--match", "pga"])
+    assert exc.value.code == 2
 
 
 @pytest.mark.parametrize("args, name", [(["--noise-step", "0"], "--noise-step"),

@@ -61,7 +61,7 @@ def scenario_from_dict(spec: dict) -> Scenario:
     """A :class:`Scenario` from ``block``, ``anchorage``, ``control``, ``noise`` dicts and scalar settings.
 
     ``noise`` is the noise reading (``step``, ``rescale``, ``level_means``, ``band``, ``span``;
-    :class:`rockstudy.model.noise.NoiseReading`); absent: today's default reading."""
+    :class:`rockstudy.model.noise.NoiseReading`); absent: the library's default reading (:data:`rockstudy.model.noise.DEFAULT_READING`)."""
     spec = dict(spec)
     block = block_from_dict(spec.pop("block"))
     anchorage, control = spec.pop("anchorage", {}), spec.pop("control", {})
