@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rockstudy.core import validation as v
+from rockstudy.core import validation
 from rockstudy.core.constants import NOISE_DT
 from rockstudy.model.excitation import GroundMotion, analytic, excitation_duration
 
@@ -122,18 +122,18 @@ class NoiseReading:
     def check(names=None, *, step=NOISE_DT, rescale="energy", level_means="energy", band=None, span=0.0) -> dict:
         """Refuse a bad field with a ``ValueError`` naming it ``names[field]`` (the caller's option or config
         key), else ``NoiseReading.<field>``; returns the numbers as floats."""
-        name = v.field_names("NoiseReading", names)
-        step = v.check_positive(name("step"), step, "s")
+        name = validation.field_names("NoiseReading", names)
+        step = validation.check_positive(name("step"), step, "s")
         _check_rescale(rescale, name("rescale"))
         if level_means not in LEVEL_MEANINGS:
             raise ValueError(f"{name('level_means')} must be one of {', '.join(map(repr, LEVEL_MEANINGS))}, "
                              f"got {level_means!r}")
         if band is not None:
-            band = v.check_positive(name("band"), band, "Hz")
+            band = validation.check_positive(name("band"), band, "Hz")
             if band >= 0.5 / step:
                 raise ValueError(f"{name('band')} must be below the Nyquist frequency 1/(2 {name('step')}) = "
                                  f"{0.5 / step:g} Hz, got {band!r} (use None for white noise)")
-        return {"step": step, "band": band, "span": v.check_nonnegative(name("span"), span, "s")}
+        return {"step": step, "band": band, "span": validation.check_nonnegative(name("span"), span, "s")}
 
     @property
     def nyquist(self) -> float:
@@ -249,8 +249,8 @@ def baseline_samples(kind: str, omega: float, dt: float = NOISE_DT) -> tuple[np.
     dt : float
         The sampling step. [s]
     """
-    omega = v.check_positive("omega", omega, "rad/s")
-    dt = v.check_positive("dt", dt, "s")
+    omega = validation.check_positive("omega", omega, "rad/s")
+    dt = validation.check_positive("dt", dt, "s")
     duration = excitation_duration(kind, omega)
     n = sample_count(duration, dt)
     t = np.arange(n + 1) * dt
@@ -376,7 +376,7 @@ def contaminate(baseline, dt: float, level: float, rng: np.random.Generator,
     b = np.array(baseline, dtype=float)
     if b.ndim != 1 or b.size < 2 or not np.all(np.isfinite(b)):
         raise ValueError("baseline must be a 1-D array of at least 2 finite samples")
-    dt = v.check_positive("dt", dt, "s")
+    dt = validation.check_positive("dt", dt, "s")
     level = _check_level(level)
     reading = _as_reading(reading)
     extra_samples = _check_nonnegative_int("extra_samples", extra_samples)

@@ -4,7 +4,7 @@ across keys, before any job runs.
 """
 from __future__ import annotations
 
-from rockstudy.core import validation as v
+from rockstudy.core import validation
 
 
 def check_config(section: dict, config: dict) -> None:
@@ -18,7 +18,7 @@ def check_config(section: dict, config: dict) -> None:
     levels = config["noise_levels"]
     for level in section["probability"]["noise_levels"]:
         if level not in levels:
-            raise v.InputError(f"beyond.probability.noise_levels: {level!r} is not one of noise_levels "
-                               f"({', '.join(levels)})")
+            raise validation.InputError(f"beyond.probability.noise_levels: {level!r} is not one of noise_levels "
+                                        f"({', '.join(levels)})")
     if "FS" not in section["fragility"]["strategies"]:
-        raise v.InputError("beyond.fragility.strategies: FS is needed as the reference of the median shift")
+        raise validation.InputError("beyond.fragility.strategies: FS is needed as the reference of the median shift")

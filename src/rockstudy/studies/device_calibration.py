@@ -18,7 +18,7 @@ import xarray as xr
 from rockstudy._version import __version__
 from rockstudy.analysis.spectra import spectrum
 from rockstudy.analysis.utility_index import utility_index
-from rockstudy.core import validation as v
+from rockstudy.core import validation
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
 from rockstudy.studies.claims import PAPER, PAPER_LEVELS, PAPER_TABLE1
@@ -369,4 +369,4 @@ def check_config(section: dict, alpha: float) -> None:
                                    section["kappa_min_ratio"])
         design.devices(alpha)
     except ValueError as exc:
-        raise v.InputError(f"calibration: {exc}") from None
+        raise validation.InputError(f"calibration: {exc}") from None

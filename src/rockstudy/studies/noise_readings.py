@@ -15,7 +15,7 @@ import xarray as xr
 
 from rockstudy._version import __version__
 from rockstudy.analysis.utility_index import utility_index
-from rockstudy.core import validation as v
+from rockstudy.core import validation
 from rockstudy.model.noise import NoiseReading, reading_from_dict
 from rockstudy.studies.claims import PAPER, PAPER_LEVELS, PAPER_TABLE1
 
@@ -183,4 +183,4 @@ def check_config(section: dict) -> None:
         try:
             reading_from_dict(spec, key=f"reproduction.readings.{name}")
         except ValueError as exc:
-            raise v.InputError(str(exc)) from None
+            raise validation.InputError(str(exc)) from None

@@ -14,7 +14,7 @@ import xarray as xr
 
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.analysis.spectra import AmplitudeGrid, frequency_grid
-from rockstudy.core import validation as v
+from rockstudy.core import validation
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS, Block
 from rockstudy.model.control import Control
@@ -40,20 +40,23 @@ def block_from_dict(spec: dict) -> Block:
         return BLOCK_PRESETS[preset]
     unknown = set(spec) - set(BLOCK_FIELDS)
     if unknown:
-        raise v.InputError(f"block: unknown key(s) {sorted(unknown)}; allowed: preset or {', '.join(BLOCK_FIELDS)}")
+        raise validation.InputError(f"block: unknown key(s) {sorted(unknown)}; allowed: preset or "
+                                    f"{', '.join(BLOCK_FIELDS)}")
     missing = {"width", "height", "depth"} - set(spec)
     if missing:
-        raise v.InputError(f"block: missing key(s) {sorted(missing)}; give a preset or width, height and depth")
+        raise validation.InputError(f"block: missing key(s) {sorted(missing)}; give a preset or width, height "
+                                    "and depth")
     for field in ("width", "height", "depth", "density", "gravity"):
         if field in spec:
-            v.check_positive(f"block.{field}", spec[field])
+            validation.check_positive(f"block.{field}", spec[field])
     restitution = spec.get("restitution")
     if restitution is not None:
-        v.check_range("block.restitution", restitution, 0.0, 1.0, why="or null for Eq. 14")
+        validation.check_range("block.restitution", restitution, 0.0, 1.0, why="or null for Eq. 14")
     shape = Block(**{**spec, "restitution": 0.0})  # the proportions, before Eq. 14 is applied
     if restitution is None:  # a squat block would get e < 0 from Eq. (14)
-        v.check_block(SimpleNamespace(width=shape.width, height=shape.height, alpha=shape.alpha, restitution=None,
-                                      housner_restitution=shape.housner_restitution), "block")
+        validation.check_block(SimpleNamespace(width=shape.width, height=shape.height, alpha=shape.alpha,
+                                               restitution=None, housner_restitution=shape.housner_restitution),
+                               "block")
     return Block(**spec)
 
 
@@ -61,7 +64,8 @@ def scenario_from_dict(spec: dict) -> Scenario:
     """A :class:`Scenario` from ``block``, ``anchorage``, ``control``, ``noise`` dicts and scalar settings.
 
     ``noise`` is the noise reading (``step``, ``rescale``, ``level_means``, ``band``, ``span``;
-    :class:`rockstudy.model.noise.NoiseReading`); absent: the library's default reading (:data:`rockstudy.model.noise.DEFAULT_READING`)."""
+    :class:`rockstudy.model.noise.NoiseReading`); absent: the library's default reading
+    (:data:`rockstudy.model.noise.DEFAULT_READING`)."""
     spec = dict(spec)
     block = block_from_dict(spec.pop("block"))
     anchorage, control = spec.pop("anchorage", {}), spec.pop("control", {})
@@ -69,7 +73,7 @@ def scenario_from_dict(spec: dict) -> Scenario:
         Anchorage.check({field: f"anchorage.{field}" for field in anchorage}, **anchorage)
         Control.check({field: f"control.{field}" for field in control}, **control)
     except ValueError as exc:
-        raise v.InputError(str(exc)) from None
+        raise validation.InputError(str(exc)) from None
     noise = reading_from_dict(spec.pop("noise", None), key="noise")
     return Scenario(block, Anchorage(**anchorage), Control(**control), noise=noise, **spec)
 
@@ -77,22 +81,22 @@ def scenario_from_dict(spec: dict) -> Scenario:
 def amplitude_grid(spec: dict, key: str = "amplitude_grid") -> AmplitudeGrid:
     """:class:`AmplitudeGrid` from ``start``, ``stop``, ``step``, ``resolution`` (ratios a_p/(g·tanα)),
     refused (naming ``<key>.<field>``) beyond the limits of :mod:`rockstudy.core.validation`."""
-    v.check_amplitude_grid(spec["start"], spec["stop"], spec["step"], spec["resolution"],
-                           names=tuple(f"{key}.{field}" for field in ("start", "stop", "step", "resolution")))
+    validation.check_amplitude_grid(spec["start"], spec["stop"], spec["step"], spec["resolution"],
+                                    names=tuple(f"{key}.{field}" for field in ("start", "stop", "step", "resolution")))
     return AmplitudeGrid(**spec)
 
 
 def frequency_ratios(spec: dict, key: str = "frequency_grid") -> np.ndarray:
     """Frequency ratios ω_p/p from ``start``, ``stop``, ``step``, refused (naming ``<key>.<field>``)
     above :data:`rockstudy.core.validation.MAX_GRID_POINTS` points before the grid is built. [-]"""
-    v.check_grid(key, spec["start"], spec["stop"], spec["step"], high=v.MAX_FREQUENCY_RATIO)
+    validation.check_grid(key, spec["start"], spec["stop"], spec["step"], high=validation.MAX_FREQUENCY_RATIO)
     return frequency_grid(**spec)
 
 
 def intensity_levels(spec: dict, key: str = "beyond.fragility.intensity_levels") -> np.ndarray:
     """Intensity levels (the fragility's stripes) from ``start``, ``stop``, ``step``, refused (naming
     ``<key>.<field>``) like :func:`frequency_ratios`. [-]"""
-    v.check_grid(key, spec["start"], spec["stop"], spec["step"], high=v.MAX_AMPLITUDE_RATIO)
+    validation.check_grid(key, spec["start"], spec["stop"], spec["step"], high=validation.MAX_AMPLITUDE_RATIO)
     return frequency_grid(**spec)
 
 
@@ -117,11 +121,12 @@ def a_max0_ratio(ds: xr.Dataset, a_max0_g: float, name: str = "a_max0") -> float
     """a_max,0 given in units of g as an amplitude ratio a/(g·tanα), refused (naming ``name``) when it is
     not positive or lies above the amplitude scan's top recorded in ``ds`` (see
     :func:`rockstudy.core.validation.check_a_max0`). [-]"""
-    top = v.scan_top(ds.attrs["grid_amplitude_start"], ds.attrs["grid_amplitude_stop"], ds.attrs["grid_amplitude_step"])
-    return v.check_a_max0(name, a_max0_g, float(ds.attrs["block_alpha"]), top,
+    top = validation.scan_top(ds.attrs["grid_amplitude_start"], ds.attrs["grid_amplitude_stop"],
+                              ds.attrs["grid_amplitude_step"])
+    return validation.check_a_max0(name, a_max0_g, float(ds.attrs["block_alpha"]), top,
                           "the spectrum's scan top, grid_amplitude_stop")
 
 
 def grid_size_points(spec: dict) -> int:
     """Number of points of an amplitude grid ``{start, stop, step}`` (the simulations of one map row)."""
-    return v.grid_size(spec["start"], spec["stop"], spec["step"])
+    return validation.grid_size(spec["start"], spec["stop"], spec["step"])

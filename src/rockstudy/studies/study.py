@@ -14,7 +14,7 @@ import logging
 import math
 from pathlib import Path
 
-from rockstudy.core import validation as v
+from rockstudy.core import validation
 from rockstudy.model.excitation import check_time_span, excitation_duration
 from rockstudy.model.noise import reading_from_dict
 from rockstudy.model.sensor import SENSOR_STEP, check_band
@@ -105,49 +105,56 @@ def check_study(config: dict) -> None:
     bad = _non_finite(config)
     if bad:
         key, value = bad[0]
-        v.fail(key, value, "every number must be finite (not NaN or inf)"
-               + (f"; also non-finite: {', '.join(k for k, _ in bad[1:])}" if len(bad) > 1 else ""))
+        validation.fail(key, value, "every number must be finite (not NaN or inf)"
+                        + (f"; also non-finite: {', '.join(k for k, _ in bad[1:])}" if len(bad) > 1 else ""))
     levels = config["noise_levels"]
     noise_free_level(levels)
     for key in ("convergence", "sampling_sweep", "delay_sweep", "example_point"):
         if config[key]["noise_level"] not in levels:
-            raise v.InputError(f"{key}.noise_level: {config[key]['noise_level']!r} is not one of noise_levels "
-                               f"({', '.join(levels)})")
+            raise validation.InputError(f"{key}.noise_level: {config[key]['noise_level']!r} is not one of noise_levels "
+                                        f"({', '.join(levels)})")
     for key in ("table1", "maps", "control_histories", "sampling_sweep", "delay_sweep"):
         missing = set(config[key]["strategies"]) - set(config["strategies"])
         if missing:
-            raise v.InputError(f"{key}.strategies: {sorted(missing)} not in strategies {config['strategies']}")
+            raise validation.InputError(f"{key}.strategies: {sorted(missing)} not in strategies {config['strategies']}")
     if "FS" not in config["strategies"]:
-        raise v.InputError("strategies: FS is needed as the reference of Table 1 and of the timing tables")
-    n_real = v.check_int_range("realisations", config["realisations"], 1, v.MAX_REALISATIONS)
-    per_job = v.check_int_range("realisations_per_job", config["realisations_per_job"], 1, v.MAX_REALISATIONS)
-    v.check_int_range("seed", config["seed"], 0, v.MAX_INTEGER, why="stored as a netCDF int64 attribute")
-    v.check_int_range("noise_records_stored", config["noise_records_stored"], 1, v.MAX_REALISATIONS)
+        raise validation.InputError("strategies: FS is needed as the reference of Table 1 and of the timing tables")
+    n_real = validation.check_int_range("realisations", config["realisations"], 1, validation.MAX_REALISATIONS)
+    per_job = validation.check_int_range("realisations_per_job", config["realisations_per_job"], 1,
+                                         validation.MAX_REALISATIONS)
+    validation.check_int_range("seed", config["seed"], 0, validation.MAX_INTEGER,
+                               why="stored as a netCDF int64 attribute")
+    validation.check_int_range("noise_records_stored", config["noise_records_stored"], 1, validation.MAX_REALISATIONS)
     too_high = [k for k in config["example_point"]["realisations"] if k >= n_real]
     if too_high:
-        raise v.InputError(f"example_point.realisations: {too_high} >= realisations ({n_real})")
+        raise validation.InputError(f"example_point.realisations: {too_high} >= realisations ({n_real})")
     block = block_from_dict(config["block"])
-    free_time = v.check_nonnegative("free_time", config["free_time"], "s", v.MAX_FREE_TIME)
+    free_time = validation.check_nonnegative("free_time", config["free_time"], "s", validation.MAX_FREE_TIME)
     ag = config["amplitude_grid"]
-    sims_per_case = v.check_amplitude_grid(ag["start"], ag["stop"], ag["step"], ag["resolution"])
+    sims_per_case = validation.check_amplitude_grid(ag["start"], ag["stop"], ag["step"], ag["resolution"])
     top = amplitude_grid(ag).values()[-1]
-    v.check_a_max0("a_max0", config["a_max0"], block.alpha, top)
+    validation.check_a_max0("a_max0", config["a_max0"], block.alpha, top)
     fg = config["frequency_grid"]
-    n_freq = v.check_grid("frequency_grid", fg["start"], fg["stop"], fg["step"], high=v.MAX_FREQUENCY_RATIO)
+    n_freq = validation.check_grid("frequency_grid", fg["start"], fg["stop"], fg["step"],
+                                   high=validation.MAX_FREQUENCY_RATIO)
     an = config["anchorage"]
-    for key, limit in (("kappa_max", v.MAX_KAPPA), ("kappa_min", v.MAX_KAPPA), ("damping_ratio", v.MAX_DAMPING_RATIO)):
-        v.check_nonnegative(f"anchorage.{key}", an[key], high=limit)
+    for key, limit in (("kappa_max", validation.MAX_KAPPA), ("kappa_min", validation.MAX_KAPPA),
+                       ("damping_ratio", validation.MAX_DAMPING_RATIO)):
+        validation.check_nonnegative(f"anchorage.{key}", an[key], high=limit)
     scenario_from_dict({"block": config["block"], "anchorage": an})
     for key in ("control_histories", "example_point"):
-        v.check_positive(f"{key}.frequency_ratio", config[key]["frequency_ratio"], high=v.MAX_FREQUENCY_RATIO)
-        v.check_positive(f"{key}.amplitude_ratio", config[key]["amplitude_ratio"], high=v.MAX_AMPLITUDE_RATIO)
-    v.check_positive("noise_reference_frequency_ratio", config["noise_reference_frequency_ratio"],
-                     high=v.MAX_FREQUENCY_RATIO)
+        validation.check_positive(f"{key}.frequency_ratio", config[key]["frequency_ratio"],
+                                  high=validation.MAX_FREQUENCY_RATIO)
+        validation.check_positive(f"{key}.amplitude_ratio", config[key]["amplitude_ratio"],
+                                  high=validation.MAX_AMPLITUDE_RATIO)
+    validation.check_positive("noise_reference_frequency_ratio", config["noise_reference_frequency_ratio"],
+                              high=validation.MAX_FREQUENCY_RATIO)
     for i, ts in enumerate(config["sampling_sweep"]["sampling_times"]):
-        v.check_positive(f"sampling_sweep.sampling_times[{i}]", ts, "s", v.MAX_TIME_SPAN)
-    v.check_positive("delay_sweep.sampling_time", config["delay_sweep"]["sampling_time"], "s", v.MAX_TIME_SPAN)
+        validation.check_positive(f"sampling_sweep.sampling_times[{i}]", ts, "s", validation.MAX_TIME_SPAN)
+    validation.check_positive("delay_sweep.sampling_time", config["delay_sweep"]["sampling_time"], "s",
+                              validation.MAX_TIME_SPAN)
     for i, d in enumerate(config["delay_sweep"]["delays"]):
-        v.check_positive(f"delay_sweep.delays[{i}]", d, "s", v.MAX_TIME_SPAN)
+        validation.check_positive(f"delay_sweep.delays[{i}]", d, "s", validation.MAX_TIME_SPAN)
     freqs = frequency_ratios(fg)
     grid_name = "frequency_grid.start" if fg["start"] < 1 else "frequency_grid.stop"
     span_freqs = [fg["start"], float(freqs[-1])]  # the user's start (the grid rounds to 10 decimals)
@@ -165,25 +172,26 @@ def check_study(config: dict) -> None:
                           sampling_name=name)
     # one spectrum job: its realisations x frequencies, and the noise records it holds
     per_job = min(per_job, n_real)
-    samples = v.record_samples(excitation_duration(config["excitation"], f * block.p) for f in freqs)
-    v.check_workload("realisations_per_job", config["realisations_per_job"], per_job * n_freq, sims_per_case,
-                     per_job * samples * v.RECORD_BYTES_PER_SAMPLE)
+    samples = validation.record_samples(excitation_duration(config["excitation"], f * block.p) for f in freqs)
+    validation.check_workload("realisations_per_job", config["realisations_per_job"], per_job * n_freq, sims_per_case,
+                              per_job * samples * validation.RECORD_BYTES_PER_SAMPLE)
     n_chunks = -(-n_real // per_job)
-    if n_chunks > v.MAX_JOBS_PER_SPECTRUM:
-        v.fail("realisations_per_job", config["realisations_per_job"],
-               f"realisations = {n_real} in jobs of {per_job} gives {n_chunks} jobs per spectrum, the limit is "
-               f"{v.MAX_JOBS_PER_SPECTRUM} (Snakemake's DAG would grow too large); use larger jobs")
-    v.check_workload("amplitude_grid.step", ag["step"], n_freq, grid_size_points(ag), 0)
+    if n_chunks > validation.MAX_JOBS_PER_SPECTRUM:
+        validation.fail("realisations_per_job", config["realisations_per_job"],
+                        f"realisations = {n_real} in jobs of {per_job} gives {n_chunks} jobs per spectrum, the limit "
+                        f"is {validation.MAX_JOBS_PER_SPECTRUM} (Snakemake's DAG would grow too large); use larger "
+                        "jobs")
+    validation.check_workload("amplitude_grid.step", ag["step"], n_freq, grid_size_points(ag), 0)
     try:
         reading = reading_from_dict(config["noise"], key="noise")
     except ValueError as exc:
-        raise v.InputError(str(exc)) from None
+        raise validation.InputError(str(exc)) from None
     band = config["control"]["sensor_band"]
     if band is not None:  # the sensor reads the noisy records at noise.step, the analytic excitation at SENSOR_STEP
         try:
             check_band(band, max(reading.step, SENSOR_STEP), "control.sensor_band")
         except ValueError as exc:
-            raise v.InputError(str(exc)) from None
+            raise validation.InputError(str(exc)) from None
     noise_readings.check_config(config["reproduction"])
     device_calibration.check_config(config["calibration"], block.alpha)
     if config.get("beyond"):
