@@ -70,6 +70,11 @@ def _integer(name):
     return conv
 
 
+def _numeric(p: argparse.ArgumentParser, option: str, default: float, text: str, **kwargs):
+    """A number option whose help states its default, the library's."""
+    p.add_argument(option, type=_number(option), default=default, help=f"{text} (default {default:g})", **kwargs)
+
+
 def _common(p: argparse.ArgumentParser, single_frequency=True):
     noise = DEFAULT_READING
     p.add_argument("--block", default=DEFAULT_BLOCK, choices=sorted(BLOCK_PRESETS),
@@ -85,34 +90,26 @@ def _common(p: argparse.ArgumentParser, single_frequency=True):
     p.add_argument("--realisation", type=_integer("--realisation"), default=0, help="noise realisation k")
     p.add_argument("--seed", type=_integer("--seed"), default=DEFAULT_SEED,
                    help=f"root seed of the noise (default {DEFAULT_SEED}, the study's)")
-    p.add_argument("--noise-step", type=_number("--noise-step"), default=noise.step, metavar="SECONDS",
-                   help=f"sampling step of the noisy record [s] (default {noise.step:g})")
+    _numeric(p, "--noise-step", noise.step, "sampling step of the noisy record [s]", metavar="SECONDS")
     p.add_argument("--noise-rescale", default=noise.rescale, choices=RESCALES,
                    help=f"what the noisy record keeps of the baseline (default {noise.rescale})")
     p.add_argument("--noise-level-means", default=noise.level_means, choices=LEVEL_MEANINGS,
                    help=f"--noise-level is noise/baseline energy or noise/baseline RMS (default {noise.level_means})")
     p.add_argument("--noise-band", type=_number("--noise-band"), default=noise.band, metavar="HZ",
                    help="upper band limit of the noise [Hz] (default: white up to 1/(2 step))")
-    p.add_argument("--noise-span", type=_number("--noise-span"), default=noise.span, metavar="SECONDS",
-                   help=f"noise also this long after the intense part [s] (default {noise.span:g})")
-    p.add_argument("--sampling-time", type=_number("--sampling-time"), default=CONTROL.sampling_time,
-                   help="controller sampling time T_s [s] (0: continuous)")
-    p.add_argument("--delay", type=_number("--delay"), default=CONTROL.delay,
-                   help="actuation delay [s] (needs T_s > 0)")
+    _numeric(p, "--noise-span", noise.span, "noise also this long after the intense part [s]", metavar="SECONDS")
+    _numeric(p, "--sampling-time", CONTROL.sampling_time, "controller sampling time T_s [s] (0: continuous)")
+    _numeric(p, "--delay", CONTROL.delay, "actuation delay [s] (needs T_s > 0)")
     p.add_argument("--sensor-band", type=_number("--sensor-band"), default=CONTROL.sensor_band, metavar="HZ",
                    help="the controller reads the ground acceleration through a causal 2nd-order Butterworth "
                         "low-pass with this cut-off [Hz], below 1/(2 step) of the record it reads (default: "
                         "it reads the driving acceleration itself)")
-    p.add_argument("--kappa-max", type=_number("--kappa-max"), default=ANCHORAGE.kappa_max,
-                   help=f"4 K_max b^2/(m g R) [-] (default {ANCHORAGE.kappa_max:g})")
-    p.add_argument("--kappa-min", type=_number("--kappa-min"), default=ANCHORAGE.kappa_min,
-                   help=f"4 K_min b^2/(m g R) [-] (default {ANCHORAGE.kappa_min:g})")
-    p.add_argument("--damping-ratio", type=_number("--damping-ratio"), default=ANCHORAGE.damping_ratio,
-                   help=f"xi [-] (default {ANCHORAGE.damping_ratio:g})")
+    _numeric(p, "--kappa-max", ANCHORAGE.kappa_max, "4 K_max b^2/(m g R) [-]")
+    _numeric(p, "--kappa-min", ANCHORAGE.kappa_min, "4 K_min b^2/(m g R) [-]")
+    _numeric(p, "--damping-ratio", ANCHORAGE.damping_ratio, "xi [-]")
     p.add_argument("--overturn-criterion", default=DEFAULT_OVERTURN_CRITERION, choices=OVERTURN_CRITERIA,
                    help=f"overturned at |theta| >= pi/2 (flat) or >= alpha (default {DEFAULT_OVERTURN_CRITERION})")
-    p.add_argument("--free-time", type=_number("--free-time"), default=DEFAULT_FREE_TIME,
-                   help=f"free motion allowed after the excitation [s] (default {DEFAULT_FREE_TIME:g})")
+    _numeric(p, "--free-time", DEFAULT_FREE_TIME, "free motion allowed after the excitation [s]")
     p.add_argument("--engine", default=ENGINES[0], choices=ENGINES, help=f"integration engine (default {ENGINES[0]})")
 
 
@@ -192,14 +189,10 @@ def _check_time_span(scenario, frequency_ratios, frequency_name) -> None:
 
 
 def _grid_args(p):
-    p.add_argument("--min-amplitude-ratio", type=_number("--min-amplitude-ratio"), default=GRID.start,
-                   help=f"first amplitude ratio of the upward scan [-] (default {GRID.start:g})")
-    p.add_argument("--max-amplitude-ratio", type=_number("--max-amplitude-ratio"), default=GRID.stop,
-                   help=f"upper bound of the scan [-] (default {GRID.stop:g})")
-    p.add_argument("--amplitude-step", type=_number("--amplitude-step"), default=GRID.step,
-                   help=f"coarse scan step [-] (default {GRID.step:g})")
-    p.add_argument("--resolution", type=_number("--resolution"), default=GRID.resolution,
-                   help=f"refinement resolution [-] (default {GRID.resolution:g})")
+    _numeric(p, "--min-amplitude-ratio", GRID.start, "first amplitude ratio of the upward scan [-]")
+    _numeric(p, "--max-amplitude-ratio", GRID.stop, "upper bound of the scan [-]")
+    _numeric(p, "--amplitude-step", GRID.step, "coarse scan step [-]")
+    _numeric(p, "--resolution", GRID.resolution, "refinement resolution [-]")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -224,12 +217,9 @@ def build_parser() -> argparse.ArgumentParser:
     _common(pp, single_frequency=False)
     _grid_args(pp)
     start, stop, step = (DEFAULT_FREQUENCY_GRID[key] for key in ("start", "stop", "step"))
-    pp.add_argument("--frequency-start", type=_number("--frequency-start"), default=start,
-                    help=f"first omega_p/p [-] (default {start:g})")
-    pp.add_argument("--frequency-stop", type=_number("--frequency-stop"), default=stop,
-                    help=f"last omega_p/p [-] (default {stop:g})")
-    pp.add_argument("--frequency-step", type=_number("--frequency-step"), default=step,
-                    help=f"omega_p/p step [-] (default {step:g})")
+    _numeric(pp, "--frequency-start", start, "first omega_p/p [-]")
+    _numeric(pp, "--frequency-stop", stop, "last omega_p/p [-]")
+    _numeric(pp, "--frequency-step", step, "omega_p/p step [-]")
     pp.add_argument("--realisations", type=_integer("--realisations"), default=1,
                     help="number of noise realisations N (0..N-1)")
     pp.add_argument("--map", action="store_true", help="also store the outcome at every grid point")
