@@ -51,6 +51,8 @@ def test_spectrum_and_jos(tmp_path, capsys):
     (["simulate", "--delay", "0.06"], "--delay"),
     (["threshold", "--resolution", "0.5"], "--resolution"),
     (["threshold", "--excitation", "kobe"], "--excitation"),
+    (["threshold", "--kappa-min", "2"], "--kappa-min (2.0) must not exceed --kappa-max (1.0)"),
+    (["simulate", "--sampling-time", "0", "--delay", "0.06"], "--delay > 0 needs a --sampling-time > 0"),
 ])
 def test_bad_arguments_exit_nonzero_naming_the_argument(args, needle):
     p = subprocess.run([sys.executable, "-m", "rockstudy.cli"] + args, capture_output=True, text=True)

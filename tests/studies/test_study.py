@@ -37,6 +37,20 @@ def test_scenario_from_dict():
     assert sc.anchorage.kappa_max == 2.0 and sc.control.delay == 0.06 and sc.noise_level == 0.05
 
 
+@pytest.mark.parametrize("spec, message", [
+    ({"anchorage": {"kappa_max": 1.0, "kappa_min": 2.0}},
+     r"anchorage.kappa_min \(2.0\) must not exceed anchorage.kappa_max"),
+    ({"control": {"strategy": "CS01", "delay": 0.06}}, "control.delay > 0 needs a control.sampling_time > 0"),
+    ({"noise": {"step": 0.0025, "band": 300.0}},
+     r"noise.band must be below the Nyquist frequency 1/\(2 noise.step\)"),
+])
+def test_scenario_errors_name_the_config_keys(spec, message):
+    with pytest.raises(ValueError, match=message):
+        parameters.scenario_from_dict({"block": {"preset": "BLC06"}, **spec})
+    with pytest.raises(ValueError, match="block.height"):
+        parameters.block_from_dict({"width": 0.4, "height": -1.0, "depth": 0.47})
+
+
 def test_realisation_chunks_cover_each_realisation_once():
     chunks = parameters.realisation_chunks(40, 15)
     assert [len(c) for c in chunks] == [15, 15, 10]

@@ -70,8 +70,8 @@ def scenario_from_dict(spec: dict) -> Scenario:
     block = block_from_dict(spec.pop("block"))
     anchorage, control = spec.pop("anchorage", {}), spec.pop("control", {})
     try:
-        Anchorage.check({field: f"anchorage.{field}" for field in anchorage}, **anchorage)
-        Control.check({field: f"control.{field}" for field in control}, **control)
+        Anchorage.check({f.name: f"anchorage.{f.name}" for f in fields(Anchorage)}, **anchorage)
+        Control.check({f.name: f"control.{f.name}" for f in fields(Control)}, **control)
     except ValueError as exc:
         raise validation.InputError(str(exc)) from None
     noise = reading_from_dict(spec.pop("noise", None), key="noise")
