@@ -42,6 +42,7 @@ def test_library_and_cli_grids_are_the_study_grids():
     freqs = frequency_grid(args.frequency_start, args.frequency_stop, args.frequency_step)
     assert np.array_equal(freqs, parameters.frequency_ratios(CONFIG["frequency_grid"]))
     assert np.array_equal(freqs, frequency_grid())
+    assert build_parser().parse_args(["jos", "--reference", "a", "--system", "b"]).a_max0 == CONFIG["a_max0"]
     assert Scenario(BLOCK_PRESETS["BLC06"], control=Control("FS"), noise_level=0.05) == \
         parameters.scenario_from_dict(study_scenario("FS", "R005"))
 

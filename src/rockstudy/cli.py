@@ -15,6 +15,7 @@ import sys
 
 from rockstudy.analysis.scenario import DEFAULT_BLOCK, DEFAULT_EXCITATION, DEFAULT_OVERTURN_CRITERION
 from rockstudy.analysis.spectra import DEFAULT_FREQUENCY_GRID, AmplitudeGrid
+from rockstudy.analysis.utility_index import DEFAULT_A_MAX0
 from rockstudy.core import validation
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME, ENGINES, OVERTURN_CRITERIA
 from rockstudy.model.anchorage import Anchorage
@@ -229,7 +230,7 @@ def build_parser() -> argparse.ArgumentParser:
     pj = sub.add_parser("jos", help="utility index J_OS (Eqs. 18-22) of two spectrum files")
     pj.add_argument("--reference", required=True, help="spectrum netCDF of the reference system")
     pj.add_argument("--system", required=True, help="spectrum netCDF of the investigated system")
-    pj.add_argument("--a-max0", type=_number("--a-max0"), default=1.0, help="a_max,0 in units of g (default 1)")
+    _numeric(pj, "--a-max0", DEFAULT_A_MAX0, "a_max,0 in units of g")
     return parser
 
 

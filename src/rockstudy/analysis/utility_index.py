@@ -25,6 +25,9 @@ import math
 
 import numpy as np
 
+DEFAULT_A_MAX0 = 1.0
+"""The study's protection level a_max,0, in units of g (``a_max0`` of config.yaml, ``--a-max0`` of the CLI)."""
+
 
 def _check_a_max0(a_max0) -> float:
     if isinstance(a_max0, bool) or not np.isscalar(a_max0) or not (math.isfinite(a_max0) and a_max0 > 0):
