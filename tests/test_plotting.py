@@ -76,3 +76,83 @@ def test_no_overturning_up_to_the_bound_is_marked_at_the_top():
     assert len(ax2.get_lines()) == 1
     plt.close(fig)
     plt.close(fig2)
+
+
+def _threshold(values):
+    import xarray as xr
+    return xr.DataArray(np.asarray(values, float), dims="frequency_ratio",
+                        coords={"frequency_ratio": [1.0, 2.0, 3.0]})
+
+
+def test_curves_that_coincide_share_one_legend_entry_and_the_reference_is_on_top():
+    fig, ax = plt.subplots()
+    lines = plotting.plot_threshold_family(
+        ax, [("2.5 ms", _threshold([1.0, 2.0, np.nan])), ("60 ms", _threshold([1.0, 2.5, 3.0]))],
+        prefix="d = ", reference=("0", _threshold([1.0, 2.0, np.nan])), suffix=", reference")
+    labels = [line.get_label() for line in lines]
+    assert labels == ["d = 60 ms", "d = 0 = 2.5 ms, reference"]
+    ref = lines[-1]
+    assert ref.get_color() == plotting.OKABE_ITO["black"]
+    assert ref.get_zorder() > max(line.get_zorder() for line in lines[:-1])
+    assert ref.get_linewidth() < lines[0].get_linewidth()  # the wider curve shows around it
+    # nearly equal is not equal: two entries
+    fig2, ax2 = plt.subplots()
+    two = plotting.plot_threshold_family(ax2, [("a", _threshold([1.0, 2.0, 3.0])),
+                                               ("b", _threshold([1.0, 2.0, 3.0001]))])
+    assert [line.get_label() for line in two] == ["a", "b"]
+    plt.close(fig)
+    plt.close(fig2)
+
+
+def test_figures_use_the_colour_blind_safe_palette_and_say_what_they_show(history):
+    spectra = [fake_spectrum("CS01", 0.05, np.ones(4), sampling_time=t) for t in (0.01, 0.1)]
+    refs = [fake_spectrum("CS01", 0.05, np.ones(4))]
+    fig = plotting.figure_timing(spectra, "sampling_time", 4.0, "7", refs)
+    ax = fig.axes[0]
+    labels = ax.get_legend_handles_labels()[1]
+    assert r"$T_s$ = 0 (continuous) = 10 ms = 100 ms, reference" in labels  # identical data: one entry
+    assert "Fig." not in fig._suptitle.get_text() and "sampling times" in fig._suptitle.get_text()
+    allowed = {matplotlib.colors.to_hex(c) for c in plotting.OKABE_ITO.values()}
+    for line in ax.get_lines():
+        colour = matplotlib.colors.to_hex(line.get_color())
+        grey = len({colour[1:3], colour[3:5], colour[5:7]}) == 1
+        assert colour.upper() in {c.upper() for c in allowed} or grey, colour
+    plt.close(fig)
+    fig = plotting.figure_control_history(history, "2")
+    assert "Fig." not in fig.axes[0].get_title() and "CS01" in fig.axes[0].get_title()
+    plt.close(fig)
+
+
+def test_history_velocity_line_shows_the_jump_at_each_impact(history):
+    t, v = plotting.velocity_with_impacts(history)
+    assert len(t) == history.sizes["time"] + history.sizes["impact"] and np.all(np.diff(t) >= 0)
+    i = int(np.searchsorted(t, float(history["impact_time"][0])))
+    assert v[i] == float(history["velocity_before_impact_ratio"][0])
+    assert v[i + 1] == float(history["velocity_after_impact_ratio"][0])
+
+
+def test_outcome_map_has_no_red_against_green():
+    safe = matplotlib.colors.to_rgb(plotting.OUTCOME_COLOURS["safe"])
+    assert safe[2] > safe[1] > safe[0]  # blue, not green
+    for name in ("overturned_without_impact", "overturned_after_impact"):
+        red, green, blue = matplotlib.colors.to_rgb(plotting.OUTCOME_COLOURS[name])
+        assert red > green > blue  # vermillion / orange
+
+
+def test_pga_in_g_axis_converts_with_tan_alpha():
+    fig, ax = plt.subplots()
+    ax.set_xlim(0, 4)
+    sec = plotting.pga_in_g_axis(ax, 0.25)
+    forward, inverse = sec._functions
+    assert forward(4.0) == pytest.approx(1.0) and inverse(1.0) == pytest.approx(4.0)
+    assert sec.get_xlabel() == "PGA [g]"
+    with pytest.raises(ValueError, match="tan_alpha"):
+        plotting.pga_in_g_axis(ax, 0.0)
+    plt.close(fig)
+
+
+def test_a_figure_saves_to_the_same_bytes_twice(tmp_path):
+    spectra = [fake_spectrum("CS01", 0.05, np.ones(4), sampling_time=t) for t in (0.01, 0.1)]
+    for name in ("a.png", "b.png"):
+        plotting.save_figure(plotting.figure_timing(spectra, "sampling_time", 4.0, "7"), tmp_path / name)
+    assert (tmp_path / "a.png").read_bytes() == (tmp_path / "b.png").read_bytes()

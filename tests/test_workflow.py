@@ -5,6 +5,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 import yaml
 
@@ -115,6 +116,30 @@ def test_tiny_study_end_to_end(tiny_run):
     again = snakemake("-n", "--configfile", str(TEST_CONFIG), "--replace-workflow-config",
                       "--config", f"results_dir={out}", workdir=tmp_path)
     assert "Nothing to be done" in again.stdout + again.stderr, again.stdout[-3000:]
+
+
+@pytest.mark.slow
+def test_tiny_study_files_follow_cf_and_histories_have_one_value_per_time(tiny_run):
+    """One netCDF file of each kind the tiny study writes (one per folder) passes the CF-1.11
+    checker without a high-priority finding; every history's time is strictly increasing."""
+    from compliance import high_priority_findings
+
+    out, _, res = tiny_run
+    assert res.returncode == 0, res.stderr[-5000:]
+    kinds = {}
+    for path in sorted(out.rglob("*.nc")):
+        kinds.setdefault(path.parent, path)
+    assert len(kinds) >= 10, sorted(kinds)
+    findings = {str(path.relative_to(out)): high_priority_findings(path) for path in kinds.values()}
+    assert all(not f for f in findings.values()), {k: f for k, f in findings.items() if f}
+    import xarray as xr
+
+    histories = sorted((out / "histories").glob("*.nc"))
+    assert histories
+    for path in histories:
+        with xr.open_dataset(path) as ds:
+            assert np.all(np.diff(ds["time"].values) > 0), path.name
+            assert ds["theta"].sel(time=2.0, method="nearest").size == 1
 
 
 @pytest.mark.slow

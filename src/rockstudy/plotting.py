@@ -6,7 +6,7 @@ Frequencies are ω_p/p, amplitudes a_p/(g·tanα).
 """
 from __future__ import annotations
 
-from functools import partial
+from functools import partial, wraps
 from pathlib import Path
 
 import matplotlib
@@ -21,13 +21,69 @@ from rockstudy.core.io import atomic_write
 
 FREQUENCY_LABEL = r"$\omega_p/p$ [-]"
 AMPLITUDE_LABEL = r"$a_p/(g\,\tan\alpha)$ [-]"
-OUTCOME_COLOURS = {"no_uplift": "#f2f2f2", "safe": "#a6d96a", "overturned_without_impact": "#d7191c",
-                   "overturned_after_impact": "#fdae61", "undetermined": "#7f7f7f"}
-LEVEL_STYLE = {0.0: ("k", "-"), 0.01: ("tab:blue", "--"), 0.05: ("tab:orange", "-."), 0.1: ("tab:red", ":")}
+
+OKABE_ITO = {"black": "#000000", "orange": "#E69F00", "sky_blue": "#56B4E9", "bluish_green": "#009E73",
+             "yellow": "#F0E442", "blue": "#0072B2", "vermillion": "#D55E00", "reddish_purple": "#CC79A7"}
+"""The Okabe–Ito palette (Okabe & Ito 2008), distinguishable with every common colour-vision deficiency."""
+
+CURVE_COLOURS = tuple(OKABE_ITO[c] for c in ("blue", "vermillion", "bluish_green", "orange", "reddish_purple",
+                                             "sky_blue", "yellow"))
+"""Colours of the curves of one figure in drawing order (black is kept for references)."""
+
+CURVE_DASHES = ("-", "--", "-.", ":", (0, (5, 1, 1, 1, 1, 1)), (0, (1, 1)), (0, (8, 2)))
+"""Line styles paired with :data:`CURVE_COLOURS`, so that curves also differ in grey-scale print."""
+
+REFERENCE_STYLE = {"color": OKABE_ITO["black"], "lw": 1.2, "ls": "-", "marker": "o", "ms": 3.0, "zorder": 5}
+"""A reference curve (continuous control, no delay, no noise, the decisive N): black, thin, with
+dots, drawn on top of the thicker coloured curves so that both stay visible where they overlap."""
+
+CURVE_WIDTH = 2.4
+"""Line width of the compared curves (wider than the reference drawn on top of them). [pt]"""
+
+STYLE = {"font.size": 9.0, "axes.titlesize": 10.0, "axes.labelsize": 9.0, "legend.fontsize": 8.0,
+         "figure.titlesize": 11.0, "xtick.labelsize": 8.5, "ytick.labelsize": 8.5,
+         "axes.grid": True, "grid.linewidth": 0.3, "grid.alpha": 0.5, "lines.linewidth": 1.3,
+         "legend.framealpha": 0.9, "image.cmap": "viridis", "savefig.dpi": 150,
+         "axes.prop_cycle": matplotlib.cycler(color=CURVE_COLOURS)}
+"""The one style of every figure of the study (matplotlib rc parameters; see :func:`styled`)."""
+
+OUTCOME_COLOURS = {"no_uplift": "#EEEEEE", "safe": OKABE_ITO["sky_blue"],
+                   "overturned_without_impact": OKABE_ITO["vermillion"],
+                   "overturned_after_impact": OKABE_ITO["orange"], "undetermined": "#555555"}
+"""Outcome map colours: safe in blue against overturning in vermillion/orange (no red against green)."""
+
+def styled(figure_function):
+    """Draw ``figure_function``'s figure in the study's :data:`STYLE`."""
+    @wraps(figure_function)
+    def draw(*args, **kwargs):
+        with matplotlib.rc_context(STYLE):
+            return figure_function(*args, **kwargs)
+    return draw
 
 
 def _level_label(level: float) -> str:
     return "no noise (R000)" if level == 0 else f"R{round(level * 100):03d} ({level:.0%} noise)"
+
+
+def same_curve(a, b) -> bool:
+    """True when two thresholds are the same curve: the same frequencies and the same values
+    (NaN where both have no overturning)."""
+    return (a.sizes == b.sizes and np.array_equal(a["frequency_ratio"].values, b["frequency_ratio"].values)
+            and np.array_equal(np.asarray(a.values, float), np.asarray(b.values, float), equal_nan=True))
+
+
+def group_same_curves(curves):
+    """Group ``(name, threshold)`` pairs whose thresholds are the same curve (:func:`same_curve`),
+    in order of first appearance; returns a list of (names, threshold)."""
+    groups = []
+    for name, thr in curves:
+        for names, first in groups:
+            if same_curve(first, thr):
+                names.append(name)
+                break
+        else:
+            groups.append(([name], thr))
+    return groups
 
 
 # --- axis-level ----------------------------------------------------------------------------------
@@ -35,9 +91,9 @@ def spectrum_axes(ax, title: str | None = None):
     """Label an overturning-spectrum axis: ω_p/p against a_p/(g·tanα)."""
     ax.set_xlabel(FREQUENCY_LABEL)
     ax.set_ylabel(AMPLITUDE_LABEL)
-    ax.grid(True, lw=0.3, alpha=0.5)
+    ax.grid(True)
     if title:
-        ax.set_title(title, fontsize=10)
+        ax.set_title(title)
     return ax
 
 
@@ -53,8 +109,23 @@ def plot_threshold(ax, threshold, mark_above: bool = True, **kwargs):
     above = np.isnan(y)
     if mark_above and above.any():
         ax.plot(x[above], np.full(above.sum(), 0.985), ls="none", marker="^", ms=4, color=line.get_color(),
-                transform=ax.get_xaxis_transform(), clip_on=False)
+                transform=ax.get_xaxis_transform(), clip_on=False, gid=ABOVE_GID)
     return line
+
+
+ABOVE_GID = "no-overturning-up-to-the-scan-top"
+"""``gid`` of the triangles :func:`plot_threshold` draws where nothing overturned up to the scan's top."""
+
+
+def spectrum_legend(ax, **kwargs):
+    """The axis legend, with an entry for the top-edge triangles of :func:`plot_threshold` when
+    there are any; returns the legend."""
+    from matplotlib.lines import Line2D
+    handles, labels = ax.get_legend_handles_labels()
+    if any(line.get_gid() == ABOVE_GID for line in ax.get_lines()):
+        handles.append(Line2D([], [], ls="none", marker="^", ms=4, color="0.3"))
+        labels.append("no overturning up to the scan's top")
+    return ax.legend(handles, labels, **kwargs)
 
 
 def plot_a_max0(ax, value: float, label: str = r"$a_{max,0}$"):
@@ -74,22 +145,84 @@ def plot_outcome_map(ax, ds, realisation: int = 0):
     return mesh, handles
 
 
+def velocity_with_impacts(hist):
+    """Times and θ̇/(p·α) of a history with the velocity just before each impact put back in front of
+    the value just after it, so that a line shows the jump (older files without an ``impact``
+    dimension are returned as they are)."""
+    t, v = hist["time"].values, hist["velocity_ratio"].values
+    if "velocity_before_impact_ratio" not in hist or hist.sizes.get("impact", 0) == 0:
+        return t, v
+    ti, vi = hist["impact_time"].values, hist["velocity_before_impact_ratio"].values
+    keep = np.isfinite(vi)
+    times = np.concatenate([ti[keep], t])
+    order = np.argsort(np.concatenate([np.zeros(keep.sum()), np.ones(len(t))]), kind="stable")
+    order = order[np.argsort(times[order], kind="stable")]
+    return times[order], np.concatenate([vi[keep], v])[order]
+
+
 def plot_history(ax, hist):
     """Normalised ground motion Ẍ_g/(g·tanα), rotation θ/α and velocity θ̇/(p·α) against time."""
     t = hist["time"].values
-    return [ax.plot(hist["ground_time"].values, hist["ground_ratio"], color="0.5", ls="--", lw=0.9,
+    tv, v = velocity_with_impacts(hist)
+    return [ax.plot(hist["ground_time"].values, hist["ground_ratio"], color="0.55", ls="--", lw=0.9,
                     label=r"$\ddot X_g/(g\tan\alpha)$")[0],
-            ax.plot(t, hist["rotation_ratio"], color="tab:blue", lw=1.3, label=r"$\theta/\alpha$")[0],
-            ax.plot(t, hist["velocity_ratio"], color="tab:red", lw=0.9, label=r"$\dot\theta/(p\,\alpha)$")[0]]
+            ax.plot(t, hist["rotation_ratio"], color=OKABE_ITO["blue"], lw=1.4, label=r"$\theta/\alpha$")[0],
+            ax.plot(tv, v, color=OKABE_ITO["vermillion"], lw=0.8, label=r"$\dot\theta/(p\,\alpha)$")[0]]
 
 
 def plot_stiffness(ax, hist):
     """Anchorage stiffness K/K_max set by the control law (piecewise constant)."""
-    (line,) = ax.step(hist["time"].values, hist["stiffness_ratio"].values, where="post", color="tab:green",
-                      lw=1.0, label=r"$K/K_{max}$")
+    (line,) = ax.step(hist["time"].values, hist["stiffness_ratio"].values, where="post",
+                      color=OKABE_ITO["bluish_green"], lw=1.0, label=r"$K/K_{max}$")
     ax.set_ylim(-0.15, 1.15)
     ax.set_yticks([0, 1], [r"$K_{min}$", r"$K_{max}$"])
     return line
+
+
+def plot_threshold_family(ax, curves, prefix: str = "", reference=None, suffix: str = "",
+                          reference_last: bool = False):
+    """Several thresholds on one axis, with curves that coincide named together.
+
+    Parameters
+    ----------
+    curves : list of (str, DataArray)
+        Name (e.g. ``"2.5 ms"``) and threshold of each compared curve, in legend order; coloured
+        from :data:`CURVE_COLOURS` and drawn :data:`CURVE_WIDTH` wide.
+    prefix : str
+        Put before the names in the legend (e.g. ``"$T_s$ = "``).
+    reference : (str, DataArray), optional
+        The reference (continuous control, no delay, no noise), drawn last, on top, in
+        :data:`REFERENCE_STYLE`, and named ``prefix + name + suffix``.
+    suffix : str
+        Put after the reference's names in the legend (e.g. ``", reference"``).
+    reference_last : bool
+        The reference comes after the curves in the order of names (e.g. the largest N), not
+        before them (T_s = 0, Δτ = 0, no noise).
+
+    Curves whose thresholds are the same (:func:`same_curve`, computed from the data) are drawn
+    once with a legend entry naming all of them (``"Δτ = 0 = 2.5 ms"``).
+
+    Returns
+    -------
+    list of Line2D
+        One line per distinct curve, the reference's last.
+    """
+    ref = [reference] if reference is not None else []
+    every = list(curves) + ref if reference_last else ref + list(curves)
+    groups = group_same_curves(every)
+    lines, ref_line, colour = [], None, 0
+    for names, thr in groups:
+        label = prefix + " = ".join(names)
+        if reference is not None and reference[0] in names and same_curve(thr, reference[1]):
+            ref_line = (label + suffix, thr)
+            continue
+        style = {"color": CURVE_COLOURS[colour % len(CURVE_COLOURS)],
+                 "ls": CURVE_DASHES[colour % len(CURVE_DASHES)], "lw": CURVE_WIDTH}
+        colour += 1
+        lines.append(plot_threshold(ax, thr, label=label, **style))
+    if ref_line is not None:
+        lines.append(plot_threshold(ax, ref_line[1], label=ref_line[0], **REFERENCE_STYLE))
+    return lines
 
 
 def plot_excitation(ax, time, values, **kwargs):
@@ -101,65 +234,70 @@ def plot_excitation(ax, time, values, **kwargs):
 
 
 # --- figures ---------------------------------------------------------------------------------------
+@styled
 def figure_control_history(hist, paper_figure: str):
-    """Figs. 2–3: normalised time history of a controlled block and its stiffness K."""
+    """Figs. 2–3: normalised time history of a controlled block and its stiffness K (``paper_figure``
+    names the paper's figure in the file, not in the title, which says what is shown)."""
     fig, (ax, axk) = plt.subplots(2, 1, sharex=True, figsize=(7, 4.6), height_ratios=(3, 1))
     plot_history(ax, hist)
     ax.axhline(0, color="k", lw=0.4)
     ax.set_ylabel("normalised response [-]")
-    ax.legend(loc="upper right", fontsize=8, ncol=3)
+    ax.legend(loc="upper right", ncol=3)
     plot_stiffness(axk, hist)
     axk.set_xlabel("time $t$ [s]")
     end = min(float(hist["time"][-1]), 1.3 * hist.attrs["excitation_end_s"])
     axk.set_xlim(0, end)
     a = hist.attrs
-    ax.set_title(f"Fig. {paper_figure}: {a['control_strategy']}, $\\omega_p/p$ = {a['frequency_ratio']:g}, "
-                 f"$a_p/(g\\tan\\alpha)$ = {a['amplitude_ratio']:g} ({a['status']})", fontsize=10)
+    ax.set_title(f"Response of the block under {a['control_strategy']} control and the anchorage stiffness it "
+                 f"sets\n$\\omega_p/p$ = {a['frequency_ratio']:g}, $a_p/(g\\tan\\alpha)$ = {a['amplitude_ratio']:g}, "
+                 f"{_level_label(float(a.get('noise_level', 0.0)))}; the run ends: {a['status']}")
     fig.tight_layout()
     return fig
 
 
+@styled
 def figure_excitation(noise):
     """Fig. 4: (a) baseline Eq. 23 excitation; (b) the same contaminated with noise."""
     fig, (a, b) = plt.subplots(2, 1, sharex=True, sharey=True, figsize=(7, 4.8))
     t = noise["time"].values
-    plot_excitation(a, t, noise["baseline"].values, color="k", lw=1.0, label="baseline, Eq. (23)")
+    plot_excitation(a, t, noise["baseline"].values, color=OKABE_ITO["black"], lw=1.0, label="baseline, Eq. (23)")
     env = np.abs(noise["baseline"].values).max()
     a.axhline(env, color="0.5", lw=0.6, ls=":")
     a.axhline(-env, color="0.5", lw=0.6, ls=":")
     k = int(noise["record_realisation"][0])
-    plot_excitation(b, t, noise["record"].sel(record_realisation=k).values, color="tab:red", lw=0.6,
+    plot_excitation(b, t, noise["record"].sel(record_realisation=k).values, color=OKABE_ITO["vermillion"], lw=0.6,
                     label=f"noisy, realisation {k}")
-    plot_excitation(b, t, noise["baseline"].values, color="k", lw=1.0, label="baseline")
+    plot_excitation(b, t, noise["baseline"].values, color=OKABE_ITO["black"], lw=1.0, label="baseline")
     a.set_xlabel("")
     lev = noise.attrs["noise_level"]
     e, p = float(noise["energy_ratio"].sel(realisation=k).mean()), float(noise["pga_ratio"].sel(realisation=k).mean())
     a.set_title(f"(a) baseline harmonic excitation with variable amplitude, "
-                f"$\\omega_p/p$ = {noise.attrs['reference_frequency_ratio']:g}", fontsize=10)
-    b.set_title(f"(b) contaminated with {lev:.0%} noise (energy ratio {e:.3f}, PGA ratio {p:.3f})", fontsize=10)
+                f"$\\omega_p/p$ = {noise.attrs['reference_frequency_ratio']:g}")
+    b.set_title(f"(b) contaminated with {lev:.0%} noise (energy ratio {e:.3f}, PGA ratio {p:.3f})")
     for ax in (a, b):
-        ax.legend(loc="upper right", fontsize=8)
-        ax.grid(True, lw=0.3, alpha=0.5)
+        ax.legend(loc="upper right")
+    fig.suptitle("Ground motion: amplitude-modulated harmonic excitation, without and with noise")
     fig.tight_layout()
     return fig
 
 
+@styled
 def figure_realisations(spectrum, histories, point: dict):
     """Fig. 5: (a) thresholds for two noise realisations; (b) rotation histories at "Ex01"."""
     fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
-    colours = ("tab:blue", "tab:red", "tab:green", "tab:purple")
-    for i, hist in enumerate(histories):
-        k = hist.attrs["noise_realisation"]
-        plot_threshold(a, spectrum["threshold_realisation"].sel(realisation=k), color=colours[i], marker=".",
-                       label=f"noise realisation N°{i + 1} (k = {k})")
-        b.plot(hist["time"], hist["rotation_ratio"], color=colours[i], lw=1.0,
-               label=f"N°{i + 1} (k = {k}): {hist.attrs['status']}")
+    names = [f"N°{i + 1} (k = {h.attrs['noise_realisation']})" for i, h in enumerate(histories)]
+    plot_threshold_family(a, [(name, spectrum["threshold_realisation"].sel(realisation=h.attrs["noise_realisation"]))
+                              for name, h in zip(names, histories)], prefix="noise realisation ")
+    for i, (name, hist) in enumerate(zip(names, histories)):
+        b.plot(hist["time"], hist["rotation_ratio"], color=CURVE_COLOURS[i % len(CURVE_COLOURS)],
+               ls=CURVE_DASHES[i % len(CURVE_DASHES)], lw=1.0, label=f"{name}: {hist.attrs['status']}")
     plot_a_max0(a, point["a_max0_ratio"])
-    a.plot(point["frequency_ratio"], point["amplitude_ratio"], "k*", ms=11, label=point["label"])
+    a.plot(point["frequency_ratio"], point["amplitude_ratio"], ls="none", marker="*", color=OKABE_ITO["black"],
+           ms=11, label=point["label"])
     a.annotate(point["label"], (point["frequency_ratio"], point["amplitude_ratio"]), xytext=(6, 6),
                textcoords="offset points")
     spectrum_axes(a, f"(a) {spectrum['strategy'].item()}, {_level_label(float(spectrum['noise_level']))}")
-    a.legend(fontsize=8, loc="upper left")
+    spectrum_legend(a, loc="upper left")
     b.axhline(0, color="k", lw=0.4)
     for s in (-1, 1):
         b.axhline(s, color="0.5", lw=0.6, ls=":")
@@ -167,89 +305,109 @@ def figure_realisations(spectrum, histories, point: dict):
     b.set_ylabel(r"$\theta/\alpha$ [-]")
     b.set_xlim(0, 1.3 * histories[0].attrs["excitation_end_s"])
     b.set_ylim(-7, 7)
-    b.set_title(f"(b) rotation at {point['label']}", fontsize=10)
-    b.legend(fontsize=8, loc="upper left")
-    b.grid(True, lw=0.3, alpha=0.5)
+    b.set_title(f"(b) rotation at {point['label']}")
+    b.legend(loc="upper left")
+    fig.suptitle("Lower threshold of the overturning region for single noise realisations, and the rotation "
+                 f"at point {point['label']}")
     fig.tight_layout()
     return fig
 
 
+@styled
 def figure_noise_sensitivity(convergence, spectra, a_max0: float, panels=("FS", "CS01", "CS02"),
                              shown=(1, 5, 10, 20, 40)):
     """Fig. 6: (a) threshold against the number of realisations N; (b–d) thresholds per noise level."""
     fig, axes = plt.subplots(2, 2, figsize=(11, 8), sharex=True, sharey=True)
     a = axes.flat[0]
     n_all = convergence.sizes["n_realisations"]
-    for i, n in enumerate(sorted({min(n, n_all) for n in shown})):
-        plot_threshold(a, convergence["threshold_convergence"].sel(n_realisations=n),
-                       color=plt.cm.viridis(i / max(1, len(shown) - 1)), label=f"N = {n}")
+    counts = sorted({min(n, n_all) for n in shown})
+    conv = convergence["threshold_convergence"]
+    plot_threshold_family(a, [(f"{n}", conv.sel(n_realisations=n)) for n in counts[:-1]], prefix="N = ",
+                          reference=(f"{counts[-1]}", conv.sel(n_realisations=counts[-1])),
+                          suffix=" (all realisations: the spectra)", reference_last=True)
     plot_a_max0(a, a_max0)
     spectrum_axes(a, f"(a) {convergence['strategy'].item()}, {_level_label(float(convergence['noise_level']))}: "
-                     "increasing number of realisations")
-    a.legend(fontsize=8, loc="upper left")
+                     "lowest threshold over the first N realisations")
+    spectrum_legend(a, loc="upper left")
     for ax, letter, strategy in zip(axes.flat[1:], "bcd", panels):
-        mine = (d for d in spectra if d["strategy"].item() == strategy)
-        for ds in sorted(mine, key=lambda d: float(d["noise_level"])):
-            level = float(ds["noise_level"])
-            colour, ls = LEVEL_STYLE.get(round(level, 4), ("0.3", "-"))
-            plot_threshold(ax, ds["threshold"], color=colour, ls=ls, lw=1.3, label=_level_label(level))
+        mine = sorted((d for d in spectra if d["strategy"].item() == strategy), key=lambda d: float(d["noise_level"]))
+        free = [d for d in mine if float(d["noise_level"]) == 0]
+        plot_threshold_family(ax, [(_level_label(float(d["noise_level"])), d["threshold"]) for d in mine
+                                   if float(d["noise_level"]) > 0],
+                              reference=(_level_label(0.0), free[0]["threshold"]) if free else None,
+                              suffix=", reference")
         plot_a_max0(ax, a_max0)
-        spectrum_axes(ax, f"({letter}) {strategy}")
-        ax.legend(fontsize=8, loc="upper left")
+        spectrum_axes(ax, f"({letter}) {strategy}: each noise level")
+        spectrum_legend(ax, loc="upper left")
     for ax in axes.flat:
         ax.label_outer()
+    fig.suptitle("Lower threshold of the overturning region: convergence with the number of noise realisations "
+                 "(a) and sensitivity to the noise level (b-d)")
     fig.tight_layout()
     return fig
 
 
+@styled
 def figure_timing(sweeps, variable: str, a_max0: float, paper_figure: str, references=()):
     """Figs. 7–8: overlapping thresholds for each sampling time T_s (or delay Δτ), per strategy,
-    with the same strategy without it (``references``: continuous control, or no delay) in black."""
+    with the same strategy without it (``references``: continuous control, or no delay) on top as
+    the named reference (:data:`REFERENCE_STYLE`); curves that coincide share one legend entry.
+    ``paper_figure`` is the paper's figure number (the file's name carries it; the title says what
+    is shown)."""
     strategies = sorted({d["strategy"].item() for d in sweeps})
-    fig, axes = plt.subplots(1, len(strategies), figsize=(5.5 * len(strategies), 4.3), sharex=True, sharey=True,
+    fig, axes = plt.subplots(1, len(strategies), figsize=(5.5 * len(strategies), 4.5), sharex=True, sharey=True,
                              squeeze=False)
     symbol = {"sampling_time": "T_s", "delay": r"\Delta\tau"}[variable]
+    reference_name = "0 (continuous)" if variable == "sampling_time" else "0"
     for ax, letter, strategy in zip(axes.flat, "abcd", strategies):
         runs = sorted((d for d in sweeps if d["strategy"].item() == strategy), key=lambda d: float(d[variable]))
-        for ref in (d for d in references if d["strategy"].item() == strategy):
-            plot_threshold(ax, ref["threshold"], color="k", lw=1.6, label=f"${symbol}$ = 0"
-                           + (" (continuous)" if variable == "sampling_time" else ""))
-        for i, ds in enumerate(runs):
-            label = f"${symbol}$ = {float(ds[variable]) * 1000:g} ms"
-            plot_threshold(ax, ds["threshold"], color=plt.cm.plasma(i / max(1, len(runs))), lw=1.2, label=label)
+        refs = [d for d in references if d["strategy"].item() == strategy]
+        plot_threshold_family(ax, [(f"{float(ds[variable]) * 1000:g} ms", ds["threshold"]) for ds in runs],
+                              prefix=f"${symbol}$ = ",
+                              reference=(reference_name, refs[0]["threshold"]) if refs else None,
+                              suffix=", reference")
         plot_a_max0(ax, a_max0)
-        lev = float(runs[0]["noise_level"])
         extra = f", $T_s$ = {float(runs[0]['sampling_time']) * 1000:g} ms" if variable == "delay" else ""
-        spectrum_axes(ax, f"({letter}) {strategy}, {lev:.0%} noise{extra}")
-        ax.legend(fontsize=8, loc="upper left")
+        spectrum_axes(ax, f"({letter}) {strategy}{extra}")
+        spectrum_legend(ax, loc="upper left")
         ax.label_outer()
-    fig.suptitle(f"Fig. {paper_figure}", fontsize=10)
+    lev = float(sweeps[0]["noise_level"])
+    what = {"sampling_time": "sampling times $T_s$ of the controller",
+            "delay": r"actuation delays $\Delta\tau$ of the controller"}[variable]
+    fig.suptitle(f"Lower threshold of the overturning region for several {what}, {lev:.0%} noise")
     fig.tight_layout()
     return fig
 
 
+@styled
 def figure_maps(maps, a_max0: float):
     """Overturning maps (outcome per grid point) of the noise-free strategies, threshold on top."""
     fig, axes = plt.subplots(1, len(maps), figsize=(4.2 * len(maps), 4.4), sharey=True, squeeze=False)
     handles = []
     for ax, ds in zip(axes.flat, maps):
         _, handles = plot_outcome_map(ax, ds)
-        plot_threshold(ax, ds["threshold"], mark_above=False, color="k", lw=1.0, label=r"$a_{min,OVER}$")
+        plot_threshold(ax, ds["threshold"], mark_above=False, color=OKABE_ITO["black"], lw=1.2,
+                       label=r"$a_{min,OVER}$")
         plot_a_max0(ax, a_max0)
         spectrum_axes(ax, f"{ds['strategy'].item()}, no noise")
+        ax.grid(False)
         ax.label_outer()
-    fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
-    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    from matplotlib.lines import Line2D
+    handles = handles + [Line2D([], [], color=OKABE_ITO["black"], lw=1.2, label=r"lower threshold $a_{min,OVER}$")]
+    fig.legend(handles=handles, loc="lower center", ncol=3, frameon=False)
+    fig.suptitle("Outcome of every run of the amplitude scan, without noise")
+    fig.tight_layout(rect=(0, 0.1, 1, 1))
     return fig
 
 
+@styled
 def figure_spectrum(ds, label: str | None = None):
     """One overturning spectrum: the lower threshold (the aggregate over realisations) and a_max,0."""
     fig, ax = plt.subplots(figsize=(6, 4))
-    plot_threshold(ax, ds["threshold"], label=label)
+    plot_threshold(ax, ds["threshold"], label=label, color=CURVE_COLOURS[0])
     plot_a_max0(ax, ds.attrs["a_max0_ratio"])
     spectrum_axes(ax)
-    ax.legend()
+    spectrum_legend(ax)
     return fig
 
 
@@ -279,23 +437,26 @@ def plot_readings(ax, table, closest: str | None = None):
         (line,) = ax.plot(x, t["j_os"].values, marker="o", ms=3, lw=2.4 if bold else 1.0,
                           label=f"{name}: {t['label'].item()}" + (" (closest)" if bold else ""))
         lines.append(line)
-    lines.append(ax.plot(x, table["paper"].values, ls="none", marker="*", ms=12, color="k", label="paper, Table 1")[0])
+    lines.append(ax.plot(x, table["paper"].values, ls="none", marker="*", ms=12, color=OKABE_ITO["black"],
+                         label="paper, Table 1", zorder=5)[0])
     ax.axhline(0.0, color="0.6", lw=0.6)
     ax.set_xlabel("noise level r [%]")
     ax.set_ylabel(r"$J_{OS}$ of FS against no noise [%]")
-    ax.grid(True, lw=0.3, alpha=0.5)
     return lines
 
 
+@styled
 def figure_readings(table):
     """The readings study: FS row of Table 1 under each reading of the noise model."""
     fig, ax = plt.subplots(figsize=(8, 5), constrained_layout=True)
     plot_readings(ax, table, table.attrs.get("closest_reading"))
-    ax.set_title("Readings of the noise model: FS row of Table 1", fontsize=10)
+    ax.set_title("Utility index of the free-standing block against the noise level, under each reading of the "
+                 "noise model")
     ax.legend(fontsize=7, loc="lower left")
     return fig
 
 
+@styled
 def figure_calibration(grid, best: dict | None = None):
     """J_OS of CS01 and CS02 against FS over kappa_max x xi (one panel per strategy and noise level).
 
@@ -331,16 +492,19 @@ def figure_calibration(grid, best: dict | None = None):
                 ax.clabel(cs, fmt="paper %.1f", fontsize=6)
             fig.colorbar(mesh, ax=ax, label=r"$J_{OS}$ vs FS [%]")
             if best is not None:
-                ax.plot(best["kappa_max"], best["damping_ratio"], marker="*", ms=12, color="r")
+                ax.plot(best["kappa_max"], best["damping_ratio"], marker="*", ms=12, color=OKABE_ITO["vermillion"],
+                        markeredgecolor="w")
             ax.set_xlabel(r"$\kappa_{max}$ [-]")
             ax.set_ylabel(r"$\xi$ [-]")
             ax.set_title(f"{s} vs FS, {level} (paper {paper:+.1f} %)", fontsize=9)
-    fig.suptitle(where, fontsize=9)
+    fig.suptitle(f"Utility index of CS01 and CS02 against the free-standing block over the device's "
+                 f"stiffness and damping ({where})", fontsize=9)
     return fig
 
 
 # --- beyond the paper: probability of overturning, record fragility ----------------------------------
-STRATEGY_COLOURS = {"FS": "k", "PASSIVE": "tab:green", "CS01": "tab:blue", "CS02": "tab:red"}
+STRATEGY_COLOURS = {"FS": OKABE_ITO["black"], "PASSIVE": OKABE_ITO["bluish_green"], "CS01": OKABE_ITO["blue"],
+                    "CS02": OKABE_ITO["vermillion"]}
 INTENSITY_LABELS = {"pga_ratio": r"PGA$/(g\,\tan\alpha)$ [-]", "pgv_ratio": r"PGV$\cdot p/(g\,\tan\alpha)$ [-]"}
 
 
@@ -351,7 +515,7 @@ def plot_probability(ax, ds, levels=(0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0)):
     x, y = ds["frequency_ratio"].values, ds["amplitude_ratio"].values
     mesh = ax.pcolormesh(x, y, p.values, cmap="magma_r", vmin=0.0, vmax=1.0, shading="nearest", rasterized=True)
     if float(p.min()) < 0.5 < float(p.max()):
-        ax.contour(x, y, p.values, levels=[0.5], colors="tab:cyan", linewidths=1.0)
+        ax.contour(x, y, p.values, levels=[0.5], colors=OKABE_ITO["sky_blue"], linewidths=1.2)
     return mesh
 
 
@@ -391,6 +555,7 @@ def plot_median_shift(ax, ds):
     return bars
 
 
+@styled
 def figure_probability(surfaces, a_max0: float):
     """P(overturn) surfaces: one row per noise level, one column per strategy, lower envelope on top."""
     levels = sorted({float(ds["noise_level"]) for ds in surfaces})
@@ -401,7 +566,7 @@ def figure_probability(surfaces, a_max0: float):
     for ds in surfaces:
         ax = axes[levels.index(float(ds["noise_level"])), strategies.index(str(ds["strategy"].values))]
         mesh = plot_probability(ax, ds)
-        plot_threshold(ax, ds["threshold"], mark_above=False, color="#00c000", lw=1.2, ls="--",
+        plot_threshold(ax, ds["threshold"], mark_above=False, color=OKABE_ITO["bluish_green"], lw=1.4, ls="--",
                        label=r"$a_{min,OVER}$ (lowest of N)")
         plot_a_max0(ax, a_max0)
         spectrum_axes(ax, f"{ds['strategy'].item()}, {_level_label(float(ds['noise_level']))}, "
@@ -409,28 +574,45 @@ def figure_probability(surfaces, a_max0: float):
         ax.label_outer()
     from matplotlib.lines import Line2D
     handles, _ = axes.flat[0].get_legend_handles_labels()
-    handles.append(Line2D([], [], color="tab:cyan", lw=1.0, label="P = 0.5"))
+    handles.append(Line2D([], [], color=OKABE_ITO["sky_blue"], lw=1.2, label="P = 0.5"))
     axes.flat[0].legend(handles=handles, fontsize=7, loc="upper left")
+    fig.suptitle("Probability of overturning over the noise realisations")
     fig.tight_layout(rect=(0, 0, 0.93, 1))
     cax = fig.add_axes((0.94, 0.15, 0.012, 0.7))
     fig.colorbar(mesh, cax=cax, label="P(overturn) over the realisations [-]")
     return fig
 
 
+def pga_in_g_axis(ax, tan_alpha: float):
+    """A secondary x axis on top of a PGA/(g·tanα) axis giving the same intensity as PGA in g
+    (PGA/g = ratio·tanα); returns the secondary axis."""
+    if not (np.isfinite(tan_alpha) and tan_alpha > 0):
+        raise ValueError(f"tan_alpha must be a positive number, got {tan_alpha!r}")
+    sec = ax.secondary_xaxis("top", functions=(lambda r: r * tan_alpha, lambda g: g / tan_alpha))
+    sec.set_xlabel("PGA [g]")
+    return sec
+
+
+@styled
 def figure_fragility(ds):
-    """Fragility curves of each strategy over a record suite, and the median shift over FS."""
-    fig, (ax, axr) = plt.subplots(1, 2, figsize=(10, 4.2), width_ratios=(2.2, 1))
+    """Fragility curves of each strategy over a record suite, and the median shift over FS; with
+    the intensity PGA/(g·tanα), a top axis gives it as PGA in g."""
+    fig, (ax, axr) = plt.subplots(1, 2, figsize=(10, 4.6), width_ratios=(2.2, 1))
     for s in ds["strategy"].values:
         plot_fragility(ax, ds, str(s))
     measure = ds.attrs["intensity_measure"]
     ax.set_xlabel(INTENSITY_LABELS.get(measure, f"{ds.attrs['intensity_measure_definition']} [-]"))
     ax.set_ylabel("fraction of records that overturn the block [-]")
     ax.set_ylim(-0.02, 1.02)
-    ax.grid(True, lw=0.3, alpha=0.5)
-    ax.legend(fontsize=8, loc="lower right")
-    ax.set_title(f"Fragility over {ds.attrs['n_records']} records (dots) and lognormal MLE (lines)", fontsize=10)
+    ax.legend(loc="lower right")
+    if measure == "pga_ratio" and "block_alpha" in ds.attrs:
+        pga_in_g_axis(ax, float(np.tan(float(ds.attrs["block_alpha"]))))
+    ax.set_title(f"Fraction of {ds.attrs['n_records']} records that overturn the block (dots) and lognormal "
+                 "fit (lines)", fontsize=9)
     plot_median_shift(axr, ds)
-    axr.set_title(f"median over FS (bootstrap 95 %, {ds.attrs['n_bootstrap']} draws)", fontsize=9)
-    axr.grid(True, axis="y", lw=0.3, alpha=0.5)
+    axr.set_title(f"fragility median over FS's\n(bootstrap 95 % interval, {ds.attrs['n_bootstrap']} draws)",
+                  fontsize=9)
+    axr.grid(True, axis="y")
+    axr.grid(False, axis="x")
     fig.tight_layout()
     return fig

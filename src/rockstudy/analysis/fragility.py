@@ -377,7 +377,8 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
             "median_low": ("strategy", intervals[:, 0], {**im_attrs, "long_name": "95 % Wald interval of theta, low"}),
             "median_high": ("strategy", intervals[:, 1], {**im_attrs, "long_name": "95 % Wald interval of theta, "
                                                           "high"}),
-            "log_likelihood": ("strategy", [f.log_likelihood for f in fits], {"units": "1"}),
+            "log_likelihood": ("strategy", [f.log_likelihood for f in fits],
+                               {"units": "1", "long_name": "maximum log-likelihood of the lognormal fit"}),
             "fit_status": ("strategy", [f.status for f in fits], {"long_name": "see FragilityFit.status"}),
             "median_ratio": ("strategy", ratio, {"units": "1", "long_name": "theta / theta_FS"}),
             "median_ratio_low": ("strategy", ci[0], {"units": "1", "long_name": "theta / theta_FS, bootstrap over "
@@ -395,8 +396,10 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
             "record_intensity": ("record", [intensity(r, block, measure) for r in records],
                                  {**im_attrs, "long_name": "intensity measure of the unscaled record"}),
             "record_source": ("record", [r.source for r in records], {"long_name": "file or generator"}),
-            "sampling_time": ("strategy", [c.sampling_time for c in controls], {"units": "s"}),
-            "delay": ("strategy", [c.delay for c in controls], {"units": "s"}),
+            "sampling_time": ("strategy", [c.sampling_time for c in controls],
+                              {"units": "s", "long_name": "sampling time T_s of the controller"}),
+            "delay": ("strategy", [c.delay for c in controls],
+                      {"units": "s", "long_name": "actuation delay of the controller"}),
         },
         attrs={
             "title": "Fragility of the controlled block over a record suite (multiple stripe analysis)",

@@ -77,3 +77,11 @@ def rest_velocity(p: float, alpha: float) -> float:
 
 PAPER = "Use of overturning spectra in the performance evaluation of on-off control strategies for rocking objects"
 """Title of the paper every dataset cites (its ``paper`` attribute)."""
+
+PAPER_REFERENCE = (f"{PAPER}. Conference paper on on-off adaptive control of the anchorages of rigid rocking "
+                   "blocks under amplitude-modulated harmonic excitation (the copy of the paper the study "
+                   "reproduces names neither its authors nor its venue).")
+"""Full reference of the paper, the ``references`` attribute of every netCDF file rockstudy writes."""
+
+CF_CONVENTIONS = "CF-1.11"
+"""The netCDF conventions every file rockstudy writes follows (its ``Conventions`` attribute)."""

@@ -5,6 +5,11 @@ temporary file in the same folder, flushed to disk (fsync), given the mode the u
 (0666 & ~umask, like any file the user creates; ``mkstemp`` alone would leave 0600), then
 renamed over the target with ``os.replace``. An interrupted or failed write never leaves a
 half-written file behind, and an existing file is kept until the new one is complete.
+
+Every netCDF file goes through :func:`write_netcdf`, which makes it CF-1.11 conforming: the global
+attributes ``Conventions``, ``title``, ``source``, ``history`` and ``references`` (the paper), no
+``_FillValue`` on coordinate variables, and a check that every one-dimensional coordinate is
+strictly monotonic (CF §1.2) before anything is written.
 """
 from __future__ import annotations
 
@@ -16,6 +21,9 @@ from typing import Callable
 
 import numpy as np
 import xarray as xr
+
+from rockstudy._version import __version__
+from rockstudy.core.constants import CF_CONVENTIONS, PAPER_REFERENCE
 
 
 def netcdf_attr(value):
@@ -85,13 +93,52 @@ def atomic_write(path, write: Callable[[str], None]) -> Path:
     return path
 
 
+def cf_attributes(attrs: dict) -> dict:
+    """``attrs`` with the CF global attributes rockstudy adds to every netCDF file.
+
+    ``Conventions`` (:data:`~rockstudy.core.constants.CF_CONVENTIONS`), ``source`` (the package
+    and version), ``references`` (the paper, :data:`~rockstudy.core.constants.PAPER_REFERENCE`),
+    ``title`` (kept if present) and ``history``: a line naming the writer appended to any history
+    already there. The history line carries no time stamp, so that a rerun writes the same file.
+    """
+    line = f"written by rockstudy {__version__} (rockstudy.core.io.write_netcdf)"
+    history = str(attrs.get("history", "")).strip()
+    if line not in history.splitlines():
+        history = f"{history}\n{line}" if history else line
+    return {"Conventions": CF_CONVENTIONS,
+            "title": attrs.get("title", "rockstudy dataset"),
+            "source": f"rockstudy {__version__}: numerical simulation of rigid rocking blocks with on-off "
+                      "controlled anchorages",
+            "references": PAPER_REFERENCE,
+            **{k: v for k, v in attrs.items() if k not in ("Conventions", "title", "history")},
+            "history": history}
+
+
+def check_coordinates(ds: xr.Dataset) -> None:
+    """Raise ``ValueError`` unless every numeric one-dimensional coordinate variable (a variable
+    named after its dimension) is strictly monotonic, as CF §1.2 requires."""
+    for name in ds.dims:
+        if name not in ds.variables or ds[name].dtype.kind not in "fiu" or ds[name].size < 2:
+            continue
+        step = np.diff(ds[name].values)
+        if not (np.all(step > 0) or np.all(step < 0)):
+            raise ValueError(f"coordinate {name!r} is not strictly monotonic ({int(np.sum(step == 0))} repeated "
+                             f"values): CF coordinates need one value per index")
+
+
 def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
-    """Write ``ds`` to ``path`` atomically (:func:`atomic_write`), with zlib compression of the data variables."""
+    """Write ``ds`` to ``path`` atomically (:func:`atomic_write`) as a CF-1.11 file.
+
+    Global attributes get :func:`cf_attributes`; coordinates are written without ``_FillValue``
+    (CF §2.5.1) and must be strictly monotonic (:func:`check_coordinates`); data variables are
+    zlib-compressed when ``compress``.
+    """
+    check_coordinates(ds)
     ds = ds.copy()
-    ds.attrs = clean_attrs(ds.attrs)
+    ds.attrs = clean_attrs(cf_attributes(ds.attrs))
     for name in list(ds.variables):
         ds[name].attrs = clean_attrs(ds[name].attrs)
-    encoding = {}
+    encoding = {name: {"_FillValue": None} for name in ds.coords}
     if compress:
         for name, var in ds.data_vars.items():
             if var.dtype.kind in "fiub" and var.ndim > 0:

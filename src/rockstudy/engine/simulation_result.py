@@ -4,6 +4,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+import xarray as xr
+
+from rockstudy.core.constants import NOISE_DT
 
 STATUS_OVERTURNED = "overturned"
 STATUS_REST = "rest"
@@ -62,6 +65,13 @@ class SimulationResult:
         """Overturned after at least one impact (mode 2 of Zhang & Makris)."""
         return bool(self.overturned and self.n_impacts > 0)
 
+    def to_dataset(self, block=None, anchorage=None, motion=None, ground_dt: float = NOISE_DT) -> xr.Dataset:
+        """The history as a labelled Dataset, in the layout of the history netCDF files.
+
+        See :func:`history_dataset`; requires a run with ``record_history=True``.
+        """
+        return history_dataset(self, block, anchorage, motion, ground_dt)
+
     def summary(self) -> dict:
         """JSON-friendly summary (no history)."""
         def _f(x):
@@ -79,3 +89,93 @@ class SimulationResult:
             "rest_times_s": [float(x) for x in self.rest_times],
             "fracture_times_s": {k: float(v) for k, v in self.fracture_times.items()},
         }
+
+
+def unique_times(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Indices of the first and of the last sample of each run of equal times in ``t``.
+
+    The engines record an instant where the state jumps (an impact reverses θ̇, the control
+    switches κ) twice, before and after the jump; ``last`` keeps each instant once with the state
+    after the jump, ``first`` points at the state before it.
+    """
+    t = np.asarray(t, dtype=float)
+    if len(t) == 0:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    new = np.ones(len(t), dtype=bool)
+    new[1:] = t[1:] != t[:-1]
+    first = np.flatnonzero(new)
+    last = np.append(first[1:] - 1, len(t) - 1)
+    return first, last
+
+
+def history_dataset(result: SimulationResult, block=None, anchorage=None, motion=None,
+                    ground_dt: float = NOISE_DT) -> xr.Dataset:
+    """A run's history as a Dataset with a strictly increasing ``time`` and an ``impact`` dimension.
+
+    ``time`` holds every recorded instant once (the integrator's steps and the events); where the
+    state jumps the value is the one just after the jump (right-continuous: κ is a step function
+    with ``where="post"``). The impacts (θ = 0) are on their own dimension ``impact`` with the
+    angular velocity just before and just after each (their ratio is the restitution of Eq. 15).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        A run with ``record_history=True``.
+    block : Block, optional
+        Adds the paper's normalisations θ/α, θ̇/(p·α) (``rotation_ratio``, ``velocity_ratio``,
+        ``velocity_before_impact_ratio``, ``velocity_after_impact_ratio``).
+    anchorage : Anchorage, optional
+        Adds ``stiffness_ratio`` κ/κ_max (κ itself when κ_max = 0).
+    motion : GroundMotion, optional
+        With ``block``, adds the ground motion Ẍ_g/(g·tanα) sampled every ``ground_dt`` [s] on
+        ``ground_time`` (``ground_ratio``).
+    """
+    if result.history is None:
+        raise ValueError("the simulation has no history: run it with record_history=True")
+    h = result.history
+    first, last = unique_times(h["t"])
+    t = h["t"][last]
+    one = {"units": "1"}
+    impacts = np.asarray(result.impact_times, dtype=float)
+    at = np.searchsorted(t, impacts)
+    found = (at < len(t)) & (t[np.minimum(at, max(len(t) - 1, 0))] == impacts) if len(t) else np.zeros(0, bool)
+    before = np.full(len(impacts), np.nan)
+    after = np.full(len(impacts), np.nan)
+    before[found] = h["theta_dot"][first[at[found]]]
+    after[found] = h["theta_dot"][last[at[found]]]
+    data = {"theta": ("time", h["theta"][last], {"units": "rad", "long_name": "rotation theta"}),
+            "theta_dot": ("time", h["theta_dot"][last],
+                          {"units": "rad/s", "long_name": "angular velocity (just after a jump at an event)"}),
+            "kappa": ("time", h["kappa"][last], {**one, "long_name": "dimensionless stiffness 4Kb^2/(mgR)"}),
+            "theta_dot_before_impact": ("impact", before, {"units": "rad/s",
+                                                           "long_name": "angular velocity just before the impact"}),
+            "theta_dot_after_impact": ("impact", after, {"units": "rad/s",
+                                                         "long_name": "angular velocity just after the impact"})}
+    if "ground_acceleration" in h:
+        data["ground_acceleration"] = ("time", h["ground_acceleration"][last], {"units": "m/s^2", "long_name": "X_g"})
+    coords = {"time": ("time", t, {"units": "s", "long_name": "time since the start of the ground motion "
+                                                             "(integrator steps and events)"}),
+              "impact_time": ("impact", impacts, {"units": "s", "long_name": "time of the impact (theta = 0)"})}
+    if block is not None:
+        scale = block.p * block.alpha
+        data["rotation_ratio"] = ("time", h["theta"][last] / block.alpha, {**one, "long_name": "theta/alpha"})
+        data["velocity_ratio"] = ("time", h["theta_dot"][last] / scale, {**one, "long_name": "theta_dot/(p alpha)"})
+        data["velocity_before_impact_ratio"] = ("impact", before / scale,
+                                                {**one, "long_name": "theta_dot/(p alpha) just before the impact"})
+        data["velocity_after_impact_ratio"] = ("impact", after / scale,
+                                               {**one, "long_name": "theta_dot/(p alpha) just after the impact"})
+    if anchorage is not None:
+        kappa_ref = anchorage.kappa_max if anchorage.kappa_max > 0 else 1.0
+        data["stiffness_ratio"] = ("time", h["kappa"][last] / kappa_ref, {**one, "long_name": "K/K_max"})
+    if motion is not None and block is not None:
+        ground_time = np.arange(0.0, result.end_time + ground_dt, ground_dt)
+        data["ground_ratio"] = ("ground_time", motion.horizontal(ground_time) / block.uplift_acceleration,
+                                {**one, "long_name": "X_g/(g tan(alpha))"})
+        coords["ground_time"] = ("ground_time", ground_time, {"units": "s", "long_name": "time (uniform)"})
+    summary = result.summary()
+    return xr.Dataset(data, coords=coords,
+                      attrs={"status": summary["status"], "overturned": int(summary["overturned"]),
+                             "overturn_time_s": np.nan if summary["overturn_time_s"] is None
+                             else summary["overturn_time_s"],
+                             "end_time_s": summary["end_time_s"], "max_rotation_ratio": summary["max_rotation_ratio"],
+                             "n_impacts": summary["n_impacts"], "engine": result.engine})

@@ -127,34 +127,19 @@ def convergence_dataset(ds: xr.Dataset) -> xr.Dataset:
 def history_dataset(result, scenario: Scenario, motion, frequency_ratio: float, amplitude_ratio: float,
                     realisation: int = 0, dt: float = NOISE_DT) -> xr.Dataset:
     """A :class:`SimulationResult` history as a labelled Dataset with the paper's normalisations
-    (Figs. 2, 3, 5b): θ/α, θ̇/(p·α), κ/κ_max at the integrator's steps (``time``) and the ground
-    motion Ẍ_g/(g·tanα) of ``motion`` sampled every ``dt`` [s] (``ground_time``)."""
-    if result.history is None:
-        raise ValueError("the simulation has no history: run it with record_history=True")
-    h, b, an = result.history, scenario.block, scenario.anchorage
-    ground_time = np.arange(0.0, result.end_time + dt, dt)
-    kappa_ref = an.kappa_max if an.kappa_max > 0 else 1.0
-    one = {"units": "1"}
-    summary = result.summary()
-    return xr.Dataset(
-        {"theta": ("time", h["theta"], {"units": "rad", "long_name": "rotation theta"}),
-         "theta_dot": ("time", h["theta_dot"], {"units": "rad/s", "long_name": "angular velocity"}),
-         "kappa": ("time", h["kappa"], {**one, "long_name": "dimensionless stiffness 4Kb^2/(mgR)"}),
-         "ground_acceleration": ("time", h["ground_acceleration"], {"units": "m/s^2", "long_name": "X_g"}),
-         "rotation_ratio": ("time", h["theta"] / b.alpha, {**one, "long_name": "theta/alpha"}),
-         "velocity_ratio": ("time", h["theta_dot"] / (b.p * b.alpha), {**one, "long_name": "theta_dot/(p alpha)"}),
-         "stiffness_ratio": ("time", h["kappa"] / kappa_ref, {**one, "long_name": "K/K_max"}),
-         "ground_ratio": ("ground_time", motion.horizontal(ground_time) / b.uplift_acceleration,
-                          {**one, "long_name": "X_g/(g tan(alpha))"})},
-        coords={"time": ("time", h["t"], {"units": "s", "long_name": "time (integrator steps)"}),
-                "ground_time": ("ground_time", ground_time, {"units": "s", "long_name": "time (uniform)"})},
-        attrs={"title": f"Time history, {scenario.control.strategy}, omega_p/p={frequency_ratio:g}, "
-                        f"a_p/(g tan alpha)={amplitude_ratio:g}", "paper": PAPER, "rockstudy_version": __version__,
-               "frequency_ratio": frequency_ratio, "amplitude_ratio": amplitude_ratio,
-               "noise_realisation": int(realisation), "status": summary["status"],
-               "overturned": int(summary["overturned"]), "n_impacts": summary["n_impacts"],
-               "excitation_end_s": excitation_duration(scenario.excitation, scenario.omega(frequency_ratio)),
-               **scenario.to_attrs()})
+    (Figs. 2, 3, 5b): θ/α, θ̇/(p·α), κ/κ_max on a strictly increasing ``time`` (the integrator's
+    steps and events, each once, the state just after a jump), the velocities just before and
+    after each impact on the ``impact`` dimension, and the ground motion Ẍ_g/(g·tanα) of
+    ``motion`` sampled every ``dt`` [s] (``ground_time``); the layout of
+    :meth:`SimulationResult.to_dataset` with the scenario's attributes."""
+    ds = result.to_dataset(scenario.block, scenario.anchorage, motion, dt)
+    ds.attrs = {"title": f"Time history, {scenario.control.strategy}, omega_p/p={frequency_ratio:g}, "
+                         f"a_p/(g tan alpha)={amplitude_ratio:g}", "paper": PAPER, "rockstudy_version": __version__,
+                "frequency_ratio": frequency_ratio, "amplitude_ratio": amplitude_ratio,
+                "noise_realisation": int(realisation), **ds.attrs,
+                "excitation_end_s": excitation_duration(scenario.excitation, scenario.omega(frequency_ratio)),
+                **scenario.to_attrs()}
+    return ds
 
 
 def time_history(scenario: Scenario, frequency_ratio: float, amplitude_ratio: float,

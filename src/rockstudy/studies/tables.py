@@ -108,6 +108,11 @@ def table1(spectra, strategies, noise_levels: dict, a_max0_g: float) -> xr.Datas
                    "noise_level_values": str(noise_levels), **provenance(spectra)})
 
 
+TIMING_LONG_NAMES = {"sampling_time": "sampling time T_s of the controller",
+                     "delay": "actuation delay of the controller"}
+"""Long names of the timing tables' last coordinate."""
+
+
 def timing_table(sweep, same_strategy, free_standing, variable: str, a_max0_g: float,
                  reference: str = "continuous_same_noise") -> xr.Dataset:
     """J_OS of sampled (or delayed) control against the same strategy without that timing
@@ -129,7 +134,7 @@ def timing_table(sweep, same_strategy, free_standing, variable: str, a_max0_g: f
                   "sampling_time_s": str(sorted({float(d['sampling_time']) for d in sweep})),
                   "noise_level": str(sorted({float(d['noise_level']) for d in sweep})),
                   **provenance(list(sweep) + list(same_strategy) + list(free_standing))})
-    out[variable].attrs = {"units": "s"}
+    out[variable].attrs = {"units": "s", "long_name": TIMING_LONG_NAMES.get(variable, variable)}
     return out
 
 
