@@ -37,7 +37,13 @@ def _configure_numba_cache():
 _configure_numba_cache()
 
 from rockstudy.analysis.scenario import Scenario  # noqa: E402
-from rockstudy.analysis.spectra import AmplitudeGrid, frequency_grid, spectrum, threshold  # noqa: E402
+from rockstudy.analysis.spectra import (  # noqa: E402
+    AmplitudeGrid,
+    ThresholdResult,
+    frequency_grid,
+    spectrum,
+    threshold,
+)
 from rockstudy.engine.outcome import Outcome  # noqa: E402
 from rockstudy.engine.simulate import simulate  # noqa: E402
 from rockstudy.engine.simulation_result import SimulationResult  # noqa: E402
@@ -48,4 +54,5 @@ from rockstudy.model.excitation import GroundMotion  # noqa: E402
 
 __all__ = ["Block", "BLOCK_PRESETS", "GRAVITY", "Anchorage", "Control", "STRATEGIES", "GroundMotion", "Outcome",
            "SimulationResult", "AmplitudeGrid", "Scenario", "frequency_grid", "simulate", "spectrum", "threshold",
+           "ThresholdResult",
            "__version__"]

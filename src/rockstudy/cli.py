@@ -351,7 +351,8 @@ def _cmd_threshold(args, parser):
         _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
     except validation.InputError as exc:
         parser.error(str(exc))
-    res = threshold(scenario, args.frequency_ratio, realisation=args.realisation, grid=grid, engine=args.engine)
+    res = threshold(scenario, args.frequency_ratio, realisation=args.realisation, grid=grid,
+                    engine=args.engine).as_dict()
     uplift = 1.0 / scenario.unit_peak(args.frequency_ratio, args.realisation)
     start = float(grid.values()[0])
     complete = start <= uplift

@@ -194,3 +194,48 @@ def test_cli_refuses_a_malformed_record_with_the_line(tmp_path, capsys):
     with pytest.raises(SystemExit):
         main(["simulate", "--record-scale", "2"])
     assert "--record" in capsys.readouterr().err
+
+
+# --- one column with a given step (OpenSees timeSeries Path -dt) ----------------------------------------
+def _one_and_two_columns(tmp_path, blc06):
+    omega = 2.0 * blc06.p
+    rec = _sampled(modulated, 1.5 * blc06.uplift_acceleration / 9.80665, omega,
+                   excitation_duration("modulated", omega), 0.005)
+    one, two = tmp_path / "quake.txt", tmp_path / "quake.csv"
+    values = [f"{a:.12e}" for a in rec.acceleration]
+    one.write_text("# one value per line, OpenSees style\n" + "\n".join(values) + "\n")
+    two.write_text("time [s], acceleration [g]\n"
+                   + "".join(f"{i * 0.005:.4f}, {a}\n" for i, a in enumerate(values)))
+    return one, two
+
+
+def test_one_column_record_and_the_same_as_two_columns_give_the_same_outcome(tmp_path, blc06):
+    one, two = _one_and_two_columns(tmp_path, blc06)
+    a, b = read_record(one, "g", dt=0.005), read_record(two)
+    np.testing.assert_array_equal(a.acceleration, b.acceleration)
+    assert a.dt == pytest.approx(b.dt, rel=1e-12) and a.unit == b.unit == "g"
+    ra = simulate(blc06, Anchorage(), Control("CS01"), a.motion())
+    rb = simulate(blc06, Anchorage(), Control("CS01"), b.motion())
+    sa, sb = ra.compact_summary(), rb.compact_summary()
+    assert sa["status"] == sb["status"] and sa["n_impacts"] == sb["n_impacts"] and sa["n_uplifts"] == sb["n_uplifts"]
+    for key in ("max_rotation_ratio", "end_time_s", "first_impact_s", "last_impact_s"):
+        assert sa[key] == pytest.approx(sb[key], rel=1e-9), key
+    assert ra.n_impacts > 0  # the record rocks the block
+    # several values per line read in order
+    many = tmp_path / "many.txt"
+    many.write_text("accel [g]\n" + "\n".join(" ".join(f"{x:.12e}" for x in a.acceleration[i:i + 5] / 9.80665)
+                                              for i in range(0, a.acceleration.size, 5)) + "\n")
+    np.testing.assert_allclose(read_record(many, dt=0.005).acceleration, a.acceleration, rtol=1e-12)
+
+
+def test_one_column_refuses_a_time_column_a_bad_step_and_an_at2_step(tmp_path, blc06):
+    one, two = _one_and_two_columns(tmp_path, blc06)
+    with pytest.raises(RecordFormatError, match="time column"):
+        read_record(two, dt=0.005)
+    with pytest.raises(ValueError, match="dt must be a positive number"):
+        read_record(one, "g", dt=0.0)
+    with pytest.raises(RecordFormatError, match="unit"):
+        read_record(one, dt=0.005)
+    at2 = write_at2(read_record(two), tmp_path / "q.AT2")
+    with pytest.raises(ValueError, match="states its own time step"):
+        read_record(at2, dt=0.005)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import logging
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass, fields
 
 import numpy as np
 import xarray as xr
@@ -84,17 +84,69 @@ def _reference_outcome(scenario: Scenario, motion: GroundMotion, amplitude_ratio
     return Outcome.OVERTURNED_AFTER_IMPACT if r.n_impacts else Outcome.OVERTURNED_WITHOUT_IMPACT
 
 
+@dataclass(frozen=True)
+class ThresholdResult:
+    """The minimum overturning amplitude ratio at one frequency, as :func:`threshold` finds it.
+
+    Attributes
+    ----------
+    amplitude_ratio : float or None
+        a_min,OVER/(g·tanα): the lowest overturning amplitude ratio found, to ``resolution``
+        (None when nothing on the scan overturns). [-]
+    last_safe_amplitude_ratio : float
+        The highest amplitude ratio found safe below it (the scan's top when nothing overturned). [-]
+    max_amplitude_ratio : float
+        The scan's top. [-]
+    resolution : float
+        Bisection resolution. [-]
+    frequency_ratio : float
+        ω_p/p. [-]
+    n_simulations : int
+        Runs the scan made.
+    n_undetermined : int
+        Runs that hit the fast engine's event cap (counted as not overturned).
+    energy_ratio, pga_ratio : float
+        The noisy record's energy and PGA over the baseline's (1 without noise). [-]
+    engine : str
+        "fast" or "reference".
+
+    ``result["amplitude_ratio"]`` reads a field as the dict this function returned before;
+    :meth:`as_dict` gives all of them (JSON-friendly).
+    """
+
+    amplitude_ratio: float | None
+    last_safe_amplitude_ratio: float
+    max_amplitude_ratio: float
+    resolution: float
+    frequency_ratio: float
+    n_simulations: int
+    n_undetermined: int
+    energy_ratio: float
+    pga_ratio: float
+    engine: str
+
+    def as_dict(self) -> dict:
+        """The fields as a dict (JSON-friendly: plain floats, ints, str and None)."""
+        return asdict(self)
+
+    def __getitem__(self, name: str):
+        if name not in {f.name for f in fields(self)}:
+            raise KeyError(name)
+        return getattr(self, name)
+
+
 def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 0,
-              grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast", energy_bound: bool = True) -> dict:
+              grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast",
+              energy_bound: bool = True) -> ThresholdResult:
     """Minimum overturning amplitude ratio a_p/(g·tanα) at one frequency ratio.
 
     ``energy_bound`` (fast engine) ends each run once it provably cannot overturn any more
     (docs/model.md); it never changes an outcome, only the time spent (False: integrate every run
     to rest or the time limit, as before).
 
-    Returns a dict with ``amplitude_ratio`` (None when nothing on the grid overturns),
-    ``last_safe_amplitude_ratio``, ``n_simulations``, the bound scanned, and the noise record's
-    energy and PGA ratios.
+    Returns a :class:`ThresholdResult`: ``amplitude_ratio`` (None when nothing on the grid
+    overturns), ``last_safe_amplitude_ratio``, ``n_simulations``, the bound scanned, and the noise
+    record's energy and PGA ratios.
     """
     if not (frequency_ratio > 0 and math.isfinite(frequency_ratio)):
         raise ValueError(f"frequency_ratio must be a positive number, got {frequency_ratio!r}")
@@ -115,18 +167,18 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
         thr, lo, n_und = state[kernel.S_HI], state[kernel.S_LO], 0
     else:
         raise ValueError(f"engine must be 'fast' or 'reference', got {engine!r}")
-    return {
-        "amplitude_ratio": None if not np.isfinite(thr) else float(thr),
-        "last_safe_amplitude_ratio": float(lo),
-        "max_amplitude_ratio": float(values[-1]),
-        "resolution": grid.resolution,
-        "frequency_ratio": float(frequency_ratio),
-        "n_simulations": int(n_sim),
-        "n_undetermined": int(n_und),
-        "energy_ratio": case.energy_ratio,
-        "pga_ratio": case.pga_ratio,
-        "engine": engine,
-    }
+    return ThresholdResult(
+        amplitude_ratio=None if not np.isfinite(thr) else float(thr),
+        last_safe_amplitude_ratio=float(lo),
+        max_amplitude_ratio=float(values[-1]),
+        resolution=float(grid.resolution),
+        frequency_ratio=float(frequency_ratio),
+        n_simulations=int(n_sim),
+        n_undetermined=int(n_und),
+        energy_ratio=float(case.energy_ratio),
+        pga_ratio=float(case.pga_ratio),
+        engine=engine,
+    )
 
 
 def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: bool = True):

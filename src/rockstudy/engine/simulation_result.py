@@ -72,6 +72,28 @@ class SimulationResult:
         """
         return history_dataset(self, block, anchorage, motion, ground_dt)
 
+    def compact_summary(self) -> dict:
+        """The outcome in a few fields (JSON-friendly): status, the counts of impacts, uplifts,
+        returns to rest and broken elements, the first and last impact, the peak rotation and
+        the end time; :meth:`summary` has the full event lists."""
+        def _f(x):
+            return None if not np.isfinite(x) else float(x)
+        impacts = np.asarray(self.impact_times, dtype=float)
+        return {
+            "engine": self.engine,
+            "status": self.status,
+            "overturned": bool(self.overturned),
+            "overturn_time_s": _f(self.overturn_time),
+            "end_time_s": float(self.end_time),
+            "max_rotation_ratio": float(self.max_rotation_ratio),
+            "n_impacts": self.n_impacts,
+            "first_impact_s": float(impacts[0]) if impacts.size else None,
+            "last_impact_s": float(impacts[-1]) if impacts.size else None,
+            "n_uplifts": int(len(self.uplift_times)),
+            "n_rests": int(len(self.rest_times)),
+            "n_fractures": len(self.fracture_times),
+        }
+
     def summary(self) -> dict:
         """JSON-friendly summary (no history)."""
         def _f(x):

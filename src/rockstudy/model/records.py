@@ -21,6 +21,10 @@ line that is not a comment) may name the columns, e.g. ``time [s], acceleration 
 its bracketed unit is used when no unit is given. Times must start anywhere and increase by
 one constant step (the record's time origin is its first sample).
 
+One column with a given step ``dt`` (the file OpenSees reads with ``timeSeries Path -dt``): the
+accelerations at t = 0, dt, 2·dt, ... in order, any number per line, with the same comment and
+header rules as two columns.
+
 References
 ----------
 .. [1] PEER (2010). *PEER Ground Motion Database, technical report and user's manual*,
@@ -318,6 +322,73 @@ def read_two_column(path, unit: str | None = None) -> Record:
     return Record(name=path.stem, dt=dt, acceleration=data[:, 1] * factor, source=str(path), unit=unit)
 
 
+def read_one_column(path, dt: float, unit: str | None = None) -> Record:
+    """Read a one-column record (OpenSees ``timeSeries Path -dt``): accelerations at i·dt.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file: accelerations in order, any number per line; blank lines and ``#`` lines are
+        skipped; one header line before the data may state the unit in brackets.
+    dt : float
+        Time step between samples. [s]
+    unit : str, optional
+        Acceleration unit, one of :data:`UNITS`; when None, the header line must state it.
+
+    Returns
+    -------
+    Record
+        ``acceleration`` in m/s^2 at t_i = i·dt.
+
+    Raises
+    ------
+    RecordFormatError
+        Naming the line: a token that is not a number, a non-finite value, fewer than 2 values,
+        no unit, or a file whose every row holds two numbers with a first column that increases
+        by a uniform step (a time column: read it as two columns, without ``dt``).
+    ValueError
+        If ``dt`` is not a positive finite number or ``unit`` is not one of :data:`UNITS`.
+    """
+    if isinstance(dt, bool) or not isinstance(dt, (int, float)) or not (math.isfinite(dt) and dt > 0):
+        raise ValueError(f"dt must be a positive number of seconds, got {dt!r}")
+    path = Path(path)
+    lines = path.read_text(errors="replace").splitlines()
+    header_unit, values, rows = None, [], []
+    seen_header = False
+    for number, text in enumerate(lines, start=1):
+        stripped = text.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        fields = [f for f in _SEPARATORS.split(stripped) if f]
+        try:
+            row = [_float(f) for f in fields]
+        except ValueError:
+            if not values and not seen_header:
+                seen_header, header_unit = True, _header_unit(stripped)
+                continue
+            raise RecordFormatError(path, number, "accelerations (numbers only)", stripped) from None
+        if not all(math.isfinite(x) for x in row):
+            raise RecordFormatError(path, number, "finite accelerations", stripped)
+        values.extend(row)
+        rows.append(row)
+    if len(values) < 2:
+        raise RecordFormatError(path, len(lines) + 1, "at least 2 accelerations", f"end of file after {len(values)}")
+    if len(rows) > 2 and all(len(r) == 2 for r in rows):
+        first = np.diff([r[0] for r in rows])
+        if np.all(first > 0) and np.allclose(first, np.median(first), rtol=UNIFORM_STEP_TOLERANCE):
+            raise RecordFormatError(path, None, "one column of accelerations: every row holds two numbers and the "
+                                    "first increases by a uniform step, as a time column does; read it as two "
+                                    "columns (without dt / --record-dt)")
+    if unit is None:
+        if not header_unit:
+            raise RecordFormatError(path, None, "a stated acceleration unit: pass unit= (--record-unit) or name "
+                                    "it in a header line such as 'acceleration [g]'")
+        unit = header_unit
+    factor = unit_factor(unit)
+    return Record(name=path.stem, dt=float(dt), acceleration=np.asarray(values) * factor, source=str(path),
+                  unit=unit)
+
+
 def _header_unit(text: str) -> str | None:
     """The bracketed unit of the last column named in a header line, if it is a known unit."""
     found = _UNIT_IN_HEADER.findall(text)
@@ -330,16 +401,20 @@ def _header_unit(text: str) -> str | None:
     return None
 
 
-def read_record(path, unit: str | None = None) -> Record:
-    """Read a record file: ``.AT2`` (PEER NGA, in g) by its suffix, any other as two columns.
+def read_record(path, unit: str | None = None, dt: float | None = None) -> Record:
+    """Read a record file: ``.AT2`` (PEER NGA, in g) by its suffix, one column when ``dt`` is
+    given, any other as two columns.
 
     Parameters
     ----------
     path : str or Path
         The file.
     unit : str, optional
-        For two-column files, the acceleration unit (see :func:`read_two_column`); for an
-        ``.AT2`` file it must be None or "g" (the format fixes it).
+        For text files, the acceleration unit (see :func:`read_two_column`); for an ``.AT2``
+        file it must be None or "g" (the format fixes it).
+    dt : float, optional
+        Time step of a one-column file (:func:`read_one_column`). [s] An ``.AT2`` file states
+        its own step and refuses one.
 
     Returns
     -------
@@ -349,9 +424,13 @@ def read_record(path, unit: str | None = None) -> Record:
     if not path.is_file():
         raise FileNotFoundError(f"record file {str(path)!r} does not exist")
     if path.suffix.lower() in AT2_SUFFIXES:
+        if dt is not None:
+            raise ValueError(f"an .AT2 record states its own time step (DT=); dt must be omitted, got {dt!r}")
         if unit not in (None, "g", "G"):
             raise ValueError(f"an .AT2 record is in g by its format; unit must be 'g' or omitted, got {unit!r}")
         return read_at2(path)
+    if dt is not None:
+        return read_one_column(path, dt, unit)
     return read_two_column(path, unit)
 
 
