@@ -1,4 +1,10 @@
-"""Command line: ``rockstudy simulate | threshold | spectrum | jos``.
+"""Command line: ``rockstudy simulate | threshold | spectrum | jos`` (``rockstudy --version``).
+
+A block is a preset (``--block BLC06``) or its dimensions (``--width --height --depth``, with
+``--density`` and ``--restitution``); ``--config FILE`` takes a study's settings (block, anchorage,
+control options, excitation, noise reading, seed, overturning criterion, free time, grids) from
+its ``config.yaml``, and any option given on the command line overrides them. Every ``--help``
+states each option's default.
 
 Every command checks all its arguments before any heavy work (values, limits, output paths; see
 :mod:`rockstudy.core.validation`) and exits with status 2 and a message naming the argument, the value
@@ -13,6 +19,7 @@ import logging
 import math
 import sys
 
+from rockstudy._version import __version__
 from rockstudy.analysis.scenario import DEFAULT_BLOCK, DEFAULT_EXCITATION, DEFAULT_OVERTURN_CRITERION
 from rockstudy.analysis.spectra import DEFAULT_FREQUENCY_GRID, AmplitudeGrid
 from rockstudy.analysis.utility_index import DEFAULT_A_MAX0
@@ -38,7 +45,23 @@ SECONDS_PER_SIMULATION = 1e-3
 """Rough cost of one simulation on one core, for the estimate printed before a spectrum. [s]"""
 
 
+class _DefaultsFormatter(argparse.HelpFormatter):
+    """Help that states every option's default (the library's), unless its text already does."""
+
+    def _get_help_string(self, action):
+        text = action.help or ""
+        if (not action.option_strings or action.default in (None, argparse.SUPPRESS) or "default" in text
+                or isinstance(action, (argparse._StoreTrueAction, argparse._HelpAction, argparse._VersionAction))):
+            return text
+        return f"{text} (default %(default)s)"
+
+
 class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("formatter_class", _DefaultsFormatter)
+        kwargs.setdefault("allow_abbrev", False)  # exact options: --realisation must not mean --realisations
+        super().__init__(*args, **kwargs)
+
     def error(self, message):  # exit 2 with the argument named (argparse already names it)
         self.print_usage(sys.stderr)
         self.exit(2, f"rockstudy: error: {message}\n")
@@ -76,10 +99,23 @@ def _numeric(p: argparse.ArgumentParser, option: str, default: float, text: str,
     p.add_argument(option, type=_number(option), default=default, help=f"{text} (default {default:g})", **kwargs)
 
 
-def _common(p: argparse.ArgumentParser, single_frequency=True):
+BLOCK_OPTIONS = ("width", "height", "depth", "density", "restitution")
+"""Block fields the command line sets (``--width`` ...); a block is given by them or by ``--block``."""
+
+
+def _common(p: argparse.ArgumentParser, single_frequency=True, realisation=True):
     noise = DEFAULT_READING
+    p.add_argument("--config", metavar="FILE",
+                   help="take the study's settings from this config.yaml (block, anchorage, control options, "
+                        "excitation, noise reading, seed, overturning criterion, free time, grids); options given "
+                        "here override them")
     p.add_argument("--block", default=DEFAULT_BLOCK, choices=sorted(BLOCK_PRESETS),
-                   help=f"block preset (default {DEFAULT_BLOCK})")
+                   help=f"block preset (default {DEFAULT_BLOCK}); or give --width, --height, --depth")
+    dims = p.add_argument_group("block by its dimensions (instead of --block)")
+    for name, text in (("width", "base width 2b [m]"), ("height", "height 2h [m]"), ("depth", "depth [m]"),
+                       ("density", "density [kg/m^3] (default 2700)"),
+                       ("restitution", "coefficient of restitution e [-] (default: Housner's Eq. 14)")):
+        dims.add_argument(f"--{name}", type=_number(f"--{name}"), default=None, help=text)
     p.add_argument("--strategy", default=CONTROL.strategy, choices=STRATEGIES,
                    help=f"control strategy (default {CONTROL.strategy})")
     p.add_argument("--excitation", default=DEFAULT_EXCITATION, choices=EXCITATIONS,
@@ -88,7 +124,8 @@ def _common(p: argparse.ArgumentParser, single_frequency=True):
         p.add_argument("--frequency-ratio", type=_number("--frequency-ratio"), default=2.0, help="omega_p/p [-]")
     p.add_argument("--noise-level", type=_number("--noise-level"), default=0.0,
                    help="noise energy / baseline energy, in [0, 1)")
-    p.add_argument("--realisation", type=_integer("--realisation"), default=0, help="noise realisation k")
+    if realisation:
+        p.add_argument("--realisation", type=_integer("--realisation"), default=0, help="noise realisation k")
     p.add_argument("--seed", type=_integer("--seed"), default=DEFAULT_SEED,
                    help=f"root seed of the noise (default {DEFAULT_SEED}, the study's)")
     _numeric(p, "--noise-step", noise.step, "sampling step of the noisy record [s]", metavar="SECONDS")
@@ -120,8 +157,9 @@ def _check_common(args, single_frequency=True) -> None:
         validation.check_positive("--frequency-ratio", args.frequency_ratio, high=validation.MAX_FREQUENCY_RATIO)
     validation.check_range("--noise-level", args.noise_level, 0.0, 1.0, high_open=True,
                            why="noise energy / baseline energy")
-    validation.check_int_range("--realisation", args.realisation, 0, validation.MAX_INTEGER,
-                               why="stored as a netCDF int64 and in the noise's spawn key")
+    if hasattr(args, "realisation"):
+        validation.check_int_range("--realisation", args.realisation, 0, validation.MAX_INTEGER,
+                                   why="stored as a netCDF int64 and in the noise's spawn key")
     validation.check_int_range("--seed", args.seed, 0, validation.MAX_INTEGER, why="stored as a netCDF int64 attribute")
     validation.check_nonnegative("--sampling-time", args.sampling_time, "s", validation.MAX_TIME_SPAN)
     validation.check_nonnegative("--delay", args.delay, "s", validation.MAX_TIME_SPAN)
@@ -152,10 +190,100 @@ def _scenario(args, parser, sensor_step=None):
             check_band(args.sensor_band, sensor_step, "--sensor-band")
     except ValueError as exc:
         parser.error(str(exc))
-    return Scenario(BLOCK_PRESETS[args.block], Anchorage(**anchorage), Control(**control),
+    anchorage = {**getattr(args, "anchorage_base", {}), **anchorage}
+    return Scenario(_block(args, parser), Anchorage(**anchorage), Control(**control),
                     excitation=args.excitation, noise_level=args.noise_level, seed=args.seed,
                     noise=NoiseReading(**noise), overturn_criterion=args.overturn_criterion,
                     free_time=args.free_time)
+
+
+def _block(args, parser):
+    """The block of the options: ``--width/--height/--depth`` (with ``--density``, ``--restitution``) or
+    the preset ``--block`` (the study's block with ``--config``)."""
+    from rockstudy.studies.parameters import block_from_dict
+    spec = getattr(args, "block_spec", None)
+    dims = {name: getattr(args, name, None) for name in BLOCK_OPTIONS}
+    dims = {name: value for name, value in dims.items() if value is not None}
+    if dims:
+        spec = dims
+    if spec is None:
+        return BLOCK_PRESETS[args.block]
+    try:
+        return block_from_dict(spec)
+    except ValueError as exc:
+        message = str(exc)
+        if dims:
+            for name in BLOCK_OPTIONS:
+                message = message.replace(f"block.{name}", f"--{name}")
+            message = message.replace("block: missing key(s)", "missing block option(s)")
+        elif getattr(args, "config", None):
+            message = f"{args.config}: {message}"
+        if parser is None:
+            raise
+        parser.error(message)
+
+
+CONFIG_KEYS = {"excitation": ("excitation",), "seed": ("seed",), "overturn_criterion": ("overturn_criterion",),
+               "free_time": ("free_time",), "kappa_max": ("anchorage", "kappa_max"),
+               "kappa_min": ("anchorage", "kappa_min"), "damping_ratio": ("anchorage", "damping_ratio"),
+               "sensor_band": ("control", "sensor_band"), "noise_step": ("noise", "step"),
+               "noise_rescale": ("noise", "rescale"), "noise_level_means": ("noise", "level_means"),
+               "noise_band": ("noise", "band"), "noise_span": ("noise", "span"),
+               "min_amplitude_ratio": ("amplitude_grid", "start"), "max_amplitude_ratio": ("amplitude_grid", "stop"),
+               "amplitude_step": ("amplitude_grid", "step"), "resolution": ("amplitude_grid", "resolution"),
+               "frequency_start": ("frequency_grid", "start"), "frequency_stop": ("frequency_grid", "stop"),
+               "frequency_step": ("frequency_grid", "step"), "realisations": ("realisations",)}
+"""The option each key of a study's config.yaml sets under ``--config``."""
+
+
+def _given(parser, argv) -> set:
+    """Destinations of the options written on the command line (``--x v`` or ``--x=v``)."""
+    words = {word.split("=", 1)[0] for word in argv if word.startswith("--")}
+    found = set()
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                found |= _given(sub, argv)
+        elif words.intersection(action.option_strings):
+            found.add(action.dest)
+    return found
+
+
+def _apply_config(args, argv, parser) -> None:
+    """Settle the block and, with ``--config FILE``, take the study's settings for every option not
+    given on the command line (``args.block_spec``, ``args.anchorage_base`` for the anchorage keys
+    without an option)."""
+    given = _given(parser, argv)
+    dims = [f"--{name}" for name in BLOCK_OPTIONS if getattr(args, name, None) is not None]
+    if dims and "block" in given:
+        parser.error(f"give the block either as --block or by its dimensions ({', '.join(dims)}), not both")
+    path = getattr(args, "config", None)
+    if path is None:
+        return
+    import yaml
+    try:
+        with open(path, encoding="utf-8") as fh:
+            config = yaml.safe_load(fh)
+    except (OSError, yaml.YAMLError) as exc:
+        parser.error(f"argument --config: cannot read {path!r} as YAML: {exc}")
+    if not isinstance(config, dict):
+        parser.error(f"argument --config: {path!r} is not a study config (a YAML mapping of keys)")
+    for dest, keys in CONFIG_KEYS.items():
+        if not hasattr(args, dest) or dest in given:
+            continue
+        value = config
+        for key in keys:
+            value = value.get(key) if isinstance(value, dict) else None
+            if value is None:
+                break
+        if value is not None:
+            setattr(args, dest, value)
+    if not dims and "block" not in given and isinstance(config.get("block"), dict):
+        args.block_spec = dict(config["block"])
+    anchorage = config.get("anchorage") or {}
+    if isinstance(anchorage, dict):
+        args.anchorage_base = {k: v for k, v in anchorage.items() if k not in ("kappa_max", "kappa_min",
+                                                                               "damping_ratio")}
 
 
 _GRID_NAMES = ("--min-amplitude-ratio", "--max-amplitude-ratio", "--amplitude-step", "--resolution")
@@ -198,24 +326,30 @@ def _grid_args(p):
 
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="rockstudy", description="Rocking of controlled rigid blocks (overturning spectra study)")
+    parser.add_argument("--version", action="version", version=f"rockstudy {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     ps = sub.add_parser("simulate", help="run one case and print a JSON summary")
     _common(ps)
     ps.add_argument("--amplitude-ratio", type=_number("--amplitude-ratio"), default=2.0, help="a_p/(g tan alpha) [-]")
-    ps.add_argument("--output", help="write the time history to this netCDF file")
+    ps.add_argument("--output", help="write the time history and every event (impacts, uplifts, returns to rest) "
+                    "to this netCDF file; the printed summary has their counts")
     ps.add_argument("--plot", help="draw theta, theta_dot, K and the ground motion to this PNG")
     ps.add_argument("--record", help="ground motion from a record file instead of --excitation: PEER NGA .AT2 "
-                    "(in g) or two columns time [s], acceleration (--excitation, --frequency-ratio and "
+                    "(in g), two columns time [s], acceleration, or one column with --record-dt (--excitation, "
+                    "--frequency-ratio and "
                     "--amplitude-ratio are then not used)")
     ps.add_argument("--record-unit", help="acceleration unit of a two-column record: "
                     "g, m/s^2, cm/s^2 (gal) or mm/s^2 (default: the unit named in its header line)")
     ps.add_argument("--record-scale", type=_number("--record-scale"), default=1.0,
                     help="factor multiplying the record (default 1) [-]")
+    ps.add_argument("--record-dt", type=_number("--record-dt"), default=None, metavar="SECONDS",
+                    help="the record is one column of accelerations at this step [s] (as OpenSees' "
+                         "timeSeries Path -dt reads it); without it a text record has two columns")
     pt = sub.add_parser("threshold", help="minimum overturning amplitude ratio at one frequency (JSON)")
     _common(pt)
     _grid_args(pt)
     pp = sub.add_parser("spectrum", help="overturning spectrum over a frequency grid, written to netCDF")
-    _common(pp, single_frequency=False)
+    _common(pp, single_frequency=False, realisation=False)
     _grid_args(pp)
     start, stop, step = (DEFAULT_FREQUENCY_GRID[key] for key in ("start", "stop", "step"))
     _numeric(pp, "--frequency-start", start, "first omega_p/p [-]")
@@ -237,8 +371,8 @@ def build_parser() -> argparse.ArgumentParser:
 def _cmd_simulate(args, parser):
     if args.record is not None:
         return _cmd_simulate_record(args, parser)
-    if args.record_unit is not None or args.record_scale != 1.0:
-        parser.error("--record-unit and --record-scale need --record FILE")
+    if args.record_unit is not None or args.record_scale != 1.0 or args.record_dt is not None:
+        parser.error("--record-unit, --record-scale and --record-dt need --record FILE")
     try:
         _check_common(args)
         validation.check_positive("--amplitude-ratio", args.amplitude_ratio, high=validation.MAX_AMPLITUDE_RATIO)
@@ -255,7 +389,7 @@ def _cmd_simulate(args, parser):
         res = None
         out.update(status="undetermined", overturned=None, message=str(exc))
     else:
-        out.update(res.summary())
+        out.update(res.compact_summary())
     out.update(frequency_ratio=args.frequency_ratio, amplitude_ratio=args.amplitude_ratio,
                strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
                realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
@@ -293,7 +427,11 @@ def _cmd_simulate_record(args, parser):
     except validation.InputError as exc:
         parser.error(str(exc))
     try:
-        record = read_record(args.record, args.record_unit)
+        if args.record_dt is not None:
+            validation.check_positive("--record-dt", args.record_dt, "s")
+        record = read_record(args.record, args.record_unit, dt=args.record_dt)
+    except validation.InputError as exc:
+        parser.error(str(exc))
     except (OSError, ValueError) as exc:
         parser.error(f"argument --record: {exc}")
     scenario = _scenario(args, parser, sensor_step=record.dt)
@@ -315,7 +453,7 @@ def _cmd_simulate_record(args, parser):
         print(json.dumps({"status": "undetermined", "overturned": None, "message": str(exc),
                           "strategy": args.strategy, "record": args.record}, indent=2))
         return
-    out = res.summary()
+    out = res.compact_summary()
     out.update(strategy=args.strategy, excitation="record", record=args.record, record_name=record.name,
                record_unit=record.unit, record_scale=args.record_scale, record_dt_s=record.dt,
                record_npts=int(record.acceleration.size), record_duration_s=record.duration,
@@ -464,7 +602,9 @@ def _cmd_jos(args, parser):
 
 def main(argv=None):
     parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
     args = parser.parse_args(argv)
+    _apply_config(args, argv, parser)
     {"simulate": _cmd_simulate, "threshold": _cmd_threshold, "spectrum": _cmd_spectrum, "jos": _cmd_jos}[
         args.command](args, parser)
     return 0

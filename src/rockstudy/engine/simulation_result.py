@@ -132,7 +132,8 @@ def unique_times(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def history_dataset(result: SimulationResult, block=None, anchorage=None, motion=None,
                     ground_dt: float = NOISE_DT) -> xr.Dataset:
-    """A run's history as a Dataset with a strictly increasing ``time`` and an ``impact`` dimension.
+    """A run's history as a Dataset with a strictly increasing ``time`` and the events on their own
+    dimensions (``impact``, ``uplift``, ``rest``; the elements' fracture times as attributes).
 
     ``time`` holds every recorded instant once (the integrator's steps and the events); where the
     state jumps the value is the one just after the jump (right-continuous: κ is a step function
@@ -177,7 +178,11 @@ def history_dataset(result: SimulationResult, block=None, anchorage=None, motion
         data["ground_acceleration"] = ("time", h["ground_acceleration"][last], {"units": "m/s^2", "long_name": "X_g"})
     coords = {"time": ("time", t, {"units": "s", "long_name": "time since the start of the ground motion "
                                                              "(integrator steps and events)"}),
-              "impact_time": ("impact", impacts, {"units": "s", "long_name": "time of the impact (theta = 0)"})}
+              "impact_time": ("impact", impacts, {"units": "s", "long_name": "time of the impact (theta = 0)"}),
+              "uplift_time": ("uplift", np.asarray(result.uplift_times, dtype=float),
+                              {"units": "s", "long_name": "time the block uplifted from rest"}),
+              "rest_time": ("rest", np.asarray(result.rest_times, dtype=float),
+                            {"units": "s", "long_name": "time the block came to rest"})}
     if block is not None:
         scale = block.p * block.alpha
         data["rotation_ratio"] = ("time", h["theta"][last] / block.alpha, {**one, "long_name": "theta/alpha"})
@@ -200,4 +205,5 @@ def history_dataset(result: SimulationResult, block=None, anchorage=None, motion
                              "overturn_time_s": np.nan if summary["overturn_time_s"] is None
                              else summary["overturn_time_s"],
                              "end_time_s": summary["end_time_s"], "max_rotation_ratio": summary["max_rotation_ratio"],
-                             "n_impacts": summary["n_impacts"], "engine": result.engine})
+                             "n_impacts": summary["n_impacts"], "engine": result.engine,
+                             **{f"fracture_time_{name}_s": value for name, value in result.fracture_times.items()}})
