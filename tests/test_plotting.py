@@ -153,6 +153,8 @@ def test_pga_in_g_axis_converts_with_tan_alpha():
 
 def test_a_figure_saves_to_the_same_bytes_twice(tmp_path):
     spectra = [fake_spectrum("CS01", 0.05, np.ones(4), sampling_time=t) for t in (0.01, 0.1)]
-    for name in ("a.png", "b.png"):
-        plotting.save_figure(plotting.figure_timing(spectra, "sampling_time", 4.0, "7"), tmp_path / name)
-    assert (tmp_path / "a.png").read_bytes() == (tmp_path / "b.png").read_bytes()
+    for name in ("a", "b"):
+        plotting.save_figure(plotting.figure_timing(spectra, "sampling_time", 4.0, "7"), tmp_path / f"{name}.png",
+                             tmp_path / f"{name}.pdf")
+    for suffix in ("png", "pdf"):
+        assert (tmp_path / f"a.{suffix}").read_bytes() == (tmp_path / f"b.{suffix}").read_bytes(), suffix

@@ -416,7 +416,10 @@ def save_figure(fig, *paths) -> list[Path]:
     and close it."""
     written = []
     for path in map(Path, paths):
-        atomic_write(path, partial(fig.savefig, dpi=150, format=path.suffix.lstrip(".")))
+        fmt = path.suffix.lstrip(".").lower()
+        # no creation date in a PDF: the same figure gives the same bytes on every run
+        metadata = {"CreationDate": None} if fmt == "pdf" else None
+        atomic_write(path, partial(fig.savefig, dpi=150, format=fmt, metadata=metadata))
         written.append(path)
     plt.close(fig)
     return written

@@ -78,9 +78,10 @@ def rest_velocity(p: float, alpha: float) -> float:
 PAPER = "Use of overturning spectra in the performance evaluation of on-off control strategies for rocking objects"
 """Title of the paper every dataset cites (its ``paper`` attribute)."""
 
-PAPER_REFERENCE = (f"{PAPER}. Conference paper on on-off adaptive control of the anchorages of rigid rocking "
-                   "blocks under amplitude-modulated harmonic excitation (the copy of the paper the study "
-                   "reproduces names neither its authors nor its venue).")
+PAPER_VENUE = "conference paper; the copy the study reproduces names neither its authors nor its venue"
+"""What is known of where the paper appeared (the text reproduced here has no title page)."""
+
+PAPER_REFERENCE = f"{PAPER}. On-off adaptive control of the anchorages of rigid rocking blocks ({PAPER_VENUE})."
 """Full reference of the paper, the ``references`` attribute of every netCDF file rockstudy writes."""
 
 CF_CONVENTIONS = "CF-1.11"
