@@ -19,6 +19,7 @@ min_version("9.0")
 configfile: "config.yaml"
 
 
+study.check_sizes(config)  # before the schema, whose uniqueItems is quadratic in a list's length
 validate(config, "workflow/schemas/config.schema.yaml")
 study.check_study(config)
 

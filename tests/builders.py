@@ -13,10 +13,13 @@ FREQS = np.array([0.5, 1.0, 2.0, 3.0])
 A_MAX0 = 1.0 / math.tan(BLC06.alpha)  # a_max,0 = g as an amplitude ratio (= 4 for BLC06)
 
 
-def fake_spectrum(strategy, level, thresholds, realisations=None, sampling_time=0.0, delay=0.0):
-    """A spectrum Dataset with given thresholds (realisation, frequency), no simulation."""
+def fake_spectrum(strategy, level, thresholds, realisations=None, sampling_time=0.0, delay=0.0, *,
+                  block=BLC06, anchorage=None, grid=None, freqs=FREQS, **settings):
+    """A spectrum Dataset with given thresholds (realisation, frequency), no simulation; ``settings``: more
+    :class:`Scenario` fields (excitation, seed, noise, overturn_criterion, free_time)."""
     thr = np.atleast_2d(np.asarray(thresholds, float))
     ks = list(range(thr.shape[0])) if realisations is None else realisations
-    sc = Scenario(BLC06, Anchorage(), Control(strategy, sampling_time, delay), noise_level=level)
+    sc = Scenario(block, anchorage or Anchorage(), Control(strategy, sampling_time, delay), noise_level=level,
+                  **settings)
     ones = np.ones_like(thr)
-    return spectrum_dataset(sc, FREQS, ks, thr, thr - 0.01, ones.astype(int), ones, ones, AmplitudeGrid())
+    return spectrum_dataset(sc, freqs, ks, thr, thr - 0.01, ones.astype(int), ones, ones, grid or AmplitudeGrid())

@@ -104,3 +104,106 @@ def test_bad_noise_options_exit_2_naming_the_option(args, name, capsys):
         main(["simulate", "--noise-level", "0.05"] + args)
     assert exc.value.code == 2
     assert name in capsys.readouterr().err
+
+
+# --- jos refuses spectra made under different settings -----------------------------------------------
+def _jos_pair(tmp_path, **changes):
+    """A CS01 spectrum with ``changes`` and an FS reference with the defaults, both noisy, as files."""
+    from builders import fake_spectrum
+    from rockstudy.core.io import write_netcdf
+    thr = [[1.2, 1.5, 3.0, 2.0], [1.3, 1.4, 3.5, 2.5]]
+    write_netcdf(fake_spectrum("FS", 0.05, thr), tmp_path / "ref.nc")
+    write_netcdf(fake_spectrum("CS01", 0.05, [[1.4, 1.7, 3.2, 2.2]] * 2, **changes), tmp_path / "sys.nc")
+    return ["jos", "--reference", str(tmp_path / "ref.nc"), "--system", str(tmp_path / "sys.nc")]
+
+
+def _mismatches():
+    from builders import BLC06
+    from rockstudy import Anchorage, Block
+    from rockstudy.analysis.spectra import AmplitudeGrid
+    from rockstudy.model.noise import NoiseReading
+    return [({"excitation": "one-sine"}, "excitation"), ({"overturn_criterion": "alpha"}, "overturn_criterion"),
+            ({"free_time": 10.0}, "free_time_s"), ({"seed": 1}, "noise_seed"),
+            ({"noise": NoiseReading(step=0.005)}, "noise_step_s"), ({"noise": NoiseReading(rescale="none")},
+                                                                    "noise_rescale"),
+            ({"noise": NoiseReading(level_means="rms")}, "noise_level_means"),
+            ({"noise": NoiseReading(band=5.0)}, "noise_band_hz"), ({"noise": NoiseReading(span=5.0)}, "noise_span_s"),
+            ({"realisations": [0, 1, 2]}, "n_realisations"),
+            ({"block": Block(BLC06.width, BLC06.height * 1.1, BLC06.depth)}, "block_"),
+            ({"anchorage": Anchorage(kappa_max=2.0)}, "anchorage_"),
+            ({"grid": AmplitudeGrid(resolution=0.05)}, "grid_amplitude_resolution"),
+            ({"grid": AmplitudeGrid(stop=5.0)}, "grid_amplitude_stop")]
+
+
+@pytest.mark.parametrize("case", range(14))
+def test_jos_refuses_each_mismatched_setting_unless_allowed(tmp_path, capsys, case):
+    changes, attr = _mismatches()[case]
+    if "realisations" in changes:
+        changes = {"realisations": None}
+        from builders import fake_spectrum
+        from rockstudy.core.io import write_netcdf
+        args = _jos_pair(tmp_path)
+        write_netcdf(fake_spectrum("CS01", 0.05, [[1.4, 1.7, 3.2, 2.2]] * 3), tmp_path / "sys.nc")
+    else:
+        args = _jos_pair(tmp_path, **changes)
+    with pytest.raises(SystemExit) as exc:
+        main(args)
+    err = capsys.readouterr().err
+    assert exc.value.code == 2 and f"settings: {attr}" in err and "in --system and" in err, err
+    named = err.split("settings: ")[1].split(" is ")[0]
+    out = run(args + ["--allow-mismatch", named], capsys) if not attr.endswith("_") else None
+    if out is not None:
+        assert out["N_star"] >= 1
+    assert run(args + ["--allow-mismatch", "all"], capsys)["N_star"] >= 1
+
+
+def test_jos_accepts_spectra_that_differ_only_in_what_it_compares(tmp_path, capsys):
+    from builders import fake_spectrum
+    from rockstudy.core.io import write_netcdf
+    write_netcdf(fake_spectrum("CS02", 0.05, [[1.4, 1.7, 3.2, 2.2]], sampling_time=0.1), tmp_path / "sys.nc")
+    write_netcdf(fake_spectrum("CS02", 0.0, [[1.2, 1.5, 3.0, 2.0]], seed=9), tmp_path / "ref.nc")
+    out = run(["jos", "--reference", str(tmp_path / "ref.nc"), "--system", str(tmp_path / "sys.nc")], capsys)
+    assert out["N_star"] == 4
+
+
+@pytest.mark.parametrize("spoil, needle", [
+    (lambda ds: ds.attrs.update(block_alpha=0.0), "block_alpha = 0.0 is not allowed"),
+    (lambda ds: ds.attrs.pop("grid_amplitude_stop"), "no attribute 'grid_amplitude_stop'"),
+    (lambda ds: ds.attrs.update(grid_amplitude_step="x"), "grid_amplitude_step = 'x' is not a number"),
+    (lambda ds: ds.attrs.update(grid_amplitude_start=float("nan")), "grid_amplitude_start = nan"),
+])
+def test_jos_names_what_is_wrong_with_an_almost_spectrum(tmp_path, capsys, spoil, needle):
+    import xarray as xr
+
+    from rockstudy.core.io import write_netcdf
+    args = _jos_pair(tmp_path)
+    with xr.open_dataset(tmp_path / "sys.nc") as ds:
+        ds = ds.load()
+    spoil(ds)
+    write_netcdf(ds, tmp_path / "sys.nc")
+    with pytest.raises(SystemExit) as exc:
+        main(args)
+    assert exc.value.code == 2 and needle in capsys.readouterr().err
+
+
+def test_jos_and_record_refuse_fifos_folders_and_devices_quickly(tmp_path):
+    import os
+    import time
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    for args, needle in [(["jos", "--reference", str(fifo), "--system", str(fifo)], "not a regular file"),
+                         (["jos", "--reference", str(tmp_path), "--system", str(fifo)], "is a folder"),
+                         (["simulate", "--record", "/dev/zero"], "not a regular file"),
+                         (["simulate", "--record", str(fifo)], "not a regular file"),
+                         (["simulate", "--record", str(tmp_path)], "is a folder")]:
+        t0 = time.monotonic()
+        p = subprocess.run([sys.executable, "-m", "rockstudy.cli"] + args, capture_output=True, text=True, timeout=60)
+        assert p.returncode == 2 and needle in p.stderr, p.stderr
+        assert time.monotonic() - t0 < 30
+
+
+def test_a_refused_output_leaves_no_folders_behind(tmp_path):
+    p = subprocess.run([sys.executable, "-m", "rockstudy.cli", "simulate", "--record", str(tmp_path / "none.csv"),
+                        "--output", str(tmp_path / "new" / "a" / "b" / "x.nc")], capture_output=True, text=True)
+    assert p.returncode == 2 and "does not exist" in p.stderr
+    assert not (tmp_path / "new").exists()

@@ -207,3 +207,22 @@ def test_reused_study_spectrum_equals_the_readings_study_own(tmp_path):
 
 if __name__ == "__main__":
     sys.exit(pytest.main([__file__, "-v"]))
+
+
+@pytest.mark.slow
+def test_a_swapped_chunk_stops_the_gather_naming_the_file_and_attribute(tiny_run, tmp_path):
+    """A CS01 chunk copied over an FS chunk is not gathered into a right-looking FS spectrum: the gather
+    stops naming the file and control_strategy, and writes no spectrum."""
+    ref, _, first = tiny_run
+    assert first.returncode == 0, first.stderr[-3000:]
+    out = tmp_path / "out"
+    for folder in ("noise", "spectra/chunks"):
+        shutil.copytree(ref / folder, out / folder)
+    swapped = out / "spectra" / "chunks" / "FS_R005_Ts0_d0_c0.nc"
+    shutil.copyfile(out / "spectra" / "chunks" / "CS01_R005_Ts0_d0_c0.nc", swapped)
+    res = snakemake("-j1", *TINY, "--config", f"results_dir={out}", "--", str(out / "spectra" / "FS_R005.nc"),
+                    workdir=tmp_path)
+    log = res.stdout + res.stderr
+    assert res.returncode != 0
+    assert f"{swapped}: control_strategy is 'CS01', expected 'FS'" in log, log[-3000:]
+    assert not (out / "spectra" / "FS_R005.nc").exists()

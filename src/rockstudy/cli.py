@@ -311,10 +311,8 @@ def _check_outputs(args, parser) -> None:
 
 
 def _check_time_span(scenario, frequency_ratios, frequency_name) -> None:
-    from rockstudy.model.excitation import check_time_span
-    check_time_span(scenario.block, scenario.excitation, frequency_ratios, scenario.free_time,
-                    scenario.control.sampling_time, frequency_name=frequency_name,
-                    free_time_name="--free-time", sampling_name="--sampling-time")
+    scenario.check_span(frequency_ratios, frequency_name=frequency_name, free_time_name="--free-time",
+                        sampling_name="--sampling-time", step_name="--noise-step", span_name="--noise-span")
 
 
 def _grid_args(p):
@@ -365,6 +363,11 @@ def build_parser() -> argparse.ArgumentParser:
     pj.add_argument("--reference", required=True, help="spectrum netCDF of the reference system")
     pj.add_argument("--system", required=True, help="spectrum netCDF of the investigated system")
     _numeric(pj, "--a-max0", DEFAULT_A_MAX0, "a_max,0 in units of g")
+    pj.add_argument("--allow-mismatch", action="append", metavar="ATTR",
+                    help="compare spectra that differ in this setting (an attribute such as noise_seed, "
+                         "free_time_s or block_width; 'all': any); repeatable. Without it, spectra made under "
+                         "different excitations, criteria, free times, noise readings, seeds, numbers of "
+                         "realisations, blocks, devices or amplitude scans are refused")
     return parser
 
 
@@ -385,11 +388,13 @@ def _cmd_simulate(args, parser):
     out = {}
     try:
         res = scenario.simulate_motion(motion, engine=args.engine, record_history=bool(args.output or args.plot))
-    except RuntimeError as exc:  # the fast engine's event cap: no result, and no file is written
+    except RuntimeError as exc:  # the reference engine's piece cap: no result, and no file is written
         res = None
         out.update(status="undetermined", overturned=None, message=str(exc))
     else:
         out.update(res.compact_summary())
+        if res.status == "undetermined":  # the fast engine's event cap: no outcome, and no file is written
+            res = None
     out.update(frequency_ratio=args.frequency_ratio, amplitude_ratio=args.amplitude_ratio,
                strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
                realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
@@ -445,12 +450,25 @@ def _cmd_simulate_record(args, parser):
         validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_TIME_SPAN - record.duration,
                                      why=f"the record lasts {record.duration:.4g} s and a simulation at most "
                                          f"{validation.MAX_TIME_SPAN:g} s")
+        if args.output or args.plot:  # the stored history samples the ground motion at min(DT, 2.5 ms)
+            samples = (record.duration + args.free_time) / min(record.dt, 0.0025)
+            if samples > validation.MAX_HISTORY_SAMPLES:
+                validation.fail("--record", args.record,
+                                f"its DT = {record.dt:g} s over {record.duration:.4g} s plus --free-time "
+                                f"{args.free_time:g} s gives a history of {samples:.3g} samples, the limit is "
+                                f"{validation.MAX_HISTORY_SAMPLES:.0e} (resample the record, lower --free-time, or "
+                                "run without --output/--plot)")
     except validation.InputError as exc:
         parser.error(str(exc))
     try:
         res = scenario.simulate_motion(motion, engine=args.engine, record_history=bool(args.output or args.plot))
-    except RuntimeError as exc:  # the fast engine's event cap: an undetermined result, no file written
-        print(json.dumps({"status": "undetermined", "overturned": None, "message": str(exc),
+    except RuntimeError as exc:  # the reference engine's piece cap: an undetermined result, no file written
+        res = None
+        message = str(exc)
+    else:
+        message = res.message
+    if res is None or res.status == "undetermined":  # the fast engine's event cap: no outcome, no file
+        print(json.dumps({"status": "undetermined", "overturned": None, "message": message,
                           "strategy": args.strategy, "record": args.record}, indent=2))
         return
     out = res.compact_summary()
@@ -516,7 +534,6 @@ def _cmd_spectrum(args, parser):
 
     from rockstudy.analysis.spectra import frequency_grid, spectrum
     from rockstudy.core.io import write_netcdf
-    from rockstudy.model.excitation import excitation_duration
     from rockstudy.studies.datasets import document_missing
     if args.engine != "fast":
         parser.error("argument --engine: spectra run on the fast engine only")
@@ -534,11 +551,7 @@ def _cmd_spectrum(args, parser):
         _check_time_span(scenario, [args.frequency_start, float(freqs[-1])],
                          "--frequency-start" if args.frequency_start < 1 else "--frequency-stop")
         n_real = 1 if scenario.noise_level == 0 else args.realisations
-        record_bytes = 0
-        if scenario.noise_level > 0:
-            samples = validation.record_samples(excitation_duration(scenario.excitation, scenario.omega(f))
-                                                for f in freqs)
-            record_bytes = n_real * samples * validation.RECORD_BYTES_PER_SAMPLE
+        record_bytes = scenario.record_bytes(freqs, n_real)  # at the reading's step and span
         validation.check_workload("--realisations" if n_real > 1 else "--frequency-step",
                                   args.realisations if n_real > 1 else args.frequency_step,
                                   n_real * n_freq, sims_per_case * (2 if args.map else 1), record_bytes)
@@ -565,7 +578,7 @@ def _cmd_jos(args, parser):
     import numpy as np
 
     from rockstudy.core.io import read_netcdf
-    from rockstudy.studies.tables import jos_of
+    from rockstudy.studies.tables import check_spectrum_file, jos_of, spectrum_mismatches
     try:
         validation.check_positive("--a-max0", args.a_max0, "g")
     except validation.InputError as exc:
@@ -573,21 +586,26 @@ def _cmd_jos(args, parser):
     datasets = {}
     for name, path in (("--reference", args.reference), ("--system", args.system)):
         try:
+            validation.check_input_file(name, path, validation.MAX_DATASET_BYTES)
             datasets[name] = read_netcdf(path)
-        except (OSError, ValueError) as exc:
+        except validation.InputError as exc:
+            parser.error(str(exc))
+        except (OSError, ValueError, RuntimeError) as exc:
             parser.error(f"argument {name}: cannot read {path!r} as a netCDF file: {exc}")
-        ds = datasets[name]
-        if "threshold" not in ds or "frequency_ratio" not in ds.coords or "block_alpha" not in ds.attrs:
-            parser.error(f"argument {name}: {path!r} is not a rockstudy spectrum file "
-                         "(no 'threshold' over 'frequency_ratio')")
+        try:
+            check_spectrum_file(datasets[name], f"argument {name}: {path!r}")
+        except validation.InputError as exc:
+            parser.error(str(exc))
     ref, sys_ = datasets["--reference"], datasets["--system"]
     if ref.sizes["frequency_ratio"] != sys_.sizes["frequency_ratio"] or not np.allclose(
             ref.frequency_ratio.values, sys_.frequency_ratio.values):
         parser.error("--reference and --system have different frequency grids; compute them on the same grid")
-    for key in ("block_width", "block_height", "block_depth", "block_density"):
-        if ref.attrs.get(key) != sys_.attrs.get(key):
-            parser.error(f"--reference and --system are for different blocks ({key}: "
-                         f"{ref.attrs.get(key)} vs {sys_.attrs.get(key)})")
+    allowed = set(args.allow_mismatch or ())
+    for attr, a, b in spectrum_mismatches(sys_, ref):
+        if attr not in allowed and "all" not in allowed:
+            parser.error(f"--reference and --system were made under different settings: {attr} is {a!r} in "
+                         f"--system and {b!r} in --reference; J_OS compares strategies under one setting (pass "
+                         f"--allow-mismatch {attr} to compare them anyway)")
     try:
         j, n, a_max0 = jos_of(sys_, ref, args.a_max0, a_max0_name="--a-max0")
     except ValueError as exc:

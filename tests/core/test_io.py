@@ -1,5 +1,6 @@
 """rockstudy.core.io: the one atomic writer (umask, no partial files), netCDF round trips and attributes."""
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -59,3 +60,29 @@ def test_failed_write_keeps_the_old_file_and_leaves_no_part(tmp_path):
     with pytest.raises(RuntimeError):
         io.atomic_write(target, boom)
     assert target.read_text() == "old" and [p.name for p in tmp_path.iterdir()] == ["t.md"]
+
+
+def _spectrum_like():
+    return xr.Dataset({"threshold": ("frequency_ratio", [1.0, 2.0])},
+                      coords={"frequency_ratio": [1.0, 2.0], "realisation": [0, 1], "strategy": "FS"},
+                      attrs={"noise_seed": 7, "noise_band_hz": "none", "free_time_s": 30.0})
+
+
+def test_check_dataset_accepts_the_expected_dataset_and_names_the_first_difference(tmp_path):
+    ds = _spectrum_like()
+    ok = {"noise_seed": 7, "noise_band_hz": None, "free_time_s": 30.0 + 1e-12, "strategy": "FS",
+          "realisation": [0, 1], "frequency_ratio": [1.0, 2.0]}
+    assert io.check_dataset(ds, "x.nc", ok) is ds
+    for key, value in [("noise_seed", 8), ("noise_band_hz", 5.0), ("free_time_s", 10.0), ("strategy", "CS01"),
+                       ("realisation", [0, 1, 2]), ("frequency_ratio", [1.0, 2.5]), ("block_alpha", 0.2)]:
+        with pytest.raises(io.DatasetMismatch, match=f"x.nc: {key} is .*, expected {re.escape(repr(value))}"):
+            io.check_dataset(ds, "x.nc", {**ok, key: value})
+
+
+def test_read_checked_needs_an_expectation_for_every_file(tmp_path):
+    path = io.write_netcdf(_spectrum_like(), tmp_path / "s.nc")
+    assert float(io.read_checked(path, {str(path): {"noise_seed": 7}})["threshold"][1]) == 2.0
+    with pytest.raises(KeyError, match="no expectation"):
+        io.read_checked(path, {})
+    with pytest.raises(io.DatasetMismatch, match="noise_seed is 7, expected 8"):
+        io.reader({str(path): {"noise_seed": 8}})(path)

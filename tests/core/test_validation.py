@@ -109,7 +109,8 @@ def test_output_path_folder_and_format(tmp_path):
     with pytest.raises(v.InputError, match=r"\.png"):
         v.check_output_path("--plot", tmp_path / "x.jpg2", formats=v.FIGURE_FORMATS)
     assert v.check_output_path("--output", tmp_path / "new" / "x.nc") == tmp_path / "new" / "x.nc"
-    assert list((tmp_path / "new").iterdir()) == []  # the probe file is removed
+    assert not (tmp_path / "new").exists()  # the check makes no folder (the writer does, after every check)
+    assert [p.name for p in tmp_path.iterdir()] == []  # and the probe file is removed
 
 
 def test_a_max0_rule_in_g_and_ratios(blc06):

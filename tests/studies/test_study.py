@@ -4,8 +4,10 @@ import math
 import numpy as np
 import pytest
 
-from builders import BLC06, fake_spectrum
+from builders import BLC06, FREQS, fake_spectrum
 from rockstudy.analysis.spectra import AmplitudeGrid, Scenario
+from rockstudy.core import io
+from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.control import Control
 from rockstudy.model.excitation import modulated_peak
 from rockstudy.model.noise import noisy_record
@@ -99,6 +101,30 @@ def test_gather_equals_one_job_over_all_realisations():
     np.testing.assert_allclose(gathered["threshold_std"][0], np.std([1.2, 1.1, 1.3]), rtol=1e-12)
     with pytest.raises(ValueError, match="overlap"):
         datasets.gather_spectra([parts[1], parts[1]])
+
+
+def test_gather_refuses_chunks_of_different_spectra():
+    thr = np.array([[1.2, 1.5, np.nan, 2.0], [1.1, 1.6, np.nan, np.nan]])
+    fs = fake_spectrum("FS", 0.05, thr[:1], [0])
+    for other, attr in [(fake_spectrum("CS01", 0.05, thr[1:], [1]), "control_strategy"),
+                        (fake_spectrum("FS", 0.05, thr[1:], [1], seed=3), "noise_seed"),
+                        (fake_spectrum("FS", 0.05, thr[1:], [1], free_time=10.0), "free_time_s")]:
+        with pytest.raises(io.DatasetMismatch, match=attr):
+            datasets.gather_spectra([fs, other])
+
+
+def test_expected_attrs_of_a_scenario_match_its_spectrum_and_noise_file():
+    from rockstudy.model.noise import NoiseReading
+    sc = Scenario(BLC06, Anchorage(), Control("CS02", 0.01), noise_level=0.05, seed=4, noise=NoiseReading(step=0.005))
+    ds = fake_spectrum("CS02", 0.05, [[1.0, 1.0, 1.0, 1.0]], [3], 0.01, seed=4, noise=NoiseReading(step=0.005))
+    io.check_dataset(ds, "s.nc", datasets.expected_attrs(sc, realisations=[3], frequency_ratios=FREQS,
+                                                         amplitude_grid={"start": 0.9, "stop": 6.0, "step": 0.1,
+                                                                         "resolution": 0.01}))
+    with pytest.raises(io.DatasetMismatch, match="noise_(dt|step)_s is 0.005, expected 0.0025"):
+        io.check_dataset(ds, "s.nc", datasets.expected_attrs(Scenario(BLC06, Anchorage(), Control("CS02", 0.01),
+                                                                      noise_level=0.05, seed=4)))
+    noise = datasets.expected_attrs(sc, "noise")
+    assert "control_strategy" not in noise and noise["noise_seed"] == 4 and noise["noise_step_s"] == 0.005
 
 
 def test_convergence_dataset_is_running_minimum():

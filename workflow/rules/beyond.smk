@@ -47,6 +47,7 @@ if BEYOND:
         benchmark:
             f"{OUT}/benchmarks/probability/{{strategy}}_{{level}}.tsv"
         params:
+            expect=expect,
             scenario=get_scenario,
             realisations=config["realisations"],
             frequency_grid=PROB["frequency_grid"],
@@ -121,6 +122,7 @@ if BEYOND:
         log:
             f"{OUT}/logs/figures/probability_overturning.log",
         params:
+            expect=expect,
             plotting=PLOTTING,
             a_max0=config["a_max0"],
         conda:
@@ -139,6 +141,7 @@ if BEYOND:
         log:
             f"{OUT}/logs/figures/fragility.log",
         params:
+            expect=expect,
             plotting=PLOTTING,
         conda:
             "../envs/rockstudy.yaml"

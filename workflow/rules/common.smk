@@ -178,3 +178,69 @@ def calibration_base():
 def get_device_anchorage(wildcards):
     """The anchorage of the job's calibration device."""
     return CAL_DEVICES[int(wildcards.device)]
+
+
+# What every dataset a step reads must say about itself (rockstudy.core.io.read_checked): the settings its
+# file name and the config imply. A stale, swapped or hand-made file stops the step, naming the file and
+# the attribute that differs, instead of becoming a right-looking result.
+_S, _L, _X = "(?P<strategy>FS|PASSIVE|CS01|CS02)", "(?P<level>[A-Za-z0-9]+)", "[0-9.e+-]+"
+EXPECTED_FILES = [
+    ("noise", rf"noise/{_L}\.nc"),
+    ("chunk", rf"spectra/chunks/{_S}_{_L}_Ts(?P<ts>{_X})_d(?P<delay>{_X})_c(?P<chunk>[0-9]+)\.nc"),
+    ("spectrum", rf"spectra/{_S}_{_L}\.nc"),
+    ("spectrum", rf"timing/sampling/{_S}_{_L}_Ts(?P<ts>{_X})\.nc"),
+    ("spectrum", rf"timing/delay/{_S}_{_L}_Ts(?P<ts>{_X})_d(?P<delay>{_X})\.nc"),
+    ("spectrum", rf"convergence/{_S}_{_L}\.nc"),
+    ("map", rf"maps/{_S}\.nc"),
+    ("history", rf"histories/{_S}_{_L}_k(?P<k>[0-9]+)_w(?P<w>[^_/]+)_a(?P<a>[^/]+)\.nc"),
+    ("reading", rf"reproduction/readings/spectra/{_S}_(?P<reading>[A-Za-z0-9_]+)_{_L}\.nc"),
+    ("study", r"(tables|reproduction/calibration/(coarse|refine))/[^/]+\.nc"),
+]
+
+
+def all_realisations(level):
+    return [k for chunk in chunks(level) for k in chunk]
+
+
+def expected_dataset(path):
+    """The attributes ``path`` (a file of this study) must carry; {} for a file this study does not describe."""
+    import os
+    import re
+
+    from rockstudy.studies import datasets
+    prefix = re.escape(os.path.join(str(OUT), ""))  # the results folder with its separator
+    for kind, pattern in EXPECTED_FILES:
+        m = re.fullmatch(prefix + pattern, str(path))
+        if m is None:
+            continue
+        g = m.groupdict()
+        strategy, level = g.get("strategy", "FS"), g.get("level", FREE)
+        if level not in LEVELS:
+            return {}
+        spec = scenario(strategy, level, g.get("ts") or 0.0, g.get("delay") or 0.0)
+        if kind == "reading":
+            spec = get_reading_scenario(type("W", (), {"strategy": strategy, "level": level, "reading": g["reading"]}))
+        sc = parameters.scenario_from_dict(spec)
+        grids = {"frequency_ratios": parameters.frequency_ratios(config["frequency_grid"]),
+                 "amplitude_grid": config["amplitude_grid"]}
+        if kind == "noise":
+            return datasets.expected_attrs(sc, "noise", realisations=all_realisations(level))
+        if kind == "chunk":
+            return datasets.expected_attrs(sc, realisations=chunks(level)[int(g["chunk"])], **grids)
+        if kind == "spectrum":
+            return datasets.expected_attrs(sc, realisations=all_realisations(level), **grids)
+        if kind == "reading":
+            return datasets.expected_attrs(sc, realisations=list(range(REPRO["realisations"]))
+                                           if LEVELS[level] > 0 else [0], **grids)
+        if kind == "map":
+            return datasets.expected_attrs(sc, "map", **grids)
+        if kind == "history":
+            return datasets.expected_attrs(sc, "history", noise_realisation=int(g["k"]),
+                                           frequency_ratio=float(g["w"]), amplitude_ratio=float(g["a"]))
+        return datasets.expected_attrs(sc, "study")
+    return {}
+
+
+def expect(wildcards, input):
+    """Parameter ``expect`` of a rule: every netCDF input's expected attributes (see expected_dataset)."""
+    return {str(path): expected_dataset(path) for path in input if str(path).endswith(".nc")}

@@ -11,6 +11,7 @@ rule figure_history:
     log:
         f"{OUT}/logs/figures/fig{{fignum}}_history_{{strategy}}.log",
     params:
+        expect=expect,
         plotting=PLOTTING,
     conda:
         "../envs/rockstudy.yaml"
@@ -29,6 +30,7 @@ rule figure_excitation:
     log:
         f"{OUT}/logs/figures/fig4_excitation.log",
     params:
+        expect=expect,
         plotting=PLOTTING,
         noise_level=max(NOISY, key=LEVELS.get),
     conda:
@@ -49,6 +51,7 @@ rule figure_realisations:
     log:
         f"{OUT}/logs/figures/fig5_realisations.log",
     params:
+        expect=expect,
         plotting=PLOTTING,
         point=EX,
         a_max0=config["a_max0"],
@@ -70,6 +73,7 @@ rule figure_noise_sensitivity:
     log:
         f"{OUT}/logs/figures/fig6_noise_sensitivity.log",
     params:
+        expect=expect,
         plotting=PLOTTING,
         panels=[s for s in ("FS", "CS01", "CS02") if s in config["strategies"]],
         a_max0=config["a_max0"],
@@ -91,6 +95,7 @@ rule figure_sampling:
     log:
         f"{OUT}/logs/figures/fig7_sampling.log",
     params:
+        expect=expect,
         plotting=PLOTTING,
         variable="sampling_time",
         paper_figure="7",
@@ -114,6 +119,7 @@ rule figure_delay:
     log:
         f"{OUT}/logs/figures/fig8_delay.log",
     params:
+        expect=expect,
         plotting=PLOTTING,
         variable="delay",
         paper_figure="8",
@@ -135,6 +141,7 @@ rule figure_maps:
     log:
         f"{OUT}/logs/figures/maps_overturning.log",
     params:
+        expect=expect,
         plotting=PLOTTING,
         strategies=config["maps"]["strategies"],
         a_max0=config["a_max0"],

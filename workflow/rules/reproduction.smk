@@ -47,6 +47,7 @@ rule claims:
     log:
         f"{OUT}/logs/reproduction/claims.log",
     params:
+        expect=expect,
         bookkeeping=BOOKKEEPING,
         noise_levels=LEVELS,
         a_max0=config["a_max0"],
@@ -72,6 +73,7 @@ rule readings_table:
     log:
         f"{OUT}/logs/reproduction/readings_table.log",
     params:
+        expect=expect,
         bookkeeping=BOOKKEEPING,
         spectrum_keys=[(name, level) for name in READINGS for level in NOISY],
         readings=READINGS,
@@ -94,6 +96,7 @@ rule figure_readings:
     log:
         f"{OUT}/logs/reproduction/figure_readings.log",
     params:
+        expect=expect,
         plotting=PLOTTING,
     conda:
         "../envs/rockstudy.yaml"
@@ -145,6 +148,7 @@ rule calibration_device:
     wildcard_constraints:
         device="[0-9]+",
     params:
+        expect=expect,
         scenario=calibration_base(),
         anchorage=get_device_anchorage,
         levels=LEVELS,
@@ -174,6 +178,7 @@ rule calibration_grid:
     log:
         f"{OUT}/logs/reproduction/calibration/grid.log",
     params:
+        expect=expect,
         design=CAL_DESIGN,
         alpha=CAL_ALPHA,
         reading=config["noise"],
@@ -198,6 +203,7 @@ rule calibration_refine_spectrum:
     wildcard_constraints:
         rank="[0-9]+",
     params:
+        expect=expect,
         scenario=calibration_base(),
         noise_level=get_noise_level,
         realisations=config["realisations"],
@@ -225,6 +231,7 @@ rule calibration_refine:
     log:
         f"{OUT}/logs/reproduction/calibration/refine.log",
     params:
+        expect=expect,
         block=config["block"],
         candidates=CAL["candidates"],
         levels=LEVELS,

@@ -40,6 +40,7 @@ rule spectrum_chunk:
     group:
         "spectra"
     params:
+        expect=expect,
         scenario=get_scenario,
         realisations=get_chunk_realisations,
         frequency_grid=config["frequency_grid"],
@@ -63,6 +64,7 @@ rule gather_spectrum:
     log:
         f"{OUT}/logs/spectra/{{strategy}}_{{level}}.log",
     params:
+        expect=expect,
         bookkeeping=BOOKKEEPING,
         realisations=get_realisations,
     conda:
@@ -94,6 +96,7 @@ rule convergence:
     log:
         f"{OUT}/logs/convergence/{{strategy}}_{{level}}.log",
     params:
+        expect=expect,
         bookkeeping=BOOKKEEPING,
         realisations=config["realisations"],
     conda:
@@ -161,6 +164,7 @@ rule table1:
     log:
         f"{OUT}/logs/tables/table1.log",
     params:
+        expect=expect,
         bookkeeping=BOOKKEEPING,
         strategies=config["table1"]["strategies"],
         noise_levels=LEVELS,
@@ -184,6 +188,7 @@ rule timing_table_sampling:
     log:
         f"{OUT}/logs/tables/timing_sampling.log",
     params:
+        expect=expect,
         bookkeeping=BOOKKEEPING,
         variable="sampling_time",
         reference="continuous_same_noise",
@@ -208,6 +213,7 @@ rule timing_table_delay:
     log:
         f"{OUT}/logs/tables/timing_delay.log",
     params:
+        expect=expect,
         bookkeeping=BOOKKEEPING,
         variable="delay",
         reference="sampled_without_delay_same_noise",

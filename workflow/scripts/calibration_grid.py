@@ -4,10 +4,12 @@ from rockstudy.core import io
 from rockstudy.studies import device_calibration as calibration
 from rockstudy.studies import study
 
+read_nc = io.reader(snakemake.params.expect)
+
 study.log_to(snakemake.log[0])
 p = snakemake.params
 design = calibration.CalibrationDesign(**p.design)
-tables = [io.read_netcdf(f) for f in snakemake.input]
+tables = [read_nc(f) for f in snakemake.input]
 attrs = {"compute_time_s": sum(t.attrs["compute_time_s"] for t in tables), "noise_reading": str(p.reading)}
 grid = calibration.grid_dataset(design, tables, p.alpha, attrs)
 io.write_netcdf(grid, snakemake.output.nc)

@@ -3,12 +3,14 @@ from rockstudy.core import io
 from rockstudy.studies import device_calibration as calibration
 from rockstudy.studies import parameters, study
 
+read_nc = io.reader(snakemake.params.expect)
+
 study.log_to(snakemake.log[0])
 p = snakemake.params
-grid = io.read_netcdf(snakemake.input.grid)
+grid = read_nc(snakemake.input.grid)
 best = calibration.best_devices(grid, p.candidates)
-fs = [io.read_netcdf(f) for f in snakemake.input.fs]
-spectra = [io.read_netcdf(f) for f in snakemake.input.spectra]
+fs = [read_nc(f) for f in snakemake.input.fs]
+spectra = [read_nc(f) for f in snakemake.input.spectra]
 tables = [calibration.device_table(fs, [ds for ds in spectra if ds.attrs["calibration_rank"] == rank],
                                    dict(p.levels), p.a_max0) for rank in range(len(best))]
 runtime = grid.attrs["compute_time_s"] + sum(t.attrs["compute_time_s"] for t in tables)

@@ -5,11 +5,13 @@ from rockstudy.core import io
 from rockstudy.studies import device_calibration as calibration
 from rockstudy.studies import parameters, study
 
+read_nc = io.reader(snakemake.params.expect)
+
 study.log_to(snakemake.log[0])
 numba.set_num_threads(snakemake.threads)
 p, w = snakemake.params, snakemake.wildcards
 rank = int(w.rank)
-device, coarse_rms = calibration.best_devices(io.read_netcdf(snakemake.input.grid), rank + 1)[rank]
+device, coarse_rms = calibration.best_devices(read_nc(snakemake.input.grid), rank + 1)[rank]
 ds, = calibration.device_spectra(p.scenario, device, [w.strategy], {w.level: p.noise_level},
                                  parameters.frequency_ratios(p.frequency_grid), p.realisations,
                                  parameters.amplitude_grid(p.amplitude_grid))

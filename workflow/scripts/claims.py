@@ -2,13 +2,15 @@
 from rockstudy.core import io
 from rockstudy.studies import claims, study
 
+read_nc = io.reader(snakemake.params.expect)
+
 study.log_to(snakemake.log[0])
 p, i = snakemake.params, snakemake.input
-read = lambda paths: [io.read_netcdf(path) for path in paths]  # noqa: E731
-table1 = io.read_netcdf(i.table1)
+read = lambda paths: [read_nc(path) for path in paths]  # noqa: E731
+table1 = read_nc(i.table1)
 results = claims.evaluate_run(table1, read(i.spectra), dict(p.noise_levels), p.a_max0,
-                              convergence=io.read_netcdf(i.convergence), sampling=io.read_netcdf(i.sampling),
-                              delay=io.read_netcdf(i.delay))
+                              convergence=read_nc(i.convergence), sampling=read_nc(i.sampling),
+                              delay=read_nc(i.delay))
 comparison = claims.table1_comparison(table1)
 header = f"Noise reading: {p.reading}. Anchorage: {p.anchorage}. Realisations: {p.realisations}."
 io.write_netcdf(claims.claims_dataset(results, {"noise_reading": p.reading, "anchorage": str(p.anchorage)}),

@@ -3,10 +3,12 @@ from rockstudy.core import io
 from rockstudy.studies import noise_readings as readings
 from rockstudy.studies import parameters, study
 
+read_nc = io.reader(snakemake.params.expect)
+
 study.log_to(snakemake.log[0])
 p = snakemake.params
-spectra = {key: io.read_netcdf(path) for key, path in zip(p.spectrum_keys, snakemake.input.spectra)}
-table = readings.readings_table(spectra, io.read_netcdf(snakemake.input.reference),
+spectra = {key: read_nc(path) for key, path in zip(p.spectrum_keys, snakemake.input.spectra)}
+table = readings.readings_table(spectra, read_nc(snakemake.input.reference),
                                 {name: parameters.reading_from_dict(spec) for name, spec in p.readings.items()},
                                 dict(p.levels), p.a_max0)
 io.write_netcdf(table, snakemake.output.nc)

@@ -5,11 +5,13 @@ from rockstudy.analysis.spectra import spectrum
 from rockstudy.core import io
 from rockstudy.studies import datasets, parameters, study
 
+read_nc = io.reader(snakemake.params.expect)
+
 study.log_to(snakemake.log[0])
 numba.set_num_threads(snakemake.threads)
 p = snakemake.params
 scenario = parameters.scenario_from_dict(p.scenario)
-datasets.check_noise(io.read_netcdf(snakemake.input.noise), scenario)
+datasets.check_noise(read_nc(snakemake.input.noise), scenario)
 ds = spectrum(scenario, parameters.frequency_ratios(p.frequency_grid), realisations=p.realisations,
               grid=parameters.amplitude_grid(p.amplitude_grid))
 datasets.document_missing(ds)

@@ -2,9 +2,11 @@
 from rockstudy.core import io
 from rockstudy.studies import study, tables
 
+read_nc = io.reader(snakemake.params.expect)
+
 study.log_to(snakemake.log[0])
 p = snakemake.params
-table = tables.table1([io.read_netcdf(path) for path in snakemake.input], p.strategies, dict(p.noise_levels), p.a_max0)
+table = tables.table1([read_nc(path) for path in snakemake.input], p.strategies, dict(p.noise_levels), p.a_max0)
 io.write_netcdf(table, snakemake.output.nc)
 io.write_text(tables.table_csv(table), snakemake.output.csv)
 io.write_text(tables.table_markdown(table), snakemake.output.md)

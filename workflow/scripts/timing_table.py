@@ -2,9 +2,11 @@
 from rockstudy.core import io
 from rockstudy.studies import study, tables
 
+read_nc = io.reader(snakemake.params.expect)
+
 study.log_to(snakemake.log[0])
 p = snakemake.params
-read = lambda paths: [io.read_netcdf(path) for path in paths]  # noqa: E731
+read = lambda paths: [read_nc(path) for path in paths]  # noqa: E731
 table = tables.timing_table(read(snakemake.input.sweep), read(snakemake.input.same_strategy),
                            read(snakemake.input.free_standing), p.variable, p.a_max0, p.reference)
 io.write_netcdf(table, snakemake.output.nc)

@@ -9,6 +9,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from rockstudy.core import validation
 from rockstudy.engine.simulate import (
     DEFAULT_FREE_TIME,
     OVERTURN_CRITERIA,
@@ -20,7 +21,13 @@ from rockstudy.engine.simulation_result import SimulationResult
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
 from rockstudy.model.control import Control
-from rockstudy.model.excitation import EXCITATIONS, GroundMotion, excitation_duration, modulated_peak
+from rockstudy.model.excitation import (
+    EXCITATIONS,
+    GroundMotion,
+    check_time_span,
+    excitation_duration,
+    modulated_peak,
+)
 from rockstudy.model.noise import DEFAULT_READING, DEFAULT_SEED, NoiseReading, NoisyRecord, noisy_record, record_motion
 
 DEFAULT_BLOCK = "BLC06"
@@ -86,12 +93,18 @@ class Scenario:
     free_time: float = DEFAULT_FREE_TIME
 
     def __post_init__(self):
-        if self.excitation not in EXCITATIONS:
+        for name, kind in (("block", Block), ("anchorage", Anchorage), ("control", Control)):
+            if not isinstance(getattr(self, name), kind):
+                raise validation.InputError(f"Scenario.{name} must be a rockstudy {kind.__name__}, got "
+                                   f"{type(getattr(self, name)).__name__} {getattr(self, name)!r}")
+        if not isinstance(self.excitation, str) or self.excitation not in EXCITATIONS:
             raise ValueError(f"excitation must be one of {', '.join(EXCITATIONS)}, got {self.excitation!r}")
-        if not (0.0 <= self.noise_level < 1.0):
-            raise ValueError(f"noise_level must lie in [0, 1), got {self.noise_level!r}")
-        if not (isinstance(self.seed, (int, np.integer)) and self.seed >= 0):
-            raise ValueError(f"seed must be an integer >= 0, got {self.seed!r}")
+        validation.check_range("noise_level", self.noise_level, 0.0, 1.0, high_open=True,
+                               why="noise energy / baseline energy")
+        if not (isinstance(self.seed, (int, np.integer)) and not isinstance(self.seed, bool)
+                and 0 <= self.seed <= validation.MAX_INTEGER):
+            raise ValueError(f"seed must be an integer in [0, 2^63 - 1], got {self.seed!r}")
+        validation.check_nonnegative("free_time", self.free_time, "s", validation.MAX_FREE_TIME)
         if not isinstance(self.noise, NoiseReading):
             raise ValueError(f"noise must be a rockstudy.model.noise.NoiseReading, got {self.noise!r}")
         if self.overturn_criterion not in OVERTURN_CRITERIA:
@@ -142,6 +155,27 @@ class Scenario:
         return KernelCase(parameters, kernel_record(self.control, motion), motion.vertical,
                           _unit_peak(self.excitation, rec), 1.0 if rec is None else rec.energy_ratio,
                           1.0 if rec is None else rec.pga_ratio)
+
+    def check_span(self, frequency_ratios, *, frequency_name: str = "frequency_ratio",
+                   free_time_name: str = "Scenario.free_time", sampling_name: str = "Control.sampling_time",
+                   step_name: str = "NoiseReading.step", span_name: str = "NoiseReading.span") -> None:
+        """The simulations at these frequency ratios stay within the limits of one simulation (time span,
+        integrator steps, controller samples and, with noise, the record's samples at the reading's step
+        and span: :func:`rockstudy.model.excitation.check_time_span`); the names are the caller's."""
+        noisy = self.noise_level > 0
+        check_time_span(self.block, self.excitation, frequency_ratios, self.free_time, self.control.sampling_time,
+                        frequency_name=frequency_name, free_time_name=free_time_name, sampling_name=sampling_name,
+                        record_step=self.noise.step if noisy else None, record_span=self.noise.span if noisy else 0.0,
+                        step_name=step_name, span_name=span_name)
+
+    def record_bytes(self, frequency_ratios, n_realisations: int) -> int:
+        """Bytes the noise records of ``n_realisations`` realisations at these frequency ratios take while a
+        spectrum runs (0 without noise): their samples at the reading's step and span. [B]"""
+        if self.noise_level == 0:
+            return 0
+        samples = validation.record_samples((excitation_duration(self.excitation, self.omega(float(f)))
+                                    for f in frequency_ratios), self.noise.step, self.noise.span)
+        return int(n_realisations) * samples * validation.RECORD_BYTES_PER_SAMPLE
 
     def to_attrs(self) -> dict:
         attrs = {}

@@ -18,6 +18,7 @@ import xarray as xr
 
 from rockstudy._version import __version__
 from rockstudy.analysis.scenario import Scenario
+from rockstudy.core import validation as v
 from rockstudy.core.constants import PAPER
 from rockstudy.engine import _kernel as kernel
 from rockstudy.engine.outcome import OUTCOME_MEANINGS, Outcome
@@ -71,6 +72,36 @@ def frequency_grid(start: float = DEFAULT_FREQUENCY_GRID["start"], stop: float =
         raise ValueError(f"frequency grid needs 0 < start <= stop and step > 0, got {start}, {stop}, {step}")
     n = int(math.floor((stop - start) / step + 1e-9))
     return np.round(start + step * np.arange(n + 1), 10)
+
+
+GRID_NAMES = ("AmplitudeGrid.start", "AmplitudeGrid.stop", "AmplitudeGrid.step", "AmplitudeGrid.resolution")
+
+
+def _check_call(scenario, grid) -> None:
+    """The library's entry points take a Scenario and an AmplitudeGrid (named when not)."""
+    if not isinstance(scenario, Scenario):
+        raise v.InputError(f"scenario must be a rockstudy Scenario, got {type(scenario).__name__}")
+    if not isinstance(grid, AmplitudeGrid):
+        raise v.InputError(f"grid must be a rockstudy AmplitudeGrid, got {type(grid).__name__}")
+
+
+def _realisation_list(realisations) -> list[int]:
+    """Distinct integer indices >= 0, at most :data:`~rockstudy.core.validation.MAX_REALISATIONS` of them
+    (counted before an iterator is drawn further)."""
+    import itertools
+    if isinstance(realisations, (str, bytes)) or not hasattr(realisations, "__iter__"):
+        raise v.InputError(f"realisations must be a sequence of integers, got {realisations!r}")
+    try:
+        n, counted = len(realisations), f"{len(realisations)} indices"
+    except TypeError:
+        realisations = list(itertools.islice(realisations, v.MAX_REALISATIONS + 1))
+        n, counted = len(realisations), f"more than {v.MAX_REALISATIONS} indices"
+    if n > v.MAX_REALISATIONS:
+        v.fail("realisations", counted, f"at most {v.MAX_REALISATIONS} realisations (the paper uses 100)")
+    out = [v.check_int_range(f"realisations[{i}]", k, 0, v.MAX_INTEGER) for i, k in enumerate(realisations)]
+    if len(out) == 0 or len(set(out)) != len(out):
+        raise v.InputError(f"realisations must be distinct integers >= 0, got {out!r}")
+    return out
 
 
 def _reference_outcome(scenario: Scenario, motion: GroundMotion, amplitude_ratio: float, peak: float) -> Outcome:
@@ -148,8 +179,10 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     overturns), ``last_safe_amplitude_ratio``, ``n_simulations``, the bound scanned, and the noise
     record's energy and PGA ratios.
     """
-    if not (frequency_ratio > 0 and math.isfinite(frequency_ratio)):
-        raise ValueError(f"frequency_ratio must be a positive number, got {frequency_ratio!r}")
+    _check_call(scenario, grid)
+    frequency_ratio = v.check_positive("frequency_ratio", frequency_ratio, high=v.MAX_FREQUENCY_RATIO)
+    realisation = v.check_int_range("realisation", realisation, 0, v.MAX_INTEGER)
+    scenario.check_span([frequency_ratio])
     values = grid.values()
     case = scenario.kernel_case(frequency_ratio, realisation, energy_bound=energy_bound)
     if engine == "fast":
@@ -238,14 +271,24 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
         ``last_safe``, ``n_simulations``, ``energy_ratio``, ``pga_ratio``; and ``outcome`` on
         request. NaN thresholds mean "no overturning up to the grid's upper bound".
     """
-    freqs = np.asarray(frequency_ratios, dtype=float)
-    if freqs.ndim != 1 or len(freqs) == 0 or np.any(freqs <= 0):
-        raise ValueError("frequency_ratios must be a non-empty 1-D list of positive numbers")
-    realisations = [int(k) for k in realisations]
-    if len(realisations) == 0 or any(k < 0 for k in realisations) or len(set(realisations)) != len(realisations):
-        raise ValueError(f"realisations must be distinct integers >= 0, got {realisations!r}")
+    _check_call(scenario, grid)
+    try:
+        freqs = np.asarray(frequency_ratios, dtype=float)
+    except (TypeError, ValueError):
+        raise v.InputError(f"frequency_ratios must be a 1-D list of numbers, got {frequency_ratios!r}") from None
+    if freqs.ndim != 1 or len(freqs) == 0 or not np.all(np.isfinite(freqs)) or np.any(freqs <= 0):
+        raise v.InputError("frequency_ratios must be a non-empty 1-D list of finite positive numbers")
+    if len(freqs) > v.MAX_GRID_POINTS or freqs.max() > v.MAX_FREQUENCY_RATIO:
+        v.fail("frequency_ratios", f"{len(freqs)} values up to {freqs.max():g}",
+               f"at most {v.MAX_GRID_POINTS} values up to {v.MAX_FREQUENCY_RATIO:g}")
+    realisations = _realisation_list(realisations)
     if scenario.noise_level == 0 and len(realisations) > 1:
         realisations = realisations[:1]  # without noise every realisation is the same record
+    sims = v.check_amplitude_grid(grid.start, grid.stop, grid.step, grid.resolution, names=GRID_NAMES)
+    scenario.check_span([freqs.min(), freqs.max()], frequency_name="frequency_ratios")
+    n_real = len(realisations)
+    v.check_workload("realisations", n_real, n_real * len(freqs), sims * (2 if with_map else 1),
+                     scenario.record_bytes(freqs, n_real))
     values = grid.values()
     Pm, recs, off, lens, peaks, e_ratio, p_ratio = _cases(scenario, freqs, realisations, energy_bound)
     n = len(Pm)

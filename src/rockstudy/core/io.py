@@ -147,7 +147,11 @@ def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
 
 
 def read_netcdf(path) -> xr.Dataset:
-    """Open a rockstudy netCDF file fully into memory (and close the file)."""
+    """Open a rockstudy netCDF file fully into memory (and close the file); a folder, a FIFO or a device
+    is refused at once (``ValueError`` naming the path), never opened."""
+    import stat
+    if not stat.S_ISREG(os.stat(path).st_mode):
+        raise ValueError(f"{path}: not a regular file (a folder, a FIFO or a device); give a netCDF file")
     with xr.open_dataset(path, engine="netcdf4") as ds:
         return ds.load()
 
@@ -158,3 +162,84 @@ def write_text(text: str, path) -> Path:
         with open(tmp, "w", encoding="utf-8") as fh:
             fh.write(text)
     return atomic_write(path, write)
+
+
+# --- "is this the dataset the step expects?" ------------------------------------------------------
+COORDINATE_EXPECTATIONS = ("realisation", "frequency_ratio")
+"""Expectation keys compared with a coordinate's values (a list) instead of an attribute."""
+
+
+class DatasetMismatch(ValueError):
+    """A dataset is not the one a step expects; the message names the file, the attribute and both values."""
+
+    def __init__(self, path, attribute: str, found, expected):
+        super().__init__(f"{path}: {attribute} is {found!r}, expected {expected!r}: this file was made under "
+                         "other settings than the step that reads it (a stale, swapped or hand-made file); "
+                         "delete it and rerun to rebuild it")
+        self.path, self.attribute, self.found, self.expected = str(path), attribute, found, expected
+
+
+def same_value(found, expected) -> bool:
+    """Equal values: numbers within 1e-9 relative, lists element by element, "none" equal to None."""
+    if isinstance(expected, (list, tuple, np.ndarray)):
+        found = np.asarray(found).ravel().tolist() if isinstance(found, (list, tuple, np.ndarray)) else [found]
+        return len(found) == len(expected) and all(same_value(f, e) for f, e in zip(found, expected))
+    expected, found = netcdf_attr(expected), netcdf_attr(found.item() if isinstance(found, np.generic) else found)
+    if isinstance(expected, (int, float)) and not isinstance(found, str):
+        try:
+            return bool(np.isclose(float(found), float(expected), rtol=1e-9, atol=1e-12))
+        except (TypeError, ValueError):
+            return False
+    return found == expected
+
+
+def _found(ds: xr.Dataset, key: str):
+    if key in COORDINATE_EXPECTATIONS and key in ds.coords:
+        return ds[key].values.tolist()
+    if key in ds.attrs:
+        value = ds.attrs[key]
+        return value.tolist() if isinstance(value, (np.ndarray, np.generic)) else value
+    if key in ds.coords and ds[key].ndim == 0:  # a scalar coordinate such as strategy or noise_level
+        return ds[key].item()
+    return _MISSING
+
+
+_MISSING = "<missing>"
+
+
+def check_dataset(ds: xr.Dataset, path, expected: dict | None) -> xr.Dataset:
+    """``ds`` (read from ``path``) is the dataset a workflow step expects: every key of ``expected`` is an
+    attribute, a scalar coordinate or (``realisation``, ``frequency_ratio``) a coordinate of ``ds`` with
+    the expected value (numbers to 1e-9 relative). Returns ``ds``.
+
+    Raises
+    ------
+    DatasetMismatch
+        Naming the file, the first attribute that differs, its value and the expected one.
+    """
+    for key, value in (expected or {}).items():
+        found = _found(ds, key)
+        if found is _MISSING or not same_value(found, value):
+            raise DatasetMismatch(path, key, found, value)
+    return ds
+
+
+def read_checked(path, expectations: dict | None) -> xr.Dataset:
+    """:func:`read_netcdf` then :func:`check_dataset` against ``expectations[str(path)]``: a mapping from
+    file names to expected attributes, as the workflow's ``expect`` parameter gives it for every input.
+
+    Raises
+    ------
+    KeyError
+        If ``path`` has no entry (the step would read a file nobody said what it must be).
+    DatasetMismatch
+        If the file is not the expected dataset.
+    """
+    if str(path) not in expectations:
+        raise KeyError(f"{path}: no expectation for this input (known: {', '.join(sorted(expectations))})")
+    return check_dataset(read_netcdf(path), path, expectations[str(path)])
+
+
+def reader(expectations: dict) -> Callable:
+    """``read(path)``: :func:`read_checked` with these ``expectations`` (one per workflow step)."""
+    return lambda path: read_checked(path, expectations)

@@ -74,6 +74,28 @@ RECORD_DT = 0.0025
 """Sampling step of the noise records (``noise.NOISE_DT``). [s]"""
 RECORD_BYTES_PER_SAMPLE = 24
 """Bytes held per record sample while a spectrum runs (the record, its baseline and a copy)."""
+MAX_NOISE_STEP = 0.1
+"""Largest sampling step of a noisy record (the study's records use 0.0025 s). [s]"""
+MAX_RECORD_SAMPLES = MAX_STEPS
+"""Largest number of samples of one ground-motion record: the engine ends a step at every sample, so a
+record of more samples than :data:`MAX_STEPS` cannot be simulated within that limit."""
+MAX_RECORD_BYTES = 256 * 2**20
+"""Largest record file read (a text record of :data:`MAX_RECORD_SAMPLES` samples takes about 150 MB). [B]"""
+MAX_DATASET_BYTES = 2**30
+"""Largest netCDF dataset read by ``rockstudy jos`` (a spectrum of the paper's study takes about 100 kB). [B]"""
+MAX_HISTORY_SAMPLES = 2 * MAX_STEPS
+"""Largest number of samples of a stored time history (integrator steps or uniform ground samples)."""
+MAX_LIST_ITEMS = 200
+"""Largest number of entries of one list or mapping of a study config (sampling times, delays, readings,
+strategies ...): each entry multiplies the workflow's jobs, and Snakemake plans them all before any runs."""
+MAX_BOOTSTRAP = 100_000
+"""Largest number of bootstrap draws (the study uses 200)."""
+MAX_SUITE_RECORDS = 10_000
+"""Largest number of records of one fragility suite (a P695 far-field set has 44)."""
+MAX_DEVICES = 1_000
+"""Largest number of devices one calibration screens (every combination of its lists; the study's 48)."""
+SYSTEM_FOLDERS = ("/bin", "/boot", "/etc", "/lib", "/lib32", "/lib64", "/libx32", "/sbin", "/usr", "/var")
+"""Folders of the operating system: a results folder may not be one of them or lie inside one (nor be /)."""
 PSEUDO_FILESYSTEMS = ("/proc", "/sys", "/dev")
 """Folders no data product may be written to."""
 FIGURE_FORMATS = ("png", "pdf", "svg")
@@ -212,9 +234,35 @@ def memory_budget() -> int:
     return int(total // 4)
 
 
-def record_samples(durations_s) -> int:
-    """Noise record samples of excitations lasting ``durations_s``. [-]"""
-    return int(sum(math.ceil(d / RECORD_DT) + 1 for d in durations_s))
+def record_samples(durations_s, step: float = RECORD_DT, span: float = 0.0) -> int:
+    """Noise record samples of excitations lasting ``durations_s`` read at ``step`` [s], with noise also
+    ``span`` [s] after each (the noise reading's step and span). [-]"""
+    extra = int(round(span / step))
+    return int(sum(math.ceil(d / step) + 1 + extra for d in durations_s))
+
+
+def check_input_file(name: str, path, max_bytes: int) -> Path:
+    """A file to read: it exists, is a regular file (not a folder, a FIFO or a device such as /dev/zero,
+    which would hang or never end) and holds at most ``max_bytes`` bytes. Returns the path."""
+    import stat
+    if path is None or str(path).strip() == "":
+        fail(name, path, "give a file name")
+    p = Path(path).expanduser()
+    try:
+        st = os.stat(p)
+    except FileNotFoundError:
+        fail(name, str(path), "the file does not exist")
+    except OSError as exc:
+        fail(name, str(path), f"it cannot be read: {exc.strerror or exc}")
+    if stat.S_ISDIR(st.st_mode):
+        fail(name, str(path), "it is a folder; give a file")
+    if not stat.S_ISREG(st.st_mode):
+        fail(name, str(path), "it is not a regular file (a FIFO, a socket or a device); give a file")
+    if st.st_size > max_bytes:
+        fail(name, str(path), f"the file has {st.st_size / 2**20:.4g} MiB, the limit is {max_bytes / 2**20:.4g} MiB")
+    if not os.access(p, os.R_OK):
+        fail(name, str(path), "the file is not readable")
+    return p
 
 
 def check_workload(name: str, value, n_cases: int, sims_per_case: int, record_bytes: int) -> None:
@@ -241,10 +289,46 @@ def check_block(block, name: str = "block") -> None:
             f"{1 / math.sqrt(2):.3f}) or an explicit {name}.restitution in [0, 1]")
 
 
+def check_results_dir(name: str, path) -> Path:
+    """A folder for a study's results: a plain path (no ``{`` ``}``, which Snakemake would read as
+    wildcards), not /, not a system folder (:data:`SYSTEM_FOLDERS`, :data:`PSEUDO_FILESYSTEMS`) nor inside
+    one, and not an existing file. Returns the path (nothing is created)."""
+    if not isinstance(path, str) or path.strip() == "":
+        fail(name, path, "give a folder name")
+    if "{" in path or "}" in path:
+        fail(name, path, "it must not contain '{' or '}' (Snakemake reads them as wildcards)")
+    real = os.path.realpath(os.path.expanduser(path))
+    if real == os.sep:
+        fail(name, path, "it is the root folder /")
+    for folder in SYSTEM_FOLDERS + PSEUDO_FILESYSTEMS:
+        if real == folder or real.startswith(folder + os.sep):
+            fail(name, path, f"it lies in a system folder ({folder}); give a folder of your own")
+    if os.path.exists(real) and not os.path.isdir(real):
+        fail(name, path, "it is an existing file, not a folder")
+    return Path(path)
+
+
+def check_sizes(config, key: str = "", limit: int = MAX_LIST_ITEMS, limits: dict | None = None) -> None:
+    """No list or mapping anywhere in ``config`` has more than ``limit`` entries (``limits``: other limits
+    by key path, e.g. ``{"beyond.fragility.records": MAX_SUITE_RECORDS}``); the message names the key path."""
+    if isinstance(config, (list, tuple, dict)):
+        most = (limits or {}).get(key, limit)
+        if len(config) > most:
+            fail(key or "config", f"{len(config)} entries", f"at most {most} entries (each one multiplies the "
+                                                           "workflow's jobs, which Snakemake plans before any runs)")
+        if isinstance(config, dict):
+            for k, item in config.items():
+                check_sizes(item, f"{key}.{k}" if key else str(k), limit, limits)
+        else:
+            for i, item in enumerate(config):
+                check_sizes(item, f"{key}[{i}]", limit, limits)
+
+
 def check_output_path(name: str, path, *, formats: tuple[str, ...] | None = None) -> Path:
     """An output file that can be written: not a folder, not under /proc, /sys or /dev, in a folder that
-    exists or can be made and where a file can be created (tested by creating and removing one), and
-    with one of ``formats`` as its suffix if given."""
+    exists or can be made and where a file can be created (tested by creating and removing one in the
+    nearest existing folder; no folder is made by the check), and with one of ``formats`` as its suffix
+    if given."""
     if path is None or str(path).strip() == "":
         fail(name, path, "give a file name")
     p = Path(path).expanduser()
@@ -255,13 +339,19 @@ def check_output_path(name: str, path, *, formats: tuple[str, ...] | None = None
         fail(name, str(path), "it is a folder; give a file name")
     if formats is not None and p.suffix.lstrip(".").lower() not in formats:
         fail(name, str(path), f"the file name must end in {', '.join('.' + f for f in formats)}")
+    # the nearest folder that exists: a file is created there as a probe, and nothing is left behind (the
+    # missing folders are made by the writer, after every check has passed)
+    existing = p.parent.absolute()
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        fail(name, str(path), f"cannot create a file in {existing}: it is a file, not a folder")
     try:
-        p.parent.mkdir(parents=True, exist_ok=True)
-        fd, probe = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".probe", dir=p.parent)
+        fd, probe = tempfile.mkstemp(prefix=f".{p.name}.", suffix=".probe", dir=existing)
         os.close(fd)
         os.remove(probe)
     except OSError as exc:
-        fail(name, str(path), f"cannot create a file in {p.parent}: {exc.strerror or exc}")
+        fail(name, str(path), f"cannot create a file in {existing}: {exc.strerror or exc}")
     if p.exists() and not os.access(p, os.W_OK):
         fail(name, str(path), "the existing file is not writable")
     return p

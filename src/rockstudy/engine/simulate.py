@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from rockstudy.core import validation as v
 from rockstudy.core.constants import FAST_ATOL, FAST_RTOL, FREE_TIME, MAX_STEP_FRACTION
 from rockstudy.core.constants import rest_velocity as default_rest_velocity
 from rockstudy.engine import _kernel as kn
@@ -19,6 +20,7 @@ from rockstudy.engine.simulation_result import (
     STATUS_OVERTURNED,
     STATUS_REST,
     STATUS_TIME_LIMIT,
+    STATUS_UNDETERMINED,
     SimulationResult,
 )
 from rockstudy.model.anchorage import Anchorage
@@ -115,11 +117,15 @@ def _result_from_kernel(out, block: Block, engine: str = "fast") -> SimulationRe
     status, t_over, t_end, max_abs = out.status, out.overturn_time, out.end_time, out.max_abs_theta
     impacts, uplifts, rests, frac, H = out.impact_times, out.uplift_times, out.rest_times, out.fracture_times, \
         out.history
-    if status == kn.ST_ELIMIT:
-        raise RuntimeError(
-            f"the fast engine hit its cap of {kn.MAX_EVENTS} events at t = {t_end:.6g} s "
-            "(an unresolved chattering or sliding case); run it with engine='reference' and report it"
-        )
+    if status == kn.ST_ELIMIT:  # no outcome: reported as such, never as "safe"
+        return SimulationResult(
+            status=STATUS_UNDETERMINED, overturned=False, overturn_time=math.nan, end_time=float(t_end),
+            max_rotation_ratio=float(max_abs / block.alpha), impact_times=np.asarray(impacts).copy(),
+            uplift_times=np.asarray(uplifts).copy(), rest_times=np.asarray(rests).copy(), engine=engine,
+            message=f"the fast engine located its cap of {kn.MAX_EVENTS} events (impacts, controller samples, "
+                    f"record knots, switches) by t = {t_end:.6g} s, before the run ended: a long run with many "
+                    "events, or a chattering sequence it cannot resolve, so the outcome is undetermined; "
+                    "engine='reference' decides it (slowly)")
     name = {kn.ST_REST: STATUS_REST, kn.ST_OVER: STATUS_OVERTURNED, kn.ST_TLIM: STATUS_TIME_LIMIT,
             kn.ST_BOUND: STATUS_CANNOT_OVERTURN}[status]
     history = None
@@ -133,6 +139,47 @@ def _result_from_kernel(out, block: Block, engine: str = "fast") -> SimulationRe
         fracture_times={k: float(v) for k, v in zip(FRACTURE_ELEMENTS, frac) if np.isfinite(v)},
         history=history, engine=engine,
     )
+
+
+RTOL_RANGE = (1e-14, 1e-3)
+"""Allowed relative tolerances [-]: tighter than 1e-14 is below round-off, looser than 1e-3 is not a result."""
+ATOL_RANGE = (1e-16, 1e-3)
+"""Allowed absolute tolerances (θ in rad, θ̇ in rad/s). [-]"""
+
+
+def check_inputs(block, anchorage, control, motion, *, engine="fast", overturn_criterion="flat",
+                 free_time=DEFAULT_FREE_TIME, initial_rotation=0.0, initial_velocity=0.0, rest_velocity=None,
+                 rtol=None, atol=None) -> None:
+    """The arguments of :func:`simulate` through the one validation layer: the types (named), finite
+    numbers, tolerances in :data:`RTOL_RANGE`/:data:`ATOL_RANGE`, and a run within the limits of
+    :mod:`rockstudy.core.validation` (time span, record samples).
+
+    Raises
+    ------
+    ValueError
+        (:class:`rockstudy.core.validation.InputError`) naming the argument, the value and what is allowed.
+    """
+    for name, value, kind in (("block", block, Block), ("anchorage", anchorage, Anchorage),
+                              ("control", control, Control), ("motion", motion, GroundMotion)):
+        if not isinstance(value, kind):
+            raise v.InputError(f"{name} must be a rockstudy {kind.__name__}, got {type(value).__name__} {value!r}")
+    if not isinstance(engine, str) or engine not in ENGINES:
+        raise v.InputError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")
+    if not isinstance(overturn_criterion, str) or overturn_criterion not in OVERTURN_CRITERIA:
+        raise v.InputError(f"overturn_criterion must be one of {', '.join(OVERTURN_CRITERIA)}, "
+                           f"got {overturn_criterion!r}")
+    free_time = v.check_nonnegative("free_time", free_time, "s", v.MAX_FREE_TIME)
+    v.check_range("initial_rotation", initial_rotation, -math.pi / 2, math.pi / 2, "rad")
+    v.check_number("initial_velocity", initial_velocity, "rad/s")
+    if rest_velocity is not None:
+        v.check_nonnegative("rest_velocity", rest_velocity, "rad/s")
+    if rtol is not None:
+        v.check_range("rtol", rtol, *RTOL_RANGE)
+    if atol is not None:
+        v.check_range("atol", atol, *ATOL_RANGE)
+    if motion.end_time + free_time > v.MAX_TIME_SPAN:
+        v.fail("free_time", free_time, f"the motion lasts {motion.end_time:.4g} s; with free_time a run lasts "
+                                       f"{motion.end_time + free_time:.4g} s, the limit is {v.MAX_TIME_SPAN:g} s", "s")
 
 
 def simulate(block: Block, anchorage: Anchorage, control: Control, motion: GroundMotion, *,
@@ -159,10 +206,22 @@ def simulate(block: Block, anchorage: Anchorage, control: Control, motion: Groun
     record_history : bool
         Return time histories of θ, θ̇, κ and Ẍg.
     rtol, atol : float, optional
-        Integration tolerances (engine defaults when None).
+        Integration tolerances (engine defaults when None), within :data:`RTOL_RANGE` and :data:`ATOL_RANGE`.
+
+    Returns
+    -------
+    SimulationResult
+        Status "undetermined" (with a ``message``) when the fast engine reaches its cap on located events.
+
+    Raises
+    ------
+    ValueError
+        (:class:`rockstudy.core.validation.InputError`) for a wrong type, a non-finite number or a value
+        beyond the limits (:func:`check_inputs`), naming the argument.
     """
-    if engine not in ENGINES:
-        raise ValueError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")
+    check_inputs(block, anchorage, control, motion, engine=engine, overturn_criterion=overturn_criterion,
+                 free_time=free_time, initial_rotation=initial_rotation, initial_velocity=initial_velocity,
+                 rest_velocity=rest_velocity, rtol=rtol, atol=atol)
     if engine == "reference":
         from rockstudy.engine.reference import simulate_reference
         kw = {}

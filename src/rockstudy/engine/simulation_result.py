@@ -14,6 +14,9 @@ STATUS_TIME_LIMIT = "time limit"
 STATUS_CANNOT_OVERTURN = "cannot overturn"
 """Ended after the excitation below the overturning energy (outcome runs only, docs/model.md)."""
 
+STATUS_UNDETERMINED = "undetermined"
+"""The fast engine reached its cap on located events before the run ended: no outcome (``message`` says why)."""
+
 FRACTURE_ELEMENTS = ("spring_left", "spring_right", "damper_left", "damper_right")
 
 
@@ -23,10 +26,11 @@ class SimulationResult:
 
     Attributes
     ----------
-    status : {"overturned", "rest", "time limit", "cannot overturn"}
-        How the simulation ended.
+    status : {"overturned", "rest", "time limit", "cannot overturn", "undetermined"}
+        How the simulation ended ("undetermined": the fast engine's event cap, no outcome).
     overturned : bool
-        True when the overturning criterion was met (or an early stop proved it would be).
+        True when the overturning criterion was met (or an early stop proved it would be); False when
+        undetermined.
     overturn_time : float
         Time of overturning (NaN if not overturned). [s]
     end_time : float
@@ -42,6 +46,8 @@ class SimulationResult:
         ``ground_acceleration`` [m/s^2].
     engine : str
         "fast" or "reference".
+    message : str
+        Why the outcome is undetermined ("" otherwise).
     """
 
     status: str
@@ -55,6 +61,7 @@ class SimulationResult:
     fracture_times: dict = field(default_factory=dict)
     history: dict | None = None
     engine: str = ""
+    message: str = ""
 
     @property
     def n_impacts(self) -> int:
@@ -79,10 +86,10 @@ class SimulationResult:
         def _f(x):
             return None if not np.isfinite(x) else float(x)
         impacts = np.asarray(self.impact_times, dtype=float)
-        return {
+        out = {
             "engine": self.engine,
             "status": self.status,
-            "overturned": bool(self.overturned),
+            "overturned": None if self.status == STATUS_UNDETERMINED else bool(self.overturned),
             "overturn_time_s": _f(self.overturn_time),
             "end_time_s": float(self.end_time),
             "max_rotation_ratio": float(self.max_rotation_ratio),
@@ -93,15 +100,18 @@ class SimulationResult:
             "n_rests": int(len(self.rest_times)),
             "n_fractures": len(self.fracture_times),
         }
+        if self.message:
+            out["message"] = self.message
+        return out
 
     def summary(self) -> dict:
         """JSON-friendly summary (no history)."""
         def _f(x):
             return None if not np.isfinite(x) else float(x)
-        return {
+        out = {
             "engine": self.engine,
             "status": self.status,
-            "overturned": bool(self.overturned),
+            "overturned": None if self.status == STATUS_UNDETERMINED else bool(self.overturned),
             "overturn_time_s": _f(self.overturn_time),
             "end_time_s": float(self.end_time),
             "max_rotation_ratio": float(self.max_rotation_ratio),
@@ -111,6 +121,9 @@ class SimulationResult:
             "rest_times_s": [float(x) for x in self.rest_times],
             "fracture_times_s": {k: float(v) for k, v in self.fracture_times.items()},
         }
+        if self.message:
+            out["message"] = self.message
+        return out
 
 
 def unique_times(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -13,7 +13,16 @@ import numpy as np
 from numba import njit
 
 from rockstudy.core._inline import inline_into
-from rockstudy.core.validation import MAX_CONTROLLER_SAMPLES, MAX_STEPS, MAX_TIME_SPAN, fail
+from rockstudy.core.validation import (
+    MAX_CONTROLLER_SAMPLES,
+    MAX_RECORD_SAMPLES,
+    MAX_STEPS,
+    MAX_TIME_SPAN,
+    check_number,
+    check_positive,
+    check_range,
+    fail,
+)
 
 EXCITATIONS = ("one-sine", "modulated")
 KIND_CODE = {"one-sine": 0, "modulated": 1, "record": 2, "rectangular": 3}
@@ -167,20 +176,33 @@ class GroundMotion:
     vertical: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def __post_init__(self):
-        if self.kind not in KIND_CODE:
+        if not isinstance(self.kind, str) or self.kind not in KIND_CODE:
             raise ValueError(f"GroundMotion.kind must be one of {', '.join(KIND_CODE)}, got {self.kind!r}")
-        if not (math.isfinite(self.amplitude)):
-            raise ValueError(f"GroundMotion.amplitude must be finite, got {self.amplitude!r}")
-        if self.kind != "rectangular" and not (self.omega > 0):
-            raise ValueError(f"GroundMotion.omega must be > 0 rad/s, got {self.omega!r}")
-        if not (self.duration > 0):
-            raise ValueError(f"GroundMotion.duration must be > 0 s, got {self.duration!r}")
-        if self.kind == "record" and (self.record_dt <= 0 or len(self.record) < 2):
-            raise ValueError("GroundMotion of kind 'record' needs record_dt > 0 and at least 2 samples")
-        if len(self.vertical) and self.vertical_dt <= 0:
-            raise ValueError("GroundMotion.vertical needs vertical_dt > 0")
-        object.__setattr__(self, "record", np.ascontiguousarray(self.record, dtype=float))
-        object.__setattr__(self, "vertical", np.ascontiguousarray(self.vertical, dtype=float))
+        object.__setattr__(self, "amplitude", check_number("GroundMotion.amplitude", self.amplitude, "m/s^2"))
+        omega = check_number("GroundMotion.omega", self.omega, "rad/s")
+        if self.kind != "rectangular" and not omega > 0:
+            fail("GroundMotion.omega", omega, "it must be > 0", "rad/s")
+        object.__setattr__(self, "omega", omega)
+        object.__setattr__(self, "duration", check_range("GroundMotion.duration", self.duration, 0.0, MAX_TIME_SPAN,
+                                                         "s", low_open=True))
+        for name in ("record", "vertical"):
+            try:
+                samples = np.ascontiguousarray(getattr(self, name), dtype=float)
+            except (TypeError, ValueError):
+                raise ValueError(f"GroundMotion.{name} must be an array of numbers") from None
+            if samples.ndim != 1 or samples.size > MAX_RECORD_SAMPLES:
+                fail(f"GroundMotion.{name}", f"an array of shape {samples.shape}",
+                     f"it must be 1-D with at most {MAX_RECORD_SAMPLES} samples")
+            if not np.all(np.isfinite(samples)):
+                bad = int(np.flatnonzero(~np.isfinite(samples))[0])
+                fail(f"GroundMotion.{name}", f"sample {bad} = {samples[bad]}", "every sample must be finite")
+            object.__setattr__(self, name, samples)
+        if self.kind == "record":
+            check_positive("GroundMotion.record_dt", self.record_dt, "s")
+            if len(self.record) < 2:
+                fail("GroundMotion.record", f"{len(self.record)} sample(s)", "a record needs at least 2 samples")
+        if len(self.vertical):
+            check_positive("GroundMotion.vertical_dt", self.vertical_dt, "s")
 
     @property
     def code(self) -> int:
@@ -236,7 +258,8 @@ def modulated_peak() -> float:
 
 def check_time_span(block, excitation: str, frequency_ratios, free_time: float, sampling_time: float = 0.0, *,
                     frequency_name: str = "frequency_ratio", free_time_name: str = "free_time",
-                    sampling_name: str = "sampling_time") -> None:
+                    sampling_name: str = "sampling_time", record_step: float | None = None,
+                    record_span: float = 0.0, step_name: str = "noise.step", span_name: str = "noise.span") -> None:
     """The simulations at these frequency ratios stay within :data:`MAX_TIME_SPAN`, :data:`MAX_STEPS`
     and :data:`MAX_CONTROLLER_SAMPLES` (the worst cases are the lowest and the highest frequency).
 
@@ -250,16 +273,34 @@ def check_time_span(block, excitation: str, frequency_ratios, free_time: float, 
         Free motion after the excitation. [s]
     sampling_time : float
         Controller sampling time T_s (0: continuous). [s]
+    record_step, record_span : float
+        For noisy records: their sampling step and the noise after the excitation (the noise reading's
+        ``step`` and ``span``, named ``step_name`` and ``span_name``): the record lasts ``record_span``
+        longer, and its samples must stay within :data:`MAX_RECORD_SAMPLES`. [s]
     """
     for f in {min(frequency_ratios), max(frequency_ratios)}:
         omega = f * block.p
         if not omega > 0:  # e.g. a grid start below 5e-11, which the grid rounds to 0
             fail(frequency_name, f, "it must be > 0 (the grids are rounded to 10 decimals)")
-        span = excitation_duration(excitation, omega) + free_time
+        duration = excitation_duration(excitation, omega)
+        span = duration + free_time
         if span > MAX_TIME_SPAN:
             fail(frequency_name, f, f"the excitation lasts {span - free_time:.4g} s at this frequency ratio "
                                     f"for this block (p = {block.p:.4g} rad/s); with {free_time_name} = "
                                     f"{free_time:g} s that is {span:.4g} s, the limit is {MAX_TIME_SPAN:g} s")
+        if record_step is not None:
+            if duration + free_time <= MAX_TIME_SPAN < duration + record_span + free_time:
+                fail(span_name, record_span, f"the excitation lasts {duration:.4g} s at {frequency_name} = {f:g}; "
+                                             f"with {span_name} and {free_time_name} = {free_time:g} s a simulation "
+                                             f"lasts {duration + record_span + free_time:.4g} s, the limit is "
+                                             f"{MAX_TIME_SPAN:g} s", "s")
+            samples = math.ceil(duration / record_step) + 1 + round(record_span / record_step)
+            if samples > MAX_RECORD_SAMPLES:
+                fail(step_name, record_step, f"a record of {duration + record_span:.4g} s at {frequency_name} = "
+                                             f"{f:g} sampled every {record_step:g} s has {samples:.3g} samples, the "
+                                             f"limit is {MAX_RECORD_SAMPLES:.0e} (the engine steps to every sample)",
+                     "s")
+            span += record_span
         hmax = 0.05 * 2 * math.pi / max(block.p, omega)
         if span / hmax > MAX_STEPS:
             fail(frequency_name, f, f"a simulation of {span:.4g} s at steps of at most {hmax:.3g} s needs "

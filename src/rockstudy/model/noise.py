@@ -123,7 +123,7 @@ class NoiseReading:
         """Refuse a bad field with a ``ValueError`` naming it ``names[field]`` (the caller's option or config
         key), else ``NoiseReading.<field>``; returns the numbers as floats."""
         name = validation.field_names("NoiseReading", names)
-        step = validation.check_positive(name("step"), step, "s")
+        step = validation.check_positive(name("step"), step, "s", validation.MAX_NOISE_STEP)
         _check_rescale(rescale, name("rescale"))
         if level_means not in LEVEL_MEANINGS:
             raise ValueError(f"{name('level_means')} must be one of {', '.join(map(repr, LEVEL_MEANINGS))}, "
@@ -133,7 +133,8 @@ class NoiseReading:
             if band >= 0.5 / step:
                 raise ValueError(f"{name('band')} must be below the Nyquist frequency 1/(2 {name('step')}) = "
                                  f"{0.5 / step:g} Hz, got {band!r} (use None for white noise)")
-        return {"step": step, "band": band, "span": validation.check_nonnegative(name("span"), span, "s")}
+        span = validation.check_nonnegative(name("span"), span, "s", validation.MAX_TIME_SPAN)
+        return {"step": step, "band": band, "span": span}
 
     @property
     def nyquist(self) -> float:

@@ -18,7 +18,8 @@ per line.
 Two-column text or CSV: time [s] and acceleration, separated by commas, semicolons, tabs or
 blanks; blank lines and lines starting with ``#`` are skipped; one header line (the first
 line that is not a comment) may name the columns, e.g. ``time [s], acceleration [g]``, and
-its bracketed unit is used when no unit is given. Times must start anywhere and increase by
+its bracketed unit is used when no unit is given. When it brackets a unit for each column,
+the first is the time unit (s, ms or min; any other is refused). Times must start anywhere and increase by
 one constant step (the record's time origin is its first sample).
 
 One column with a given step ``dt`` (the file OpenSees reads with ``timeSeries Path -dt``): the
@@ -40,6 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from rockstudy.core.io import write_text
+from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, check_input_file
 from rockstudy.model.excitation import GroundMotion
 
 STANDARD_GRAVITY = 9.80665
@@ -224,8 +226,9 @@ def read_at2(path) -> Record:
         raise RecordFormatError(path, 4, "'NPTS= <count>, DT= <step> SEC' (or '<count> <step> NPTS, DT')",
                                 lines[3].strip())
     npts, dt = int(match.group(1)), _float(match.group(2))
-    if npts < 2:
-        raise RecordFormatError(path, 4, "NPTS >= 2", str(npts))
+    if not 2 <= npts <= MAX_RECORD_SAMPLES:
+        raise RecordFormatError(path, 4, f"2 <= NPTS <= {MAX_RECORD_SAMPLES} (the engine steps to every sample)",
+                                str(npts))
     if not (math.isfinite(dt) and dt > 0):
         raise RecordFormatError(path, 4, "DT > 0 [s]", match.group(2))
     values: list[float] = []
@@ -274,7 +277,7 @@ def read_two_column(path, unit: str | None = None) -> Record:
     """
     path = Path(path)
     lines = path.read_text(errors="replace").splitlines()
-    header, header_unit, rows, row_lines = None, None, [], []
+    header, header_unit, rows, row_lines, time_factor = None, None, [], [], 1.0
     expected = "two numbers: time [s] and acceleration"
     for number, text in enumerate(lines, start=1):
         stripped = text.strip()
@@ -286,10 +289,14 @@ def read_two_column(path, unit: str | None = None) -> Record:
         except ValueError:
             if not rows and header is None:  # one header line, before the data
                 header, header_unit = number, _header_unit(stripped)
+                time_factor = _header_time_factor(path, number, stripped)
                 continue
             raise RecordFormatError(path, number, expected, stripped) from None
         if len(row) != 2:
             raise RecordFormatError(path, number, expected, stripped)
+        if len(rows) >= MAX_RECORD_SAMPLES:
+            raise RecordFormatError(path, number, f"at most {MAX_RECORD_SAMPLES} rows (the engine steps to every "
+                                    "sample)", stripped)
         if not all(math.isfinite(v) for v in row):
             raise RecordFormatError(path, number, "finite time and acceleration", stripped)
         rows.append(row)
@@ -304,6 +311,7 @@ def read_two_column(path, unit: str | None = None) -> Record:
         unit = header_unit
     factor = unit_factor(unit)
     data = np.asarray(rows)
+    data[:, 0] *= time_factor  # the header's time unit, to seconds
     steps = np.diff(data[:, 0])
     nonincreasing = np.flatnonzero(steps <= 0)
     if nonincreasing.size:
@@ -389,6 +397,23 @@ def read_one_column(path, dt: float, unit: str | None = None) -> Record:
                   unit=unit)
 
 
+TIME_UNITS = {"s": 1.0, "sec": 1.0, "second": 1.0, "seconds": 1.0, "ms": 1e-3, "min": 60.0}
+"""Time units a two-column header may give its first column, with their value in seconds."""
+
+
+def _header_time_factor(path, number: int, text: str) -> float:
+    """Seconds per unit of the time column named in a header line: its bracketed unit when the header
+    brackets two units (``time [ms], acceleration [g]``); seconds when it brackets one or none."""
+    found = _UNIT_IN_HEADER.findall(text)
+    if len(found) < 2:
+        return 1.0
+    unit = found[0].strip().lower()
+    if unit not in TIME_UNITS:
+        raise RecordFormatError(path, number, f"a time unit among {', '.join(TIME_UNITS)} for the first column",
+                                found[0])
+    return TIME_UNITS[unit]
+
+
 def _header_unit(text: str) -> str | None:
     """The bracketed unit of the last column named in a header line, if it is a known unit."""
     found = _UNIT_IN_HEADER.findall(text)
@@ -419,10 +444,16 @@ def read_record(path, unit: str | None = None, dt: float | None = None) -> Recor
     Returns
     -------
     Record
+
+    Raises
+    ------
+    ValueError
+        (:class:`rockstudy.core.validation.InputError`) if the path is missing, not a regular file (a
+        folder, a FIFO, a device) or larger than :data:`~rockstudy.core.validation.MAX_RECORD_BYTES`;
+        :class:`RecordFormatError` for a malformed file or more samples than
+        :data:`~rockstudy.core.validation.MAX_RECORD_SAMPLES`.
     """
-    path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"record file {str(path)!r} does not exist")
+    path = check_input_file("record file", path, MAX_RECORD_BYTES)
     if path.suffix.lower() in AT2_SUFFIXES:
         if dt is not None:
             raise ValueError(f"an .AT2 record states its own time step (DT=); dt must be omitted, got {dt!r}")

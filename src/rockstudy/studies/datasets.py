@@ -12,6 +12,7 @@ from rockstudy._version import __version__
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.analysis.spectra import convergence
 from rockstudy.core.constants import PAPER
+from rockstudy.core.io import check_dataset
 from rockstudy.model.excitation import excitation_duration
 from rockstudy.model.noise import NOISE_DT, baseline_samples, level_key, noisy_record
 
@@ -88,6 +89,9 @@ def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_
                **sc.block.to_attrs()})
 
 
+PER_CHUNK_ATTRS = ("compute_time_s",)
+DERIVED_ATTRS = ("title", "paper", "paper_equations", "rockstudy_version", "rockstudy_source_sha256")
+"""Attributes that differ between the chunks of one spectrum."""
 REALISATION_VARS = ("threshold_realisation", "last_safe", "n_simulations", "n_undetermined", "energy_ratio",
                     "pga_ratio")
 
@@ -99,6 +103,13 @@ def gather_spectra(parts) -> xr.Dataset:
     ``threshold_mean``/``threshold_std`` the mean and std over the realisations with a threshold.
     """
     parts = sorted(parts, key=lambda d: int(d["realisation"].values[0]))
+    first = parts[0]
+    # the settings first, so that a mismatch names the setting rather than the title derived from it
+    keys = sorted((k for k in first.attrs if k not in PER_CHUNK_ATTRS), key=lambda k: k in DERIVED_ATTRS)
+    same = {k: first.attrs[k] for k in keys}
+    same["frequency_ratio"] = first["frequency_ratio"].values.tolist()
+    for part in parts[1:]:  # chunks of one spectrum share every setting; only their realisations differ
+        check_dataset(part, part.encoding.get("source", "a chunk"), same)
     ds = xr.concat([p[list(REALISATION_VARS)] for p in parts], dim="realisation", combine_attrs="override")
     if len(np.unique(ds["realisation"])) != ds.sizes["realisation"]:
         raise ValueError("the chunks overlap: a realisation appears twice")
@@ -156,3 +167,39 @@ def check_noise(noise: xr.Dataset, scenario: Scenario) -> None:
     for attr, value in expected.items():
         if noise.attrs.get(attr) != value:
             raise ValueError(f"noise file has {attr}={noise.attrs.get(attr)!r}, the scenario {value!r}")
+
+
+NOISE_FILE_KEYS = ("noise_seed", "noise_level", "excitation")
+"""Scenario attributes a noise file carries besides its block and reading (it has no device or control)."""
+
+
+def expected_attrs(scenario: Scenario, kind: str = "spectrum", *, realisations=None, frequency_ratios=None,
+                   amplitude_grid=None, **extra) -> dict:
+    """What a dataset of ``kind`` made for ``scenario`` must say about itself (the expectations that
+    :func:`rockstudy.core.io.check_dataset` compares), as plain JSON-able values.
+
+    ``kind``: ``"noise"`` (seed, level, excitation, reading, block), ``"spectrum"``, ``"history"``,
+    ``"map"`` or ``"study"`` (block, excitation, seed, criterion, free time: what a table inherits).
+    ``realisations``, ``frequency_ratios``: the coordinates; ``amplitude_grid``: an
+    :class:`~rockstudy.analysis.spectra.AmplitudeGrid` or a dict with start/stop/step/resolution;
+    ``extra``: more attributes (e.g. ``noise_realisation`` of a history).
+    """
+    attrs = scenario.to_attrs()
+    if kind == "noise":
+        keep = set(NOISE_FILE_KEYS) | set(scenario.noise.to_attrs()) | set(scenario.block.to_attrs())
+        attrs = {k: val for k, val in attrs.items() if k in keep}
+    elif kind == "study":
+        keep = {"noise_seed", "excitation", "overturn_criterion", "free_time_s"} | set(scenario.block.to_attrs())
+        attrs = {k: val for k, val in attrs.items() if k in keep}
+    elif kind not in ("spectrum", "history", "map"):
+        raise ValueError(f"kind must be noise, spectrum, history, map or study, got {kind!r}")
+    out = {k: (val.item() if isinstance(val, np.generic) else val) for k, val in attrs.items()}
+    if realisations is not None:
+        out["realisation"] = [int(k) for k in realisations]
+    if frequency_ratios is not None:
+        out["frequency_ratio"] = [float(f) for f in frequency_ratios]
+    if amplitude_grid is not None:
+        grid = amplitude_grid if isinstance(amplitude_grid, dict) else amplitude_grid.__dict__
+        out.update({f"grid_amplitude_{k}": float(grid[k]) for k in ("start", "stop", "step", "resolution")})
+    out.update(extra)
+    return out

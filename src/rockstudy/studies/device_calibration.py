@@ -356,14 +356,37 @@ def device_table(fs_spectra, device_spectra_list, levels: dict, a_max0_g: float)
     return table
 
 
-def check_config(section: dict, alpha: float) -> None:
-    """The config's ``calibration:`` section describes valid devices for a block of slenderness ``alpha``.
+def check_config(section: dict, alpha: float, sims_per_case: int | None = None) -> None:
+    """The config's ``calibration:`` section describes valid devices for a block of slenderness ``alpha``:
+    every value within the anchorage's limits, at most :data:`~rockstudy.core.validation.MAX_DEVICES`
+    devices, ``candidates`` among them, the coarse realisations and frequency grid within the limits and,
+    given ``sims_per_case`` (simulations of one threshold), a coarse job within the workload limit.
 
     Raises
     ------
     ValueError
-        (:class:`rockstudy.core.validation.InputError`) naming ``calibration`` and what is wrong.
+        (:class:`rockstudy.core.validation.InputError`) naming ``calibration.<key>`` and what is wrong.
     """
+    for key, high, why in (("kappa_max", validation.MAX_KAPPA, ""), ("damping_ratio", validation.MAX_DAMPING_RATIO, ""),
+                           ("ultimate_rotation_ratio", math.pi / 2 / alpha, "theta_u = ratio x alpha <= pi/2"),
+                           ("kappa_min_ratio", 1.0, "kappa_min <= kappa_max")):
+        for i, value in enumerate(section[key]):
+            validation.check_nonnegative(f"calibration.{key}[{i}]", value, high=high, why=why)
+    n_devices = math.prod(len(section[k]) for k in ("kappa_max", "damping_ratio", "ultimate_rotation_ratio",
+                                                      "kappa_min_ratio"))
+    if n_devices > validation.MAX_DEVICES:
+        validation.fail("calibration", f"{n_devices} devices",
+                        f"at most {validation.MAX_DEVICES} (every combination of kappa_max, damping_ratio, "
+                        "ultimate_rotation_ratio, kappa_min_ratio)")
+    validation.check_int_range("calibration.candidates", section["candidates"], 1, n_devices,
+                      why="the best of the devices screened")
+    n_real = validation.check_int_range("calibration.coarse_realisations", section["coarse_realisations"], 1,
+                               validation.MAX_REALISATIONS)
+    fg = section["coarse_frequency_grid"]
+    n_freq = validation.check_grid("calibration.coarse_frequency_grid", fg["start"], fg["stop"], fg["step"],
+                          high=validation.MAX_FREQUENCY_RATIO)
+    if sims_per_case is not None:
+        validation.check_workload("calibration.coarse_realisations", n_real, n_real * n_freq, sims_per_case, 0)
     try:
         design = CalibrationDesign(section["kappa_max"], section["damping_ratio"], section["ultimate_rotation_ratio"],
                                    section["kappa_min_ratio"])

@@ -171,16 +171,34 @@ def reading_dict(reading: NoiseReading) -> dict:
             "band": reading.band, "span": reading.span}
 
 
-def check_config(section: dict) -> None:
-    """Every reading of the config's ``reproduction.readings`` is a valid :class:`NoiseReading`.
+def check_config(section: dict, study=None) -> None:
+    """The config's ``reproduction:`` section: every reading of ``reproduction.readings`` is a valid
+    :class:`NoiseReading`, ``reproduction.realisations`` is within the limits and, given ``study`` (a dict
+    with the study's ``block`` (a Block), ``excitation``, ``free_time``, ``frequency_ratios`` and
+    ``sims_per_case``), every reading's records fit one simulation (span, samples) and its spectrum job
+    (all realisations at once) fits the workload and memory limits.
 
     Raises
     ------
     ValueError
-        (:class:`rockstudy.core.validation.InputError`) naming ``reproduction.readings.<name>``.
+        (:class:`rockstudy.core.validation.InputError`) naming ``reproduction.<key>``.
     """
+    from rockstudy.model.excitation import check_time_span, excitation_duration
+    n_real = validation.check_int_range("reproduction.realisations", section["realisations"], 1,
+                                        validation.MAX_REALISATIONS)
     for name, spec in section["readings"].items():
         try:
-            reading_from_dict(spec, key=f"reproduction.readings.{name}")
+            reading = reading_from_dict(spec, key=f"reproduction.readings.{name}")
         except ValueError as exc:
             raise validation.InputError(str(exc)) from None
+        if study is None:
+            continue
+        key = f"reproduction.readings.{name}"
+        freqs, block = study["frequency_ratios"], study["block"]
+        check_time_span(block, study["excitation"], [min(freqs), max(freqs)], study["free_time"],
+                        frequency_name="frequency_grid", record_step=reading.step, record_span=reading.span,
+                        step_name=f"{key}.step", span_name=f"{key}.span")
+        samples = validation.record_samples((excitation_duration(study["excitation"], f * block.p) for f in freqs),
+                                   reading.step, reading.span)
+        validation.check_workload("reproduction.realisations", n_real, n_real * len(freqs), study["sims_per_case"],
+                         n_real * samples * validation.RECORD_BYTES_PER_SAMPLE)

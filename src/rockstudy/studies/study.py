@@ -88,6 +88,19 @@ def _non_finite(value, key=""):
     return []
 
 
+def check_sizes(config: dict) -> None:
+    """No list or mapping of the config has more than :data:`~rockstudy.core.validation.MAX_LIST_ITEMS`
+    entries (a record suite :data:`~rockstudy.core.validation.MAX_SUITE_RECORDS`): run before the JSON
+    schema, whose ``uniqueItems`` takes quadratic time on a long list.
+
+    Raises
+    ------
+    ValueError
+        (:class:`rockstudy.core.validation.InputError`) naming the key path.
+    """
+    validation.check_sizes(config, limits={"beyond.fragility.records": validation.MAX_SUITE_RECORDS})
+
+
 def check_study(config: dict) -> None:
     """Checks a JSON schema cannot express, before any job runs; the message names the offending key.
 
@@ -102,6 +115,8 @@ def check_study(config: dict) -> None:
     ValueError
         (:class:`rockstudy.core.validation.InputError`) naming the key, the value and what is allowed.
     """
+    check_sizes(config)
+    validation.check_results_dir("results_dir", config["results_dir"])
     bad = _non_finite(config)
     if bad:
         key, value = bad[0]
@@ -158,7 +173,13 @@ def check_study(config: dict) -> None:
     freqs = frequency_ratios(fg)
     grid_name = "frequency_grid.start" if fg["start"] < 1 else "frequency_grid.stop"
     span_freqs = [fg["start"], float(freqs[-1])]  # the user's start (the grid rounds to 10 decimals)
-    check_time_span(block, config["excitation"], span_freqs, free_time, frequency_name=grid_name)
+    try:
+        reading = reading_from_dict(config["noise"], key="noise")
+    except ValueError as exc:
+        raise validation.InputError(str(exc)) from None
+    # the noisy records last noise.span longer and have (duration + span) / noise.step samples
+    check_time_span(block, config["excitation"], span_freqs, free_time, frequency_name=grid_name,
+                    record_step=reading.step, record_span=reading.span)
     for key in ("control_histories.frequency_ratio", "example_point.frequency_ratio",
                 "noise_reference_frequency_ratio"):
         node = config
@@ -172,28 +193,26 @@ def check_study(config: dict) -> None:
                           sampling_name=name)
     # one spectrum job: its realisations x frequencies, and the noise records it holds
     per_job = min(per_job, n_real)
-    samples = validation.record_samples(excitation_duration(config["excitation"], f * block.p) for f in freqs)
+    samples = validation.record_samples((excitation_duration(config["excitation"], f * block.p) for f in freqs),
+                               reading.step, reading.span)
     validation.check_workload("realisations_per_job", config["realisations_per_job"], per_job * n_freq, sims_per_case,
-                              per_job * samples * validation.RECORD_BYTES_PER_SAMPLE)
+                     per_job * samples * validation.RECORD_BYTES_PER_SAMPLE)
     n_chunks = -(-n_real // per_job)
     if n_chunks > validation.MAX_JOBS_PER_SPECTRUM:
         validation.fail("realisations_per_job", config["realisations_per_job"],
-                        f"realisations = {n_real} in jobs of {per_job} gives {n_chunks} jobs per spectrum, the limit "
-                        f"is {validation.MAX_JOBS_PER_SPECTRUM} (Snakemake's DAG would grow too large); use larger "
-                        "jobs")
+               f"realisations = {n_real} in jobs of {per_job} gives {n_chunks} jobs per spectrum, the limit is "
+               f"{validation.MAX_JOBS_PER_SPECTRUM} (Snakemake's DAG would grow too large); use larger jobs")
     validation.check_workload("amplitude_grid.step", ag["step"], n_freq, grid_size_points(ag), 0)
-    try:
-        reading = reading_from_dict(config["noise"], key="noise")
-    except ValueError as exc:
-        raise validation.InputError(str(exc)) from None
     band = config["control"]["sensor_band"]
     if band is not None:  # the sensor reads the noisy records at noise.step, the analytic excitation at SENSOR_STEP
         try:
             check_band(band, max(reading.step, SENSOR_STEP), "control.sensor_band")
         except ValueError as exc:
             raise validation.InputError(str(exc)) from None
-    noise_readings.check_config(config["reproduction"])
-    device_calibration.check_config(config["calibration"], block.alpha)
+    noise_readings.check_config(config["reproduction"], {
+        "block": block, "excitation": config["excitation"], "free_time": free_time, "frequency_ratios": freqs,
+        "sims_per_case": sims_per_case})
+    device_calibration.check_config(config["calibration"], block.alpha, sims_per_case)
     if config.get("beyond"):
         beyond.check_config(config["beyond"], config)
 

@@ -44,6 +44,86 @@ def jos_of(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float,
     return j, n, ratio
 
 
+SPECTRUM_NUMBERS = ("block_alpha", "grid_amplitude_start", "grid_amplitude_stop", "grid_amplitude_step")
+"""Attributes J_OS needs from a spectrum file (a_max,0 as a ratio, the scan's top)."""
+JOS_SETTINGS = ("excitation", "overturn_criterion", "free_time_s", "grid_amplitude_start", "grid_amplitude_stop",
+                "grid_amplitude_step", "grid_amplitude_resolution")
+"""Settings two spectra compared by J_OS must share besides the block and the device (``block_*``,
+``anchorage_*``) and the frequency grid."""
+NOISY_SETTINGS = ("noise_seed", "noise_step_s", "noise_rescale", "noise_level_means", "noise_band_hz",
+                  "noise_span_s", "n_realisations")
+"""Settings two noisy spectra must also share: the noise reading, the seed and the number of realisations
+(a noise-free spectrum does not depend on them)."""
+
+
+def check_spectrum_file(ds: xr.Dataset, name: str) -> None:
+    """``ds`` is a rockstudy spectrum J_OS can use: a 1-D ``threshold`` over ``frequency_ratio`` and finite
+    block slenderness (0 < block_alpha < pi/2) and amplitude scan attributes.
+
+    Raises
+    ------
+    ValueError
+        (:class:`rockstudy.core.validation.InputError`) naming ``name`` and what is missing or wrong.
+    """
+    import math
+
+    from rockstudy.core import validation
+    if "threshold" not in ds or "frequency_ratio" not in ds.coords or ds["threshold"].dims != ("frequency_ratio",):
+        raise validation.InputError(f"{name}: not a rockstudy spectrum file (no 'threshold' over 'frequency_ratio')")
+    freqs = ds["frequency_ratio"].values
+    if freqs.size == 0 or not np.all(np.isfinite(freqs)) or np.any(freqs <= 0):
+        raise validation.InputError(f"{name}: frequency_ratio must be non-empty, finite and > 0")
+    for key in SPECTRUM_NUMBERS:
+        if key not in ds.attrs:
+            raise validation.InputError(f"{name}: not a rockstudy spectrum file (no attribute {key!r})")
+        try:
+            value = float(np.asarray(ds.attrs[key]).item())
+        except (TypeError, ValueError):
+            raise validation.InputError(f"{name}: attribute {key} = {ds.attrs[key]!r} is not a number") from None
+        high = math.pi / 2 if key == "block_alpha" else validation.MAX_AMPLITUDE_RATIO
+        if not (math.isfinite(value) and 0 < value < high):
+            raise validation.InputError(f"{name}: attribute {key} = {value!r} is not allowed: it must lie in "
+                                        f"(0, {high:g})")
+    try:
+        level = _level(ds)
+    except (TypeError, ValueError):
+        raise validation.InputError(f"{name}: noise_level is not a number") from None
+    if not 0 <= level < 1:
+        raise validation.InputError(f"{name}: noise_level = {level!r} is not allowed: it must lie in [0, 1)")
+    if ds.attrs["grid_amplitude_stop"] < ds.attrs["grid_amplitude_start"]:
+        raise validation.InputError(f"{name}: grid_amplitude_stop is below grid_amplitude_start")
+
+
+def _level(ds: xr.Dataset) -> float:
+    return float(ds["noise_level"]) if "noise_level" in ds.variables else float(ds.attrs.get("noise_level", 0.0))
+
+
+def _setting(ds: xr.Dataset, key: str):
+    if key == "n_realisations":
+        return int(ds.sizes.get("realisation", 1))
+    value = ds.attrs.get(key, "<missing>")
+    return value.tolist() if isinstance(value, (np.ndarray, np.generic)) else value
+
+
+def spectrum_mismatches(system: xr.Dataset, reference: xr.Dataset) -> list[tuple[str, object, object]]:
+    """(attribute, system's value, reference's value) of every setting in which two spectra differ and that
+    J_OS needs equal: the block, the device, :data:`JOS_SETTINGS` and, when both are noisy,
+    :data:`NOISY_SETTINGS`. The strategy, its timing and sensor, and the noise level may differ: they are
+    what J_OS compares."""
+    from rockstudy.core.io import same_value
+    keys = sorted({k for ds in (system, reference) for k in ds.attrs if k.startswith(PROVENANCE_PREFIXES)},
+                  key=lambda k: (not k.startswith("block_"), k))  # the block first: the device's attrs follow it
+    keys += list(JOS_SETTINGS)
+    if _level(system) > 0 and _level(reference) > 0:
+        keys += list(NOISY_SETTINGS)
+    out = []
+    for key in keys:
+        a, b = _setting(system, key), _setting(reference, key)
+        if not same_value(a, b):
+            out.append((key, a, b))
+    return out
+
+
 def _jos(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float) -> tuple[float, int]:
     j, n, _ = jos_of(system, reference, a_max0_g)
     return j, n
