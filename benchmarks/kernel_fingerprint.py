@@ -9,6 +9,13 @@ pointed at its ``src``) and then ``compare``:
     NUMBA_NUM_THREADS=1 python benchmarks/kernel_fingerprint.py save after.npz
     python benchmarks/kernel_fingerprint.py compare before.npz after.npz
 
+A change that is allowed to move results by round-off or by the integrator's tolerance (another
+embedded pair, say) is checked with ``compare --tolerance``: every run must end in the same way
+(status), and its times and largest rotation must agree to the relative tolerance given; it prints
+how many runs are bitwise equal, equal within the tolerance, and which differ in what:
+
+    python benchmarks/kernel_fingerprint.py compare before.npz after.npz --tolerance 1e-4
+
 The cases cover every strategy, sampling time, delay, anchorage and overturn criterion, on noisy
 records, the analytic excitations and (``--vertical``) vertical records, with histories and logs
 switched on and off, and (``--sensor``) the controller's sensor. The same seed gives the same
@@ -78,7 +85,22 @@ def save(path: str, n: int, seed: int, sensor: bool, vertical: bool) -> None:
     print(f"{n} runs saved to {path}")
 
 
-def compare(a: str, b: str) -> int:
+TOLERANCE_FIELDS = ("overturn_time", "end_time", "max_abs_theta", "fracture_times")
+"""Fields compared to a relative tolerance in ``compare --tolerance``; ``status`` must be equal."""
+
+
+def _within(u, v, rtol: float) -> bool:
+    """Same shape and every entry equal within ``rtol`` (relative to the larger, NaN equal to NaN)."""
+    if u.shape != v.shape:
+        return False
+    both_nan = np.isnan(u) & np.isnan(v)
+    scale = np.maximum(np.abs(u), np.abs(v))
+    return bool(np.all(both_nan | (np.abs(u - v) <= rtol * scale)))
+
+
+def compare(a: str, b: str, tolerance: float | None = None) -> int:
+    """Compare two fingerprints: bit for bit, or (``tolerance``) each run's ending and its
+    :data:`TOLERANCE_FIELDS` to a relative tolerance. Returns 0 when they agree, 1 otherwise."""
     x, y = np.load(a), np.load(b)
     if sorted(x.files) != sorted(y.files):
         print("the fingerprints hold different runs or fields")
@@ -89,10 +111,25 @@ def compare(a: str, b: str) -> int:
     runs = sorted(fields_of, key=int)
     bad = [r for r in runs if any(not np.array_equal(x[k], y[k], equal_nan=True) or x[k].dtype != y[k].dtype
                                   for k in fields_of[r])]
-    for r in bad[:20]:
-        print(f"run {r} differs")
-    print(f"{len(runs)} runs compared, {len(bad)} differ")
-    return 1 if bad else 0
+    if tolerance is None:
+        for r in bad[:20]:
+            print(f"run {r} differs")
+        print(f"{len(runs)} runs compared, {len(bad)} differ")
+        return 1 if bad else 0
+    failed, counts = [], {}
+    for r in bad:
+        wrong = [] if x[f"{r}/status"] == y[f"{r}/status"] else ["status"]
+        wrong += [f for f in TOLERANCE_FIELDS if not _within(x[f"{r}/{f}"], y[f"{r}/{f}"], tolerance)]
+        for f in wrong:
+            counts[f] = counts.get(f, 0) + 1
+        if wrong:
+            failed.append((r, wrong))
+    for r, wrong in failed[:20]:
+        print(f"run {r}: {', '.join(wrong)} beyond the tolerance")
+    print(f"{len(runs)} runs compared at relative tolerance {tolerance:g}: {len(runs) - len(bad)} bitwise equal, "
+          f"{len(bad) - len(failed)} within the tolerance, {len(failed)} beyond it"
+          + (f" ({', '.join(f'{k}: {v}' for k, v in counts.items())})" if counts else ""))
+    return 1 if failed else 0
 
 
 def main(argv=None) -> int:
@@ -104,14 +141,16 @@ def main(argv=None) -> int:
     s.add_argument("--seed", type=int, default=77)
     s.add_argument("--sensor", action="store_true", help="give the controller a sensor (random band)")
     s.add_argument("--vertical", action="store_true", help="add vertical records to every other run")
-    c = sub.add_parser("compare", help="compare two saved fingerprints bit for bit")
+    c = sub.add_parser("compare", help="compare two saved fingerprints bit for bit (or to a tolerance)")
     c.add_argument("a")
     c.add_argument("b")
+    c.add_argument("--tolerance", type=float, default=None,
+                   help="compare each run's ending and times to this relative tolerance instead of bit for bit")
     args = ap.parse_args(argv)
     if args.command == "save":
         save(args.path, args.n, args.seed, args.sensor, args.vertical)
         return 0
-    return compare(args.a, args.b)
+    return compare(args.a, args.b, args.tolerance)
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@ NOISY = [name for name in LEVELS if name != FREE]
 LIBRARY = study.source_fingerprint()  # the simulation layers: core, model, engine, analysis
 BOOKKEEPING = study.source_fingerprint("core", "analysis", "studies")  # what assembles datasets and tables
 PLOTTING = study.source_fingerprint("plotting.py")  # redraw the figures when the plotting module changes
+COMPILED = f"{OUT}/logs/compile_engine.done"  # the engine compiled once into numba's cache (rule compile_engine)
 SAMPLING = config["sampling_sweep"]
 DELAY = config["delay_sweep"]
 EX = config["example_point"]

@@ -1,6 +1,24 @@
 # Simulations: noise realisations, overturning spectra in realisation chunks, maps, histories.
 
 
+rule compile_engine:
+    output:
+        f"{OUT}/logs/compile_engine.done",
+    log:
+        f"{OUT}/logs/compile_engine.log",
+    params:
+        scenario=scenario("CS01", (NOISY or [FREE])[0]),
+        library=LIBRARY,
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    resources:
+        mem_mb=SIM_MEM_MB,
+        runtime=10,
+    script:
+        "../scripts/compile_engine.py"
+
+
 rule noise:
     output:
         f"{OUT}/noise/{{level}}.nc",
@@ -31,6 +49,7 @@ rule noise:
 rule spectrum_chunk:
     input:
         noise=f"{OUT}/noise/{{level}}.nc",
+        compiled=ancient(COMPILED),
     output:
         f"{OUT}/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.nc",
     log:
@@ -107,6 +126,8 @@ rule convergence:
 
 
 rule overturning_map:
+    input:
+        compiled=ancient(COMPILED),
     output:
         f"{OUT}/maps/{{strategy}}.nc",
     log:
@@ -129,6 +150,8 @@ rule overturning_map:
 
 
 rule time_history:
+    input:
+        compiled=ancient(COMPILED),
     output:
         f"{OUT}/histories/{{strategy}}_{{level}}_k{{k}}_w{{frequency}}_a{{amplitude}}.nc",
     log:

@@ -10,7 +10,8 @@ block (paper Eqs. 1–17), in numba, in small parts:
   the sampled controller's queue;
 * :mod:`.engine`  — the driving loop (paper §3) over one state record (``R_*`` slots) and the
   run's constants (``C_*``): ``next_known_time``, ``ground_phase`` (REST/HOLD), ``known_time_events``,
-  ``apex``, ``integrate`` (steps, event search and location), ``state_event`` (the maps);
+  ``apex``, ``integrate`` (the step loop), ``search_events`` (the event search of one step),
+  ``state_event`` (the maps);
 * :mod:`.scan`    — outcomes, the one threshold scan, parallel batches.
 
 Integration: Dormand–Prince 5(4) with error control (rtol, atol), first-same-as-last, and the

@@ -412,6 +412,79 @@ def _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec):
     return x_hint, hint, h
 
 
+@njit(cache=True, inline="always")
+def search_events(t, hh, y0, y1, n0, n1, K, side, hint, x_hint, use_thd_event, use_xg_event, th_over,
+                  track_fracture, th_ku, th_du, spring, damper, max_abs, P, rec):
+    """The event search of one accepted step from (θ, θ̇) = (y0, y1) at t to (n0, n1) at t + hh (its
+    stages in ``K``): the earliest state event on (t, t + hh] — an impact (side·θ reaches 0), the
+    overturning rotation, a working element's ultimate rotation, the CS01 switch (θ̇ = 0), the CS02
+    switch (sensed Ẍg = 0) — located on the continuous extension.
+
+    Returns (best, negligible, max_abs): ``best`` the event's fraction of the step (> 1: none;
+    < 0: θ left 0 and came back within the step, which must be retried with a smaller one),
+    ``negligible`` True for such an excursion within a step <= NEGLIGIBLE_STEP (it ends at the
+    step's end), ``max_abs`` the largest |θ| updated by an apex inside the step.
+    """
+    best = 2.0
+    negligible = False
+    # impact: side·θ crosses to <= 0
+    if side * n0 <= 0.0:
+        if side * y0 > 0.0:
+            best = locate(1.0, hh, y0, y1, K, side, 0.0, 0.0, 0.0, t, P, rec)
+        elif hh > NEGLIGIBLE_STEP:
+            return -1.0, False, max_abs
+        else:
+            negligible = True  # an excursion shorter than NEGLIGIBLE_STEP: it ends at t + hh
+            best = 1.0
+    # an apex inside the step: the largest rotation may lie between the step ends, and a
+    # rotation threshold may be crossed and re-crossed within the step (grazing)
+    peak = side * n0
+    sig_peak = 1.0
+    if not negligible and side * y1 > 0.0 and side * n1 <= 0.0:
+        sa_ = locate(1.0, hh, y0, y1, K, 0.0, side, 0.0, 0.0, t, P, rec)
+        if sa_ >= 0.0:
+            a, b = dopri.dense(sa_, hh, y0, y1, K)
+            if side * a > peak:
+                peak = side * a
+                sig_peak = sa_
+            if abs(a) > max_abs:
+                max_abs = abs(a)
+    if not negligible and peak - th_over >= 0.0 and side * y0 - th_over < 0.0:
+        s = locate(min(best, sig_peak), hh, y0, y1, K, -side, 0.0, 0.0, th_over, t, P, rec)
+        if s >= 0.0:
+            best = s
+    if track_fracture:
+        for k in range(2):
+            thu = th_ku if k == 0 else th_du
+            intact = spring if k == 0 else damper
+            if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and peak - thu >= 0.0:
+                s = locate(min(best, sig_peak), hh, y0, y1, K, -side, 0.0, 0.0, thu, t, P, rec)
+                if s >= 0.0:
+                    best = s
+    if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
+        s = locate(min(best, 1.0), hh, y0, y1, K, 0.0, hint, 0.0, 0.0, t, P, rec)
+        if s >= 0.0:
+            best = s
+    if not negligible and use_xg_event and x_hint != 0.0:
+        if x_hint * sensed_acceleration(t + hh, P, rec) <= 0.0:
+            s = locate(min(best, 1.0), hh, y0, y1, K, 0.0, 0.0, x_hint, 0.0, t, P, rec)
+            if s >= 0.0:
+                best = s
+    return best, negligible, max_abs
+
+
+@njit(cache=True, inline="always")
+def _event_point(best, negligible, t, hh, y0, y1, n0, n1, K):
+    """(t, θ, θ̇) at the located event, fraction ``best`` of the step: the step's end itself when
+    best = 1, back on the ground (θ = θ̇ = 0) after a negligible excursion."""
+    if negligible:
+        return t + hh, 0.0, 0.0
+    if best == 1.0:
+        return t + hh, n0, n1
+    a, b = dopri.dense(best, hh, y0, y1, K)
+    return t + best * hh, a, b
+
+
 @njit(cache=True, inline=inline_into("simulate_kernel"))
 def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
     """ROCK: Dormand–Prince steps towards ``t_next``, each accepted step searched for state events
@@ -465,71 +538,19 @@ def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
             h = hh * max(0.2, 0.9 * err ** -0.2)
             continue
         # ---- accepted: look for state events on (t, t + hh] ----
-        best = 2.0
-        negligible = False
-        # impact: side·θ crosses to <= 0
-        if side * n0 <= 0.0:
-            if side * y0 > 0.0:
-                best = locate(1.0, hh, y0, y1, K, side, 0.0, 0.0, 0.0, t, P, rec)
-            elif hh > NEGLIGIBLE_STEP:
-                # left θ = 0 and came back within one step: the excursion is shorter than the step,
-                # so resolve it with a smaller one (a zero-length event here would re-uplift at the
-                # same instant forever)
-                h = 0.25 * hh
-                continue
-            else:
-                negligible = True  # an excursion shorter than NEGLIGIBLE_STEP: it ends at t + hh
-                best = 1.0
-        # an apex inside the step: the largest rotation may lie between the step ends, and a
-        # rotation threshold may be crossed and re-crossed within the step (grazing)
-        peak = side * n0
-        sig_peak = 1.0
-        if not negligible and side * y1 > 0.0 and side * n1 <= 0.0:
-            sa_ = locate(1.0, hh, y0, y1, K, 0.0, side, 0.0, 0.0, t, P, rec)
-            if sa_ >= 0.0:
-                a, b = dopri.dense(sa_, hh, y0, y1, K)
-                if side * a > peak:
-                    peak = side * a
-                    sig_peak = sa_
-                if abs(a) > max_abs:
-                    max_abs = abs(a)
-        if not negligible and peak - th_over >= 0.0 and side * y0 - th_over < 0.0:
-            s = locate(min(best, sig_peak), hh, y0, y1, K, -side, 0.0, 0.0, th_over, t, P, rec)
-            if s >= 0.0:
-                best = s
-        if track_fracture:
-            for k in range(2):
-                thu = th_ku if k == 0 else th_du
-                intact = spring if k == 0 else damper
-                if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and peak - thu >= 0.0:
-                    s = locate(min(best, sig_peak), hh, y0, y1, K, -side, 0.0, 0.0, thu, t, P, rec)
-                    if s >= 0.0:
-                        best = s
-        if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
-            s = locate(min(best, 1.0), hh, y0, y1, K, 0.0, hint, 0.0, 0.0, t, P, rec)
-            if s >= 0.0:
-                best = s
-        if not negligible and use_xg_event and x_hint != 0.0:
-            if x_hint * sensed_acceleration(t + hh, P, rec) <= 0.0:
-                s = locate(min(best, 1.0), hh, y0, y1, K, 0.0, 0.0, x_hint, 0.0, t, P, rec)
-                if s >= 0.0:
-                    best = s
+        best, negligible, max_abs = search_events(t, hh, y0, y1, n0, n1, K, side, hint, x_hint, use_thd_event,
+                                                  use_xg_event, th_over, track_fracture, th_ku, th_du, spring,
+                                                  damper, max_abs, P, rec)
+        if best < 0.0:
+            # left θ = 0 and came back within one step: the excursion is shorter than the step,
+            # so resolve it with a smaller one (a zero-length event here would re-uplift at the
+            # same instant forever)
+            h = 0.25 * hh
+            continue
         if best <= 1.0:
             # ---- move to the earliest event ----
             S[R_N_EVENTS] += 1
-            if negligible:
-                a = 0.0
-                b = 0.0
-                tev = t + hh
-            else:
-                a, b = dopri.dense(best, hh, y0, y1, K)
-                tev = t + best * hh
-                if best == 1.0:
-                    a, b = n0, n1
-                    tev = t + hh
-            t = tev
-            th = a
-            thd = b
+            t, th, thd = _event_point(best, negligible, t, hh, y0, y1, n0, n1, K)
             if abs(th) > max_abs:
                 max_abs = abs(th)
             result = EVENT

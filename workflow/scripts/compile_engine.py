@@ -1,0 +1,23 @@
+"""Compile the engine once for the whole run: every compiled kernel the simulation jobs call (the
+threshold scan on a record and on an analytic excitation, the outcome map, a time history), on a
+tiny case, into numba's on-disk cache. The jobs that follow load it instead of each compiling it."""
+import dataclasses
+import time
+
+import numba
+
+from rockstudy.analysis.spectra import AmplitudeGrid, spectrum
+from rockstudy.studies import datasets, parameters, study
+
+study.log_to(snakemake.log[0])
+numba.set_num_threads(snakemake.threads)
+start = time.process_time()
+noisy = parameters.scenario_from_dict(snakemake.params.scenario)
+free = dataclasses.replace(noisy, noise_level=0.0)
+grid = AmplitudeGrid(start=1.0, stop=1.2, step=0.1, resolution=0.05)
+spectrum(noisy, [1.0], realisations=[0], grid=grid)
+spectrum(free, [1.0], grid=grid, with_map=True)
+datasets.time_history(noisy, 1.0, 1.1, 0)
+seconds = time.process_time() - start
+with open(snakemake.output[0], "w") as f:
+    f.write(f"rockstudy {snakemake.params.library}: compiled in {seconds:.1f} s CPU\n")
