@@ -17,6 +17,8 @@ import math
 import numpy as np
 import xarray as xr
 
+from rockstudy._version import __version__
+
 STYLE = """
 body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 1.2em; color: #1a1a1a;
        line-height: 1.45; max-width: 75em; }
@@ -230,8 +232,6 @@ class SourceFingerprint(tuple):
         return repr(self[0])
 
     def __str__(self) -> str:
-        from rockstudy import __version__
-
         return f"rockstudy {__version__} sources: {self.covers}"
 
     def __format__(self, spec: str) -> str:
