@@ -105,8 +105,11 @@ def main() -> int:
         shown = page.evaluate("Object.values(results).map(r => [r.name, r.job_properties.params])")
         problems += [f"{name}: the parameters a reader sees show a source hash: {params[:120]!r}"
                      for name, params in shown if re.search(r"[0-9a-f]{40,}", params or "")]
-        if args.screenshot:
-            page.screenshot(path=args.screenshot, full_page=True)
+        if args.screenshot:  # the landing page from its top (the report scrolls inside its main panel)
+            page.evaluate("document.querySelectorAll('*').forEach(el => { el.scrollTop = 0; })")
+            page.set_viewport_size({"width": 1400, "height": 2400})
+            page.screenshot(path=args.screenshot)
+            page.set_viewport_size({"width": 1400, "height": 1000})
         page.get_by_text("Reproduction", exact=True).first.click()
         page.wait_for_timeout(1000)
         subcategory = page.get_by_text("Claims and Table 1", exact=True)

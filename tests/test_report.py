@@ -121,3 +121,4 @@ def test_overview_page_renders_without_warnings(tmp_path, config):
     body = html["html_body"]
     assert f"seed {cfg['seed']}" in body and "+40.83 (+30.51)" in body
     assert f"for each of {cfg['realisations']} noise realisations" in body
+    assert "R005: 5 %" in body and " % of the baseline's energy" in body
