@@ -25,10 +25,6 @@ if BEYOND:
                                 "Fragility medians, dispersions and median shifts over FS", "")
 
 
-def html_of(markdown):
-    return markdown[: -len(".md")] + ".html"
-
-
 for key, (md, caption, category, subcategory, shows, paper) in HTML_TABLES.items():
 
     rule:
@@ -37,8 +33,8 @@ for key, (md, caption, category, subcategory, shows, paper) in HTML_TABLES.items
         input:
             md,
         output:
-            report(html_of(md), caption=f"../report/{caption}", category=category, subcategory=subcategory,
-                   labels=report_pages.labels(shows, paper)),
+            report(md.removesuffix(".md") + ".html", caption=f"../report/{caption}", category=category,
+                   subcategory=subcategory, labels=report_pages.labels(shows, paper)),
         log:
             f"{OUT}/logs/report/html_{key}.log",
         params:
@@ -51,8 +47,8 @@ for key, (md, caption, category, subcategory, shows, paper) in HTML_TABLES.items
             "../scripts/html_table.py"
 
 
-HTML_IN_ALL = [html_of(HTML_TABLES[k][0]) for k in ("table1", "timing_sampling", "timing_delay", "fragility")
-               if k in HTML_TABLES]
+HTML_IN_ALL = [HTML_TABLES[k][0].removesuffix(".md") + ".html"
+               for k in ("table1", "timing_sampling", "timing_delay", "fragility") if k in HTML_TABLES]
 
 
 rule html_claims:
