@@ -71,13 +71,16 @@ def test_markdown_page_makes_tables_and_marks_verdicts():
 
 
 def test_source_fingerprint_reruns_by_hash_and_reads_by_what_it_covers():
+    from rockstudy.core.io import netcdf_attr
+
     digest = "0123456789abcdef" * 4
     fp = report.SourceFingerprint(digest, "core, model")
-    assert repr(fp) == repr(digest) and fp.digest == digest
-    assert str(fp) == f"{fp}" == f"rockstudy {__import__('rockstudy').__version__} sources: core, model"
-    assert digest not in str(fp)
+    assert repr(fp) == repr(digest) and str(fp) == fp.digest == digest
+    assert netcdf_attr(fp) == digest  # a script that stores the parameter in a dataset stores the hash
+    assert f"{fp}" == fp.description == f"rockstudy {__import__('rockstudy').__version__} sources: core, model"
+    assert digest not in f"{fp}"
     back = pickle.loads(pickle.dumps(fp))  # Snakemake hands params to scripts pickled
-    assert back.digest == digest and str(back) == str(fp)
+    assert back.digest == digest and f"{back}" == f"{fp}"
     assert report.SourceFingerprint("f" * 64, "core, model") != fp
 
 

@@ -202,11 +202,12 @@ def overview_html(comparison: xr.Dataset, claims: xr.Dataset) -> str:
 class SourceFingerprint(tuple):
     """A source fingerprint as a workflow parameter: compared by its hash, shown by what it covers.
 
-    Snakemake reruns a job when the ``repr`` of a parameter changes, and its report lists the parameters
-    with ``str``. Here ``repr`` is the plain hash string's (so results recorded with the bare hash stay
-    valid) and ``str`` says which sources the result depends on instead of 64 hex digits. A one-element
-    tuple rather than a ``str``: Snakemake formats string parameters with the rule's wildcards, which
-    would turn the value back into a plain string.
+    Snakemake reruns a job when the ``repr`` of a parameter changes, and its report lists the
+    parameters formatted (``f"{name}={value}"``). So ``repr`` and ``str`` are the plain hash string's
+    (results recorded with the bare hash stay valid, and a script that stores the parameter in a
+    dataset stores the hash), while formatting says which sources the result depends on instead of 64
+    hex digits. A one-element tuple rather than a ``str``: Snakemake formats string parameters with the
+    rule's wildcards, which would turn the value back into a plain string.
 
     Parameters
     ----------
@@ -228,14 +229,19 @@ class SourceFingerprint(tuple):
         """The SHA-256 hex digest."""
         return self[0]
 
+    @property
+    def description(self) -> str:
+        """What the report shows: the package version and the sources covered."""
+        return f"rockstudy {__version__} sources: {self.covers}"
+
     def __repr__(self) -> str:
         return repr(self[0])
 
     def __str__(self) -> str:
-        return f"rockstudy {__version__} sources: {self.covers}"
+        return self[0]
 
     def __format__(self, spec: str) -> str:
-        return format(str(self), spec)
+        return format(self.description, spec)
 
     def __reduce__(self):
         return (SourceFingerprint, (self[0], self.covers))
