@@ -3,7 +3,7 @@
 #
 #   snakemake -j2                                   # the paper's study (config.yaml)
 #   snakemake -j2 --configfile .test/config.yaml --replace-workflow-config   # tiny study
-#   snakemake --report report.html                  # figures and tables with captions
+#   snakemake --report report.html                  # the study as one HTML page: overview, tables, figures
 #   snakemake -j2 probability | fragility           # beyond the paper (config `beyond:`; fragility is in `all`)
 #
 # DAG: noise -> spectrum_chunk -> gather_{spectrum,sampling,delay} -> convergence, tables,
@@ -11,12 +11,16 @@
 from snakemake.utils import min_version, validate
 
 from rockstudy.studies import device_calibration as calibration
+from rockstudy import report as report_pages
 from rockstudy.studies import parameters, study
 
 min_version("9.0")
 
 
 configfile: "config.yaml"
+
+
+report: "workflow/report/workflow.rst"
 
 
 study.check_sizes(config)  # before the schema, whose uniqueItems is quadratic in a list's length
@@ -29,6 +33,7 @@ include: "workflow/rules/spectra.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/reproduction.smk"
 include: "workflow/rules/beyond.smk"
+include: "workflow/rules/report.smk"
 
 
 localrules:
@@ -60,4 +65,5 @@ rule all:
         TABLES,
         CLAIMS,
         BEYOND_IN_ALL,
+        REPORT_PAGES,
     default_target: True

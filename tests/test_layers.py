@@ -2,7 +2,7 @@
 another in a circle (also not through an import inside a function).
 
 Layers, bottom to top: ``_version`` < ``core/`` < ``model/`` < ``engine/`` < ``analysis/`` < ``studies/``
-< ``cli.py``, ``plotting.py`` < the package face ``__init__.py``.
+< ``cli.py``, ``plotting.py``, ``report.py`` < the package face ``__init__.py``.
 """
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import rockstudy
 
 ROOT = Path(rockstudy.__file__).parent
 LAYERS = {"_version": 0, "core": 1, "model": 2, "engine": 3, "analysis": 4, "studies": 5, "cli": 6, "plotting": 6,
-          "__init__": 7}
+          "report": 6, "__init__": 7}
 
 
 def module_name(path: Path) -> str:

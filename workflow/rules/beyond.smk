@@ -87,7 +87,7 @@ if BEYOND:
             records=RECORD_FILES,
         output:
             nc=f"{OUT}/fragility/fragility.nc",
-            csv=report(f"{OUT}/tables/fragility.csv", caption="../report/fragility_table.rst", category="Tables"),
+            csv=f"{OUT}/tables/fragility.csv",
             md=f"{OUT}/tables/fragility.md",
         log:
             f"{OUT}/logs/fragility/fragility.log",
@@ -117,7 +117,8 @@ if BEYOND:
             PROBABILITY_FILES,
         output:
             png=report(f"{OUT}/figures/probability_overturning.png", caption="../report/probability.rst",
-                       category="Figures", subcategory="Overturning maps"),
+                       category="Figures", subcategory="Overturning maps",
+                       labels=report_pages.labels("P(overturn) over the noise realisations beside the maps")),
             pdf=f"{OUT}/figures/probability_overturning.pdf",
         log:
             f"{OUT}/logs/figures/probability_overturning.log",
@@ -136,7 +137,8 @@ if BEYOND:
             f"{OUT}/fragility/fragility.nc",
         output:
             png=report(f"{OUT}/figures/fragility.png", caption="../report/fragility.rst", category="Figures",
-                       subcategory="Records (beyond the paper)"),
+                       subcategory="Records (beyond the paper)",
+                       labels=report_pages.labels("Fragility curves over the record suite; median shift over FS")),
             pdf=f"{OUT}/figures/fragility.pdf",
         log:
             f"{OUT}/logs/figures/fragility.log",

@@ -6,7 +6,8 @@ rule figure_history:
         get_control_history_file,
     output:
         png=report(f"{OUT}/figures/fig{{fignum}}_history_{{strategy}}.png", caption="../report/fig_history.rst",
-                   category="Figures", subcategory="Control strategies (Figs. 2-3)"),
+                   category="Figures", subcategory="Control strategies (Figs. 2-3)",
+                   labels=report_pages.labels("Time history under {strategy}, noise-free", "Fig. {fignum}")),
         pdf=f"{OUT}/figures/fig{{fignum}}_history_{{strategy}}.pdf",
     log:
         f"{OUT}/logs/figures/fig{{fignum}}_history_{{strategy}}.log",
@@ -25,7 +26,8 @@ rule figure_excitation:
         f"{OUT}/noise/{max(NOISY, key=LEVELS.get)}.nc",
     output:
         png=report(f"{OUT}/figures/fig4_excitation.png", caption="../report/fig4.rst", category="Figures",
-                   subcategory="Noise (Figs. 4-6)"),
+                   subcategory="Noise (Figs. 4-6)",
+                   labels=report_pages.labels("The excitation of Eq. 23, without and with noise", "Fig. 4")),
         pdf=f"{OUT}/figures/fig4_excitation.pdf",
     log:
         f"{OUT}/logs/figures/fig4_excitation.log",
@@ -46,7 +48,8 @@ rule figure_realisations:
         histories=EX_HISTORIES,
     output:
         png=report(f"{OUT}/figures/fig5_realisations.png", caption="../report/fig5.rst", category="Figures",
-                   subcategory="Noise (Figs. 4-6)"),
+                   subcategory="Noise (Figs. 4-6)",
+                   labels=report_pages.labels("Thresholds of two noise realisations and the example point", "Fig. 5")),
         pdf=f"{OUT}/figures/fig5_realisations.pdf",
     log:
         f"{OUT}/logs/figures/fig5_realisations.log",
@@ -68,7 +71,9 @@ rule figure_noise_sensitivity:
         spectra=spectrum_files([s for s in ("FS", "CS01", "CS02") if s in config["strategies"]], LEVELS),
     output:
         png=report(f"{OUT}/figures/fig6_noise_sensitivity.png", caption="../report/fig6.rst", category="Figures",
-                   subcategory="Noise (Figs. 4-6)"),
+                   subcategory="Noise (Figs. 4-6)",
+                   labels=report_pages.labels("Convergence over N; thresholds of FS, CS01, CS02 at each noise level",
+                                              "Fig. 6")),
         pdf=f"{OUT}/figures/fig6_noise_sensitivity.pdf",
     log:
         f"{OUT}/logs/figures/fig6_noise_sensitivity.log",
@@ -90,7 +95,8 @@ rule figure_sampling:
         references=spectrum_files(SAMPLING["strategies"], [SAMPLING["noise_level"]]),
     output:
         png=report(f"{OUT}/figures/fig7_sampling.png", caption="../report/fig7.rst", category="Figures",
-                   subcategory="Timing (Figs. 7-8)"),
+                   subcategory="Timing (Figs. 7-8)",
+                   labels=report_pages.labels("Thresholds of CS01 and CS02 at each sampling time", "Fig. 7")),
         pdf=f"{OUT}/figures/fig7_sampling.pdf",
     log:
         f"{OUT}/logs/figures/fig7_sampling.log",
@@ -114,7 +120,8 @@ rule figure_delay:
                     for s in DELAY["strategies"]],
     output:
         png=report(f"{OUT}/figures/fig8_delay.png", caption="../report/fig8.rst", category="Figures",
-                   subcategory="Timing (Figs. 7-8)"),
+                   subcategory="Timing (Figs. 7-8)",
+                   labels=report_pages.labels("Thresholds of CS01 and CS02 at each actuation delay", "Fig. 8")),
         pdf=f"{OUT}/figures/fig8_delay.pdf",
     log:
         f"{OUT}/logs/figures/fig8_delay.log",
@@ -136,7 +143,8 @@ rule figure_maps:
         [f"{OUT}/maps/{s}.nc" for s in config["maps"]["strategies"]],
     output:
         png=report(f"{OUT}/figures/maps_overturning.png", caption="../report/maps.rst", category="Figures",
-                   subcategory="Overturning maps"),
+                   subcategory="Overturning maps",
+                   labels=report_pages.labels("Outcome at every frequency and amplitude, noise-free", "§4")),
         pdf=f"{OUT}/figures/maps_overturning.pdf",
     log:
         f"{OUT}/logs/figures/maps_overturning.log",

@@ -40,10 +40,9 @@ rule claims:
     output:
         md=f"{OUT}/reproduction/claims.md",
         nc=f"{OUT}/reproduction/claims.nc",
-        csv=report(f"{OUT}/reproduction/claims.csv", caption="../report/claims.rst", category="Reproduction"),
+        csv=f"{OUT}/reproduction/claims.csv",
         comparison_nc=f"{OUT}/reproduction/table1_vs_paper.nc",
-        comparison_csv=report(f"{OUT}/reproduction/table1_vs_paper.csv", caption="../report/table1_vs_paper.rst",
-                              category="Reproduction"),
+        comparison_csv=f"{OUT}/reproduction/table1_vs_paper.csv",
     log:
         f"{OUT}/logs/reproduction/claims.log",
     params:
@@ -67,8 +66,7 @@ rule readings_table:
         reference=f"{OUT}/spectra/{REPRO['strategy']}_{FREE}.nc",
     output:
         nc=f"{OUT}/reproduction/readings/readings.nc",
-        csv=report(f"{OUT}/reproduction/readings/readings.csv", caption="../report/readings.rst",
-                   category="Reproduction"),
+        csv=f"{OUT}/reproduction/readings/readings.csv",
         md=f"{OUT}/reproduction/readings/readings.md",
     log:
         f"{OUT}/logs/reproduction/readings_table.log",
@@ -91,7 +89,9 @@ rule figure_readings:
         f"{OUT}/reproduction/readings/readings.nc",
     output:
         png=report(f"{OUT}/reproduction/readings/fig_readings.png", caption="../report/readings_figure.rst",
-                   category="Reproduction"),
+                   category="Reproduction", subcategory="Noise readings",
+                   labels=report_pages.labels("FS row of Table 1 under each reading of the noise model (figure)",
+                                              "§5, Table 1")),
         pdf=f"{OUT}/reproduction/readings/fig_readings.pdf",
     log:
         f"{OUT}/logs/reproduction/figure_readings.log",
@@ -109,6 +109,7 @@ rule reproduction:
     input:
         READINGS_TABLE,
         READINGS_FIGURE,
+        f"{OUT}/reproduction/readings/readings.html",  # the table as a page of the report
 
 
 # --- the device calibration (a separate target: snakemake -j2 calibration) ------------------------
@@ -173,7 +174,8 @@ rule calibration_grid:
     output:
         nc=f"{OUT}/reproduction/calibration/grid.nc",
         png=report(f"{OUT}/reproduction/calibration/fig_calibration.png", caption="../report/calibration.rst",
-                   category="Reproduction"),
+                   category="Reproduction", subcategory="Device calibration",
+                   labels=report_pages.labels("J_OS over the screened anchorages (figure)", "Table 1")),
         pdf=f"{OUT}/reproduction/calibration/fig_calibration.pdf",
     log:
         f"{OUT}/logs/reproduction/calibration/grid.log",
@@ -247,6 +249,7 @@ rule calibration_refine:
 
 rule calibration:
     input:
+        f"{OUT}/reproduction/calibration/calibration.html",  # the table as a page of the report
         f"{OUT}/reproduction/calibration/grid.nc",
         f"{OUT}/reproduction/calibration/candidates.nc",
         f"{OUT}/reproduction/calibration/calibration.md",

@@ -182,7 +182,7 @@ rule table1:
         spectrum_files(config["table1"]["strategies"], LEVELS),
     output:
         nc=f"{OUT}/tables/table1.nc",
-        csv=report(f"{OUT}/tables/table1.csv", caption="../report/table1.rst", category="Tables"),
+        csv=f"{OUT}/tables/table1.csv",
         md=f"{OUT}/tables/table1.md",
     log:
         f"{OUT}/logs/tables/table1.log",
@@ -206,7 +206,7 @@ rule timing_table_sampling:
         free_standing=spectrum_files(["FS"], [SAMPLING["noise_level"]]),
     output:
         nc=f"{OUT}/tables/timing_sampling.nc",
-        csv=report(f"{OUT}/tables/timing_sampling.csv", caption="../report/timing_sampling.rst", category="Tables"),
+        csv=f"{OUT}/tables/timing_sampling.csv",
         md=f"{OUT}/tables/timing_sampling.md",
     log:
         f"{OUT}/logs/tables/timing_sampling.log",
@@ -231,7 +231,7 @@ rule timing_table_delay:
         free_standing=spectrum_files(["FS"], [DELAY["noise_level"]]),
     output:
         nc=f"{OUT}/tables/timing_delay.nc",
-        csv=report(f"{OUT}/tables/timing_delay.csv", caption="../report/timing_delay.rst", category="Tables"),
+        csv=f"{OUT}/tables/timing_delay.csv",
         md=f"{OUT}/tables/timing_delay.md",
     log:
         f"{OUT}/logs/tables/timing_delay.log",

@@ -1,0 +1,264 @@
+"""HTML pages of the study's tables for the workflow report (the front door of the tables, as
+:mod:`rockstudy.plotting` is of the figures).
+
+The tables are written as netCDF, CSV and Markdown; a Snakemake report shows an HTML result in the
+page, a CSV only as a download. These functions turn a table's Markdown (or the claims and Table 1
+comparison datasets) into small self-contained HTML pages, and make the fragment of the report's
+overview page that states the headline results: Table 1 beside the paper and the claims checklist.
+
+Verdicts keep their words (PASS, FAIL, n/a) and add a marker and a colour from a colour-blind-safe
+pair (blue and orange), so that nothing is read from colour alone.
+"""
+from __future__ import annotations
+
+import html
+import math
+
+import numpy as np
+import xarray as xr
+
+from rockstudy._version import __version__
+
+STYLE = """
+body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 1.2em; color: #1a1a1a;
+       line-height: 1.45; max-width: 75em; }
+table { border-collapse: collapse; margin: 0.8em 0; font-size: 0.92em; }
+th, td { border: 1px solid #c8c8c8; padding: 0.25em 0.6em; text-align: left; vertical-align: top; }
+th { background: #eef2f7; }
+td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
+.pass { color: #0b5394; font-weight: 600; }
+.fail { color: #b45309; font-weight: 600; }
+.na { color: #595959; }
+caption { caption-side: top; text-align: left; font-weight: 600; padding-bottom: 0.3em; }
+"""
+"""CSS of the pages: plain tables, right-aligned numbers, blue PASS and orange FAIL (Okabe–Ito-like hues)."""
+
+VERDICT_CLASS = {"PASS": "pass", "FAIL": "fail", "n/a": "na"}
+VERDICT_MARK = {"PASS": "✓ PASS", "FAIL": "✗ FAIL", "n/a": "n/a"}
+
+
+def verdict_html(word: str) -> str:
+    """A verdict (PASS, FAIL or n/a) as marked, coloured text."""
+    return f'<span class="{VERDICT_CLASS.get(word, "na")}">{html.escape(VERDICT_MARK.get(word, word))}</span>'
+
+
+def document(title: str, body: str) -> str:
+    """A complete HTML page: ``title`` as its title and first heading, ``body`` (HTML) below."""
+    return ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+            f"<title>{html.escape(title)}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n"
+            f"{body}\n</body>\n</html>\n")
+
+
+def markdown_html(text: str) -> str:
+    """Markdown (CommonMark with pipe tables) as an HTML fragment; verdicts marked as in :func:`verdict_html`."""
+    from markdown_it import MarkdownIt
+
+    out = MarkdownIt("commonmark", {"html": False}).enable("table").render(text)
+    for word in ("PASS", "FAIL"):
+        out = out.replace(f"<strong>{word}</strong>", f"<strong>{verdict_html(word)}</strong>")
+    return out
+
+
+def markdown_page(text: str, title: str | None = None) -> str:
+    """A Markdown table file (``tables/*.md``, ``claims.md``, ...) as a complete HTML page.
+
+    Parameters
+    ----------
+    text : str
+        The Markdown.
+    title : str, optional
+        Page title; default: the first line of ``text`` without its ``#`` marks.
+    """
+    first = next((line for line in text.splitlines() if line.strip()), "rockstudy table")
+    return document(title or first.lstrip("# ").strip(), markdown_html(text))
+
+
+def _number(value: float, signed: bool = True) -> str:
+    if value is None or not math.isfinite(float(value)):
+        return "–"
+    return f"{float(value):+.2f}" if signed else f"{float(value):.2f}"
+
+
+def table1_beside_paper_html(comparison: xr.Dataset) -> str:
+    """Table 1 of this run beside the paper's: one row per (strategy, reference), per noise level
+    the paper's J_OS, ours and the difference (ours − paper), in %.
+
+    Parameters
+    ----------
+    comparison : xarray.Dataset
+        ``reproduction/table1_vs_paper.nc``: ``paper``, ``ours``, ``difference`` over (row, noise_level).
+    """
+    levels = [str(v) for v in comparison["noise_level"].values]
+    head = "".join(f'<th class="num" colspan="3">{html.escape(lv)}</th>' for lv in levels)
+    sub = "".join('<th class="num">paper</th><th class="num">ours</th><th class="num">diff</th>' for _ in levels)
+    rows = []
+    for row in comparison["row"].values:
+        cells = []
+        for lv in levels:
+            point = comparison.sel(row=row, noise_level=lv)
+            cells += [f'<td class="num">{_number(point[name].item())}</td>' for name in ("paper", "ours", "difference")]
+        rows.append(f"<tr><th>{html.escape(str(row))}</th>{''.join(cells)}</tr>")
+    return ('<table class="table1">\n<caption>Table 1: J_OS (Eq. 21) of this run beside the paper [%]; '
+            "diff = ours − paper; – where the run has no such noise level</caption>\n"
+            f'<thead><tr><th rowspan="2">strategy vs reference</th>{head}</tr><tr>{sub}</tr></thead>\n'
+            f"<tbody>\n{chr(10).join(rows)}\n</tbody>\n</table>")
+
+
+VERDICT_OF_FLAG = {1: "PASS", 0: "FAIL", -1: "n/a"}
+"""The claims dataset's flag values (``passed``, ``paper_passed``) as words."""
+
+
+def claims_summary(claims: xr.Dataset) -> dict:
+    """Counts of PASS, FAIL and n/a of this run's verdicts."""
+    flags = np.asarray(claims["passed"].values, dtype=int)
+    return {word: int(np.count_nonzero(flags == flag)) for flag, word in VERDICT_OF_FLAG.items()}
+
+
+def claims_html(claims: xr.Dataset) -> str:
+    """The claims checklist: section, statement, this run's verdict, the same check on the paper's
+    own Table 1, and the numbers behind the verdict.
+
+    Parameters
+    ----------
+    claims : xarray.Dataset
+        ``reproduction/claims.nc``: ``passed`` and ``paper_passed`` (1 pass, 0 fail, −1 not
+        evaluated), ``section``, ``statement``, ``evidence`` over ``claim``.
+    """
+    counts = claims_summary(claims)
+    rows = []
+    for i, name in enumerate(claims["claim"].values, start=1):
+        c = claims.sel(claim=name)
+        ours = VERDICT_OF_FLAG[int(c["passed"].item())]
+        paper = VERDICT_OF_FLAG[int(c["paper_passed"].item())]
+        rows.append(f"<tr><td class=\"num\">{i}</td><td>{html.escape(str(c['section'].item()))}</td>"
+                    f"<td>{html.escape(str(c['statement'].item()))}</td><td>{verdict_html(ours)}</td>"
+                    f"<td>{verdict_html(paper)}</td><td>{html.escape(str(c['evidence'].item()))}</td></tr>")
+    summary = (f"{counts['PASS']} PASS, {counts['FAIL']} FAIL, {counts['n/a']} not evaluated "
+               "(paper: the same check on the paper's own Table 1, where it applies)")
+    return ('<table class="claims">\n'
+            f"<caption>Claims of §5 and the Conclusions checked on this run: {html.escape(summary)}</caption>\n"
+            "<thead><tr><th>#</th><th>§</th><th>claim</th><th>this run</th><th>paper's numbers</th>"
+            "<th>evidence</th></tr></thead>\n"
+            f"<tbody>\n{chr(10).join(rows)}\n</tbody>\n</table>")
+
+
+INLINE = {"table": "border-collapse: collapse; margin: 0.6em 0 1.2em 0; font-size: 0.9em;",
+          "cell": "border: 1px solid #c8c8c8; padding: 0.2em 0.5em; text-align: left; vertical-align: top;",
+          "num": "border: 1px solid #c8c8c8; padding: 0.2em 0.5em; text-align: right; white-space: nowrap;",
+          "caption": "caption-side: top; text-align: left; font-weight: 600; padding-bottom: 0.3em;",
+          "pass": "color: #0b5394; font-weight: 600;", "fail": "color: #b45309; font-weight: 600;",
+          "na": "color: #595959;"}
+"""Inline styles of the overview fragment: it sits inside the Snakemake report's page, whose style sheet
+would otherwise strip the tables of borders and the verdicts of their colour."""
+
+
+def _styled(text: str) -> str:
+    for name in ("table", "caption", "pass", "fail", "na"):
+        text = text.replace(f'<{name}>', f'<{name} style="{INLINE[name]}">').replace(
+            f'class="{name}"', f'class="{name}" style="{INLINE[name]}"')
+    text = text.replace('<td class="num">', f'<td class="num" style="{INLINE["num"]}">')
+    text = text.replace("<th>", f'<th style="{INLINE["cell"]}">').replace("<td>", f'<td style="{INLINE["cell"]}">')
+    text = text.replace('<th class="num"', f'<th style="{INLINE["num"]}" class="num"')
+    return text
+
+
+def table1_compact_html(comparison: xr.Dataset) -> str:
+    """Table 1 of this run beside the paper's in one cell per noise level: "ours (paper)" J_OS in %."""
+    levels = [str(v) for v in comparison["noise_level"].values]
+    head = "".join(f'<th class="num">{html.escape(lv)}: ours (paper)</th>' for lv in levels)
+    rows = []
+    for row in comparison["row"].values:
+        cells = "".join(
+            f'<td class="num">{_number(comparison.sel(row=row, noise_level=lv)["ours"].item())} '
+            f'({_number(comparison.sel(row=row, noise_level=lv)["paper"].item())})</td>' for lv in levels)
+        rows.append(f"<tr><th>{html.escape(str(row))}</th>{cells}</tr>")
+    return ("<table>\n<caption>Table 1: J_OS (Eq. 21) of this run and, in brackets, the paper's [%]</caption>\n"
+            f"<thead><tr><th>strategy vs reference</th>{head}</tr></thead>\n<tbody>\n{chr(10).join(rows)}\n"
+            "</tbody>\n</table>")
+
+
+def claims_compact_html(claims: xr.Dataset) -> str:
+    """The claims checklist without the evidence column: claim, this run's verdict, the paper's."""
+    counts = claims_summary(claims)
+    rows = []
+    for i, name in enumerate(claims["claim"].values, start=1):
+        c = claims.sel(claim=name)
+        rows.append(f'<tr><td class="num">{i}</td><td>{html.escape(str(c["section"].item()))}</td>'
+                    f'<td>{html.escape(str(c["statement"].item()))}</td>'
+                    f'<td>{verdict_html(VERDICT_OF_FLAG[int(c["passed"].item())])}</td>'
+                    f'<td>{verdict_html(VERDICT_OF_FLAG[int(c["paper_passed"].item())])}</td></tr>')
+    return ("<table>\n<caption>The paper's claims on this run: "
+            f"{counts['PASS']} PASS, {counts['FAIL']} FAIL, {counts['n/a']} not evaluated</caption>\n"
+            "<thead><tr><th>#</th><th>§</th><th>claim</th><th>this run</th><th>on the paper's own Table 1</th></tr>"
+            f"</thead>\n<tbody>\n{chr(10).join(rows)}\n</tbody>\n</table>")
+
+
+def overview_html(comparison: xr.Dataset, claims: xr.Dataset) -> str:
+    """The headline results for the report's overview page: Table 1 beside the paper, then the claims
+    (compact forms of :func:`table1_beside_paper_html` and :func:`claims_html`, styled inline)."""
+    return _styled(table1_compact_html(comparison) + "\n" + claims_compact_html(claims))
+
+
+class SourceFingerprint(tuple):
+    """A source fingerprint as a workflow parameter: compared by its hash, shown by what it covers.
+
+    Snakemake reruns a job when the ``repr`` of a parameter changes, and its report lists the
+    parameters formatted (``f"{name}={value}"``). So ``repr`` and ``str`` are the plain hash string's
+    (results recorded with the bare hash stay valid, and a script that stores the parameter in a
+    dataset stores the hash), while formatting says which sources the result depends on instead of 64
+    hex digits. A one-element tuple rather than a ``str``: Snakemake formats string parameters with the
+    rule's wildcards, which would turn the value back into a plain string.
+
+    Parameters
+    ----------
+    digest : str
+        The fingerprint (:func:`rockstudy.studies.study.source_fingerprint`).
+    covers : str
+        What it covers, e.g. ``"core, model, engine, analysis"``.
+    """
+
+    covers: str
+
+    def __new__(cls, digest: str, covers: str):
+        obj = super().__new__(cls, (str(digest),))
+        obj.covers = covers
+        return obj
+
+    @property
+    def digest(self) -> str:
+        """The SHA-256 hex digest."""
+        return self[0]
+
+    @property
+    def description(self) -> str:
+        """What the report shows: the package version and the sources covered."""
+        return f"rockstudy {__version__} sources: {self.covers}"
+
+    def __repr__(self) -> str:
+        return repr(self[0])
+
+    def __str__(self) -> str:
+        return self[0]
+
+    def __format__(self, spec: str) -> str:
+        return format(self.description, spec)
+
+    def __reduce__(self):
+        return (SourceFingerprint, (self[0], self.covers))
+
+
+def labels(result: str, paper: str = "") -> dict:
+    """What a report item shows, for Snakemake's ``report(..., labels=...)``: the report then lists its
+    items by this text instead of by file name.
+
+    One label only: the report turns a second label with two values, each on half of a category's
+    items, into a toggle between them, which would hide one of two different tables.
+
+    Parameters
+    ----------
+    result : str
+        What the item shows (may contain the rule's ``{wildcards}``).
+    paper : str
+        Where it is in the paper ("Fig. 6", "Table 1"); empty: beyond the paper.
+    """
+    return {"result": f"{result} ({paper or 'beyond the paper'})"}

@@ -1,0 +1,78 @@
+# The report as a study: HTML pages of the tables (a Snakemake report shows an HTML result in the page,
+# a CSV only as a download) and the headline fragment of the overview page (workflow/report/workflow.rst).
+# Every page is made from a table the study already wrote; nothing here computes a result.
+
+REPORT_DIR = f"{OUT}/report"
+OVERVIEW = f"{REPORT_DIR}/overview.html"
+"""Table 1 beside the paper and the claims checklist, included in the report's overview page."""
+
+
+# Markdown tables of the study -> HTML pages: (markdown, caption, category, subcategory, what it shows, paper)
+HTML_TABLES = {
+    "table1": (f"{OUT}/tables/table1.md", "table1.rst", "Tables", "J_OS",
+               "Table 1: J_OS of each strategy against no noise and against FS", "Table 1"),
+    "timing_sampling": (f"{OUT}/tables/timing_sampling.md", "timing_sampling.rst", "Tables", "J_OS",
+                        "J_OS under sampled control, each sampling time T_s", "§5.2, Fig. 7"),
+    "timing_delay": (f"{OUT}/tables/timing_delay.md", "timing_delay.rst", "Tables", "J_OS",
+                     "J_OS under delayed control, each delay", "§5.2, Fig. 8"),
+    "readings": (f"{OUT}/reproduction/readings/readings.md", "readings.rst", "Reproduction", "Noise readings",
+                 "FS row of Table 1 under each reading of the noise model", "§5, Table 1"),
+    "calibration": (f"{OUT}/reproduction/calibration/calibration.md", "calibration_table.rst", "Reproduction",
+                    "Device calibration", "Device calibration: every screened anchorage and the best", "Table 1"),
+}
+if BEYOND:
+    HTML_TABLES["fragility"] = (f"{OUT}/tables/fragility.md", "fragility_table.rst", "Tables", "Fragility",
+                                "Fragility medians, dispersions and median shifts over FS", "")
+
+
+for key, (md, caption, category, subcategory, shows, paper) in HTML_TABLES.items():
+
+    rule:
+        name:
+            f"html_{key}"
+        input:
+            md,
+        output:
+            report(md.removesuffix(".md") + ".html", caption=f"../report/{caption}", category=category,
+                   subcategory=subcategory, labels=report_pages.labels(shows, paper)),
+        log:
+            f"{OUT}/logs/report/html_{key}.log",
+        params:
+            pages=REPORT_CODE,
+        localrule: True
+        conda:
+            "../envs/rockstudy.yaml"
+        threads: 1
+        script:
+            "../scripts/html_table.py"
+
+
+HTML_IN_ALL = [HTML_TABLES[k][0].removesuffix(".md") + ".html"
+               for k in ("table1", "timing_sampling", "timing_delay", "fragility") if k in HTML_TABLES]
+
+
+rule html_claims:
+    input:
+        claims=f"{OUT}/reproduction/claims.nc",
+        comparison=f"{OUT}/reproduction/table1_vs_paper.nc",
+    output:
+        claims=report(f"{OUT}/reproduction/claims.html", caption="../report/claims.rst", category="Reproduction",
+                      subcategory="Claims and Table 1",
+                      labels=report_pages.labels("Claims of §5 and the Conclusions: PASS / FAIL on this run", "§5, §6")),
+        comparison=report(f"{OUT}/reproduction/table1_vs_paper.html", caption="../report/table1_vs_paper.rst",
+                          category="Reproduction", subcategory="Claims and Table 1",
+                          labels=report_pages.labels("Table 1 of this run beside the paper's, cell by cell", "Table 1")),
+        overview=OVERVIEW,
+    log:
+        f"{OUT}/logs/report/html_claims.log",
+    params:
+        pages=REPORT_CODE,
+    localrule: True
+    conda:
+        "../envs/rockstudy.yaml"
+    threads: 1
+    script:
+        "../scripts/html_claims.py"
+
+
+REPORT_PAGES = HTML_IN_ALL + [f"{OUT}/reproduction/claims.html", f"{OUT}/reproduction/table1_vs_paper.html", OVERVIEW]
