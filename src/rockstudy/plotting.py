@@ -619,3 +619,43 @@ def figure_fragility(ds):
     axr.grid(False, axis="x")
     fig.tight_layout()
     return fig
+
+
+# --- records: every record's threshold per strategy ---------------------------------------------------
+STRATEGY_MARKERS = {"FS": "o", "PASSIVE": "s", "CS01": "^", "CS02": "v"}
+
+
+def plot_record_thresholds(ax, ds):
+    """Threshold PGA [g] of every record (rows, sorted by FS's threshold) for each strategy (markers), and
+    the record's own PGA (grey bar): a marker left of the bar's end means the record as recorded
+    overturns the block with that strategy. Returns the markers' artists."""
+    fs = ds["threshold_pga"].sel(strategy="FS").values if "FS" in ds.strategy.values else None
+    order = np.argsort(np.where(np.isfinite(fs), fs, np.inf)) if fs is not None else np.arange(ds.sizes["record"])
+    y = np.arange(order.size)
+    ax.barh(y, ds["record_pga"].values[order], color="0.85", height=0.7, label="PGA as recorded")
+    artists = []
+    for s in ds.strategy.values:
+        s = str(s)
+        x = ds["threshold_pga"].sel(strategy=s).values[order]
+        artists.append(ax.plot(x, y, ls="none", marker=STRATEGY_MARKERS.get(s, "o"), ms=4,
+                               color=STRATEGY_COLOURS.get(s, None), label=s)[0])
+    labels = [f"{ds.record_id.values[k]} {str(ds.record_event.values[k])[:22]}" for k in order]
+    ax.set_yticks(y, labels, fontsize=6)
+    ax.set_ylim(-0.7, order.size - 0.3)
+    ax.invert_yaxis()
+    ax.set_xlabel("smallest PGA that overturns the block [g]")
+    ax.grid(True, axis="x", lw=0.3, alpha=0.5)
+    return artists
+
+
+def figure_record_thresholds(ds):
+    """Every record's threshold per strategy over one record set (see :func:`plot_record_thresholds`)."""
+    n = ds.sizes["record"]
+    fig, ax = plt.subplots(figsize=(7.5, 1.2 + 0.16 * n))
+    plot_record_thresholds(ax, ds)
+    beaten = {str(s): int(np.sum(ds["threshold_scale"].sel(strategy=s).values <= 1.0)) for s in ds.strategy.values}
+    ax.set_title(f"{ds.attrs.get('record_suite', '')}: records that overturn the block as recorded\n"
+                 + ", ".join(f"{s} {k}/{n}" for s, k in beaten.items()), fontsize=9, pad=22)
+    ax.legend(fontsize=7, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=len(beaten) + 1, frameon=False)
+    fig.tight_layout()
+    return fig

@@ -241,12 +241,12 @@ def synthetic_id(index: int) -> str:
     return f"SYN{index:03d}"
 
 
-def _synthetic_entry(index: int):
-    from rockstudy.model.synthetic import MODEL_REFERENCE, suite_record
-    record, _ = suite_record(index, SYNTHETIC_SEED)
+def _synthetic_entry(index: int, seed: int = SYNTHETIC_SEED, ranges=None):
+    from rockstudy.model.synthetic import MODEL_REFERENCE, SuiteRanges, suite_record
+    record, _ = suite_record(index, seed, SuiteRanges() if ranges is None else ranges)
     rid = synthetic_id(index)
     record = Record(name=f"{SYNTHETIC}:{rid}", dt=record.dt, acceleration=record.acceleration,
-                    source=f"rockstudy.model.synthetic, seed {SYNTHETIC_SEED}, record {index}", unit="m/s^2")
+                    source=f"rockstudy.model.synthetic, seed {seed}, record {index}", unit="m/s^2")
     info = RecordInfo(suite=SYNTHETIC, id=rid, event=f"synthetic: {MODEL_REFERENCE}", year=0, magnitude=math.nan,
                       station=rid, distance_km=math.nan, site_class="", pga_g=record.pga / STANDARD_GRAVITY,
                       pgv=peak_ground_velocity(record), pulse=PULSE[SYNTHETIC], dt=record.dt,
@@ -408,4 +408,42 @@ def entries_from_dataset(ds) -> list[tuple[RecordInfo, Record]]:
         record = Record(name=info.name, dt=info.dt, acceleration=d.acceleration.values[:npts],
                         source=str(d.source.values), unit="g" if info.suite in P695_SETS else "m/s^2")
         out.append((info, record))
+    return out
+
+
+def synthetic_entries(n_records: int = SYNTHETIC_RECORDS, seed: int = SYNTHETIC_SEED, ranges=None):
+    """(RecordInfo, Record) of synthetic records 0..n_records-1 with a given seed and
+    :class:`~rockstudy.model.synthetic.SuiteRanges` (the suite ``synthetic`` with other settings)."""
+    return [_synthetic_entry(i, seed, ranges) for i in range(int(n_records))]
+
+
+FILE_SUITE = "file"
+"""Suite name given to records read from files."""
+
+
+def file_entry(path, unit: str | None = None):
+    """(RecordInfo, Record) of a record file (see :func:`rockstudy.model.records.read_record`); the
+    suite is ``file``, the id the file's name, the event the record's own label."""
+    from pathlib import Path
+
+    from rockstudy.model.records import read_record
+    original = read_record(path, unit)
+    rid = Path(path).name
+    record = Record(name=f"{FILE_SUITE}:{rid}", dt=original.dt, acceleration=original.acceleration,
+                    source=original.source, unit=original.unit)
+    info = RecordInfo(suite=FILE_SUITE, id=rid, event=original.name, year=0, magnitude=math.nan,
+                      station="", distance_km=math.nan, site_class="", pga_g=record.pga / STANDARD_GRAVITY,
+                      pgv=peak_ground_velocity(record), pulse="not classified", dt=record.dt,
+                      npts=int(record.acceleration.size))
+    return info, record
+
+
+def read_entries(items, key: str = "records"):
+    """(RecordInfo, Record) of a list of records, each ``SUITE:ID`` or a mapping ``{path, unit}`` (a file)."""
+    out = []
+    for item in items:
+        if isinstance(item, dict):
+            out.append(file_entry(item["path"], item.get("unit")))
+        else:
+            out.append(load_record(item, key))
     return out
