@@ -26,11 +26,6 @@ if BEYOND:
     PROBABILITY_FILES = [f"{OUT}/probability/{s}_{l}.nc" for s in PROB["strategies"] for l in PROB["noise_levels"]]
     SYNTHETIC_FILES = [f"{OUT}/records/synthetic/SYN{i:03d}.AT2" for i in range(FRAG["synthetic"]["n_records"])]
 
-    def record_set_files(wildcards):
-        """The record files a set reads (files listed in beyond.fragility.records)."""
-        items = RECORD_SETS[wildcards.recordset]
-        return [] if isinstance(items, str) else [item["path"] for item in items if isinstance(item, dict)]
-
     wildcard_constraints:
         recordset="|".join(RECORD_SETS),
 
@@ -99,7 +94,7 @@ if BEYOND:
 
     rule record_set:
         input:
-            record_set_files,
+            lambda w: beyond_study.set_files(RECORD_SETS[w.recordset]),
         output:
             f"{OUT}/records/sets/{{recordset}}.nc",
         log:
