@@ -7,5 +7,6 @@ blocks = design.gather_blocks(io.read_netcdf(path) for path in snakemake.input.b
 devices = design.gather_devices(io.read_netcdf(path) for path in snakemake.input.devices)
 io.write_netcdf(blocks, snakemake.output.blocks)
 io.write_netcdf(devices, snakemake.output.devices)
-label = f"block {snakemake.params.block}"
+spec = snakemake.params.block
+label = f"block {spec['preset']}" if "preset" in spec else "block " + ", ".join(f"{k} = {v}" for k, v in spec.items())
 io.write_text(design.design_markdown(devices, snakemake.params.target, label), snakemake.output.md)
