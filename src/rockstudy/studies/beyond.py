@@ -51,10 +51,11 @@ def check_config(section: dict, config: dict) -> None:
             if isinstance(entry, dict) and "path" in entry:
                 validation.check_input_file(f"beyond.fragility.records[{i}].path", entry["path"],
                                             validation.MAX_RECORD_BYTES)
+    n_synthetic = _check_synthetic(frag["synthetic"])  # checked even when no set uses it
     n_records = 1  # the largest set: one job each
     for items in record_sets(records).values():
         if items == record_suites.SYNTHETIC:
-            n_records = max(n_records, _check_synthetic(frag["synthetic"]))
+            n_records = max(n_records, n_synthetic)
         elif isinstance(items, str):
             n_records = max(n_records, len(record_suites.record_ids(items)))
         else:
