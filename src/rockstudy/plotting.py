@@ -619,3 +619,137 @@ def figure_fragility(ds):
     axr.grid(False, axis="x")
     fig.tight_layout()
     return fig
+
+
+# --- records: every record's threshold per strategy ---------------------------------------------------
+STRATEGY_MARKERS = {"FS": "o", "PASSIVE": "s", "CS01": "^", "CS02": "v"}
+
+
+def plot_record_thresholds(ax, ds):
+    """Threshold PGA [g] of every record (rows, sorted by FS's threshold) for each strategy (markers), and
+    the record's own PGA (grey bar): a marker left of the bar's end means the record as recorded
+    overturns the block with that strategy. Returns the markers' artists."""
+    fs = ds["threshold_pga"].sel(strategy="FS").values if "FS" in ds.strategy.values else None
+    order = np.argsort(np.where(np.isfinite(fs), fs, np.inf)) if fs is not None else np.arange(ds.sizes["record"])
+    y = np.arange(order.size)
+    ax.barh(y, ds["record_pga"].values[order], color="0.85", height=0.7, label="PGA as recorded")
+    artists = []
+    for s in ds.strategy.values:
+        s = str(s)
+        x = ds["threshold_pga"].sel(strategy=s).values[order]
+        artists.append(ax.plot(x, y, ls="none", marker=STRATEGY_MARKERS.get(s, "o"), ms=4,
+                               color=STRATEGY_COLOURS.get(s, None), label=s)[0])
+    labels = [f"{ds.record_id.values[k]} {str(ds.record_event.values[k])[:22]}" for k in order]
+    ax.set_yticks(y, labels, fontsize=6)
+    ax.set_ylim(-0.7, order.size - 0.3)
+    ax.invert_yaxis()
+    ax.set_xlabel("smallest PGA that overturns the block [g]")
+    ax.grid(True, axis="x", lw=0.3, alpha=0.5)
+    return artists
+
+
+def figure_record_thresholds(ds):
+    """Every record's threshold per strategy over one record set (see :func:`plot_record_thresholds`)."""
+    n = ds.sizes["record"]
+    fig, ax = plt.subplots(figsize=(7.5, 1.2 + 0.16 * n))
+    plot_record_thresholds(ax, ds)
+    beaten = {str(s): int(np.sum(ds["threshold_scale"].sel(strategy=s).values <= 1.0)) for s in ds.strategy.values}
+    ax.set_title(f"{ds.attrs.get('record_suite', '')}: records that overturn the block as recorded\n"
+                 + ", ".join(f"{s} {k}/{n}" for s, k in beaten.items()), fontsize=9, pad=22)
+    ax.legend(fontsize=7, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=len(beaten) + 1, frameon=False)
+    fig.tight_layout()
+    return fig
+
+
+# --- design charts: block sweep over (R, alpha), device sweep over (kappa_max, xi) ---------------------
+def plot_design_map(ax, values, R, alpha, cmap="viridis", vmin=None, vmax=None, fmt="{:.0f}"):
+    """A map over (alpha, R) of one quantity with its values written in the cells; returns the mesh."""
+    mesh = ax.pcolormesh(np.arange(len(alpha) + 1), np.arange(len(R) + 1), values, cmap=cmap, vmin=vmin, vmax=vmax)
+    for i in range(len(R)):
+        for j in range(len(alpha)):
+            if np.isfinite(values[i, j]):
+                ax.text(j + 0.5, i + 0.5, fmt.format(values[i, j]), ha="center", va="center", fontsize=7,
+                        color="w" if mesh.norm(values[i, j]) < 0.5 else "k")
+    ax.set_xticks(np.arange(len(alpha)) + 0.5, [f"{a:g}" for a in alpha])
+    ax.set_yticks(np.arange(len(R)) + 0.5, [f"{r:g}" for r in R])
+    ax.set_xlabel(r"slenderness $\alpha$ [rad]")
+    ax.set_ylabel("half diagonal R [m]")
+    return mesh
+
+
+def figure_design_jos_maps(blocks, strategies=("CS01", "CS02")):
+    """J_OS over FS (noise-free Eq. 23) and the fragility median shift over FS, over (R, alpha)."""
+    R, alpha = blocks.R.values, blocks.alpha.values
+    fig, axes = plt.subplots(2, len(strategies), figsize=(4.6 * len(strategies), 7.6), squeeze=False)
+    fs = blocks.fragility_median.sel(strategy="FS").values
+    for k, s in enumerate(strategies):
+        mesh = plot_design_map(axes[0, k], blocks.jos.sel(strategy=s).values, R, alpha, vmin=0, vmax=100)
+        axes[0, k].set_title(f"{s}: J_OS over FS [%] (Eq. 23, no noise)", fontsize=9)
+        fig.colorbar(mesh, ax=axes[0, k])
+        shift = 100 * (blocks.fragility_median.sel(strategy=s).values / fs - 1)
+        mesh = plot_design_map(axes[1, k], shift, R, alpha, cmap="magma", vmin=0)
+        axes[1, k].set_title(f"{s}: median over FS, {blocks.attrs['record_suite']} [%]", fontsize=9)
+        fig.colorbar(mesh, ax=axes[1, k])
+    fig.tight_layout()
+    return fig
+
+
+def figure_design_winner(blocks):
+    """Which strategy wins where: the highest J_OS (left) and the highest fragility median (right) over (R, alpha)."""
+    R, alpha = blocks.R.values, blocks.alpha.values
+    strategies = [str(s) for s in blocks.strategy.values if str(s) != "FS"]
+    cmap = ListedColormap([STRATEGY_COLOURS.get(s, "0.5") for s in strategies])
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    for ax, var, title in ((axes[0], "jos", "highest J_OS (Eq. 23, no noise)"),
+                           (axes[1], "fragility_median", f"highest median on {blocks.attrs['record_suite']}")):
+        values = blocks[var].sel(strategy=strategies).values
+        best = np.argmax(np.nan_to_num(values, nan=-np.inf), axis=0).astype(float)
+        plot_design_map(ax, best, R, alpha, cmap=cmap, vmin=-0.5, vmax=len(strategies) - 0.5, fmt="")
+        for i in range(len(R)):
+            for j in range(len(alpha)):
+                ax.text(j + 0.5, i + 0.5, strategies[int(best[i, j])], ha="center", va="center", fontsize=7,
+                        color="w")
+        ax.set_title(title, fontsize=9)
+    fig.legend(handles=[Patch(color=STRATEGY_COLOURS.get(s, "0.5"), label=s) for s in strategies],
+               loc="lower center", ncol=len(strategies), frameon=False, fontsize=8)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
+    return fig
+
+
+def figure_design_size_effect(blocks):
+    """The size effect: fragility median [g] against R for every strategy, one panel per alpha."""
+    alpha = blocks.alpha.values
+    fig, axes = plt.subplots(1, len(alpha), figsize=(2.6 * len(alpha), 3.4), sharey=True, squeeze=False)
+    for j, a in enumerate(alpha):
+        ax = axes[0, j]
+        for s in blocks.strategy.values:
+            ax.plot(blocks.R.values, blocks.fragility_median.sel(strategy=s, alpha=a).values,
+                    marker=STRATEGY_MARKERS.get(str(s), "o"), color=STRATEGY_COLOURS.get(str(s)), label=str(s))
+        ax.set_xscale("log")
+        ax.set_title(rf"$\alpha$ = {a:g} rad", fontsize=9)
+        ax.set_xlabel("R [m]")
+        ax.grid(True, lw=0.3, alpha=0.5)
+    axes[0, 0].set_ylabel(f"fragility median PGA [g], {blocks.attrs['record_suite']}")
+    axes[0, 0].legend(fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
+def figure_design_devices(devices, target_g: float):
+    """Fragility median [g] of every strategy against kappa_max, one panel per xi, with the target."""
+    xis = devices.damping_ratio.values
+    fig, axes = plt.subplots(1, len(xis), figsize=(4.2 * len(xis), 3.6), sharey=True, squeeze=False)
+    for j, xi in enumerate(xis):
+        ax = axes[0, j]
+        for s in devices.strategy.values:
+            ax.plot(devices.kappa_max.values, devices.fragility_median.sel(strategy=s, damping_ratio=xi).values,
+                    marker=STRATEGY_MARKERS.get(str(s), "o"), color=STRATEGY_COLOURS.get(str(s)), label=str(s))
+        ax.axhline(target_g, color="0.3", ls="--", lw=0.8, label=f"target {target_g:g} g")
+        ax.set_xscale("log")
+        ax.set_xlabel(r"$\kappa_{max}$ [-]")
+        ax.set_title(rf"$\xi$ = {xi:g}", fontsize=9)
+        ax.grid(True, lw=0.3, alpha=0.5)
+    axes[0, 0].set_ylabel(f"fragility median PGA [g], {devices.attrs['record_suite']}")
+    axes[0, 0].legend(fontsize=7)
+    fig.tight_layout()
+    return fig

@@ -111,3 +111,33 @@ def test_fragility_dataset_and_table(blc06):
     assert sum(line.startswith("| ") for line in table.splitlines()) == 3 and "| CS01 |" in table
     with pytest.raises(ValueError, match="must include FS"):
         fragility_dataset(blc06, Anchorage(), [Control("CS01")], records, levels)
+
+
+def test_suite_fragility_names_every_record_and_its_threshold(blc06):
+    """Three synthetic records of the suite by name: the dataset carries suite, id, event and station; each
+    threshold lies at or below the first overturning stripe and above the last safe one below it; the
+    median in g is the ratio times tan(alpha) g / g_n."""
+    from rockstudy.analysis.fragility import suite_fragility_dataset
+    from rockstudy.analysis.record_scan import is_overturned
+    from rockstudy.model import record_suites
+    from rockstudy.model.records import STANDARD_GRAVITY
+    entries = [record_suites.load_record(f"synthetic:SYN00{i}") for i in range(3)]
+    levels = np.arange(1.0, 5.01, 0.5)
+    ds = suite_fragility_dataset(blc06, Anchorage(), [Control("FS"), Control("CS01")], entries, levels,
+                                 suite="synthetic", resolution=0.05, n_boot=5, free_time=10.0)
+    assert list(ds.record.values) == [f"synthetic:SYN00{i}" for i in range(3)]
+    assert set(ds.record_station.values) == {"SYN000", "SYN001", "SYN002"}
+    assert all(str(e).startswith("synthetic") for e in ds.record_event.values)
+    over = is_overturned(ds.outcome.values)
+    for c in range(2):
+        for r in range(3):
+            thr = float(ds.threshold_intensity.values[c, r])
+            if not over[c, r].any():
+                assert np.isnan(thr)
+                continue
+            first = int(np.argmax(over[c, r]))
+            assert thr <= levels[first] and (first == 0 or thr > levels[first - 1])
+            assert thr - float(ds.last_safe_intensity.values[c, r]) <= 0.05
+    np.testing.assert_allclose(ds.fragility_median_physical.values, ds.fragility_median.values
+                               * blc06.uplift_acceleration / STANDARD_GRAVITY)
+    np.testing.assert_allclose(ds.threshold_pga.values, ds.threshold_scale.values * ds.record_pga.values[None, :])

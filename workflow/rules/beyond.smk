@@ -1,31 +1,41 @@
 # Beyond the paper (README "Beyond the paper"): the probability of overturning over the noise
-# realisations, and the fragility of each strategy over a suite of (synthetic or recorded)
-# earthquakes. Targets: `snakemake -j2 probability`, `snakemake -j2 fragility`. Needs the
-# optional `beyond:` section of the config (without it these rules do not exist).
+# realisations, and the fragility of each strategy over record suites (FEMA P695 sets, synthetic
+# records, files) with every record's threshold. Targets: `snakemake -j2 probability`,
+# `snakemake -j2 fragility`. Needs the optional `beyond:` section of the config (without it these
+# rules do not exist).
 
 BEYOND = config.get("beyond")
 # (checked with the rest of the config by rockstudy.studies.study.check_study)
-BEYOND_IN_ALL = []  # the fragility study (about a minute) runs with `all`; the probability surfaces do not
+BEYOND_IN_ALL = []  # the fragility study (about a minute of CPU) runs with `all`; the probability surfaces do not
 
 if BEYOND:
+    from rockstudy.studies import beyond as beyond_study
+
     PROB = BEYOND["probability"]
     FRAG = BEYOND["fragility"]
-    FRAGILITY_FILES = [f"{OUT}/fragility/fragility.nc", f"{OUT}/tables/fragility.csv", f"{OUT}/tables/fragility.md",
-                       f"{OUT}/figures/fragility.png", f"{OUT}/figures/fragility.pdf"]
+    RECORD_SETS = beyond_study.record_sets(FRAG["records"])
+    FRAGILITY_FILES = (
+        [f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS]
+        + [f"{OUT}/tables/{t}_{name}.{e}" for t in ("fragility", "record_thresholds") for name in RECORD_SETS
+           for e in ("csv", "md")]
+        + [f"{OUT}/figures/{f}_{name}.{e}" for f in ("fragility", "record_thresholds") for name in RECORD_SETS
+           for e in ("png", "pdf")]
+        + [f"{OUT}/tables/fragility_summary.{e}" for e in ("csv", "md")]
+    )
     BEYOND_IN_ALL = FRAGILITY_FILES
     PROBABILITY_FILES = [f"{OUT}/probability/{s}_{l}.nc" for s in PROB["strategies"] for l in PROB["noise_levels"]]
-    if FRAG["records"] == "synthetic":
-        RECORD_FILES = [f"{OUT}/records/synthetic/SYN{i:03d}.AT2" for i in range(FRAG["synthetic"]["n_records"])]
-        RECORD_UNITS = [None] * len(RECORD_FILES)
-    else:
-        RECORD_FILES = [entry["path"] for entry in FRAG["records"]]
-        RECORD_UNITS = [entry.get("unit") for entry in FRAG["records"]]
+    SYNTHETIC_FILES = [f"{OUT}/records/synthetic/SYN{i:03d}.AT2" for i in range(FRAG["synthetic"]["n_records"])]
+
+    wildcard_constraints:
+        recordset="|".join(RECORD_SETS),
 
     localrules:
         probability,
         fragility,
         figure_probability,
         figure_fragility,
+        figure_record_thresholds,
+        fragility_summary,
 
     rule probability:
         input:
@@ -35,7 +45,7 @@ if BEYOND:
     rule fragility:
         input:
             FRAGILITY_FILES,
-            [f"{OUT}/records/synthetic.nc"] if FRAG["records"] == "synthetic" else [],
+            [f"{OUT}/records/synthetic.nc"] + SYNTHETIC_FILES if "synthetic" in RECORD_SETS else [],
 
     rule probability_surface:
         input:
@@ -62,11 +72,11 @@ if BEYOND:
         script:
             "../scripts/probability_surface.py"
 
-    if FRAG["records"] == "synthetic":
+    if "synthetic" in RECORD_SETS:
 
         rule synthetic_suite:
             output:
-                records=RECORD_FILES,
+                records=SYNTHETIC_FILES,
                 nc=f"{OUT}/records/synthetic.nc",
             log:
                 f"{OUT}/logs/records/synthetic.log",
@@ -82,24 +92,45 @@ if BEYOND:
             script:
                 "../scripts/synthetic_suite.py"
 
+    rule record_set:
+        input:
+            lambda w: beyond_study.set_files(RECORD_SETS[w.recordset]),
+        output:
+            f"{OUT}/records/sets/{{recordset}}.nc",
+        log:
+            f"{OUT}/logs/records/{{recordset}}.log",
+        params:
+            members=lambda w: RECORD_SETS[w.recordset],
+            synthetic=FRAG["synthetic"],
+            library=LIBRARY,
+        conda:
+            "../envs/rockstudy.yaml"
+        threads: 1
+        resources:
+            mem_mb=SIM_MEM_MB,
+            runtime=5,
+        script:
+            "../scripts/record_set.py"
+
     rule fragility_stripes:
         input:
-            records=RECORD_FILES,
+            records=f"{OUT}/records/sets/{{recordset}}.nc",
         output:
-            nc=f"{OUT}/fragility/fragility.nc",
-            csv=f"{OUT}/tables/fragility.csv",
-            md=f"{OUT}/tables/fragility.md",
+            nc=f"{OUT}/fragility/{{recordset}}.nc",
+            csv=f"{OUT}/tables/fragility_{{recordset}}.csv",
+            md=f"{OUT}/tables/fragility_{{recordset}}.md",
+            thresholds_csv=f"{OUT}/tables/record_thresholds_{{recordset}}.csv",
+            thresholds_md=f"{OUT}/tables/record_thresholds_{{recordset}}.md",
         log:
-            f"{OUT}/logs/fragility/fragility.log",
+            f"{OUT}/logs/fragility/{{recordset}}.log",
         benchmark:
-            f"{OUT}/benchmarks/fragility/fragility.tsv"
+            f"{OUT}/benchmarks/fragility/{{recordset}}.tsv"
         params:
             scenario=scenario("FS", FREE),
             strategies=FRAG["strategies"],
-            units=RECORD_UNITS,
-            synthetic=FRAG["synthetic"] if FRAG["records"] == "synthetic" else None,
             intensity_measure=FRAG["intensity_measure"],
             intensity_levels=FRAG["intensity_levels"],
+            threshold_resolution=FRAG["threshold_resolution"],
             bootstrap=FRAG["bootstrap"],
             seed=FRAG["seed"],
             library=LIBRARY,
@@ -111,6 +142,22 @@ if BEYOND:
             runtime=15,
         script:
             "../scripts/fragility.py"
+
+    rule fragility_summary:
+        input:
+            [f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS],
+        output:
+            csv=f"{OUT}/tables/fragility_summary.csv",
+            md=f"{OUT}/tables/fragility_summary.md",
+        log:
+            f"{OUT}/logs/fragility/summary.log",
+        params:
+            library=BOOKKEEPING,
+        conda:
+            "../envs/rockstudy.yaml"
+        threads: 1
+        script:
+            "../scripts/fragility_summary.py"
 
     rule figure_probability:
         input:
@@ -134,14 +181,14 @@ if BEYOND:
 
     rule figure_fragility:
         input:
-            f"{OUT}/fragility/fragility.nc",
+            f"{OUT}/fragility/{{recordset}}.nc",
         output:
-            png=report(f"{OUT}/figures/fragility.png", caption="../report/fragility.rst", category="Figures",
-                       subcategory="Records (beyond the paper)",
-                       labels=report_pages.labels("Fragility curves over the record suite; median shift over FS")),
-            pdf=f"{OUT}/figures/fragility.pdf",
+            png=report(f"{OUT}/figures/fragility_{{recordset}}.png", caption="../report/fragility.rst",
+                       category="Figures", subcategory="Records (beyond the paper)",
+                       labels=report_pages.labels("Fragility curves over a record set; median shift over FS")),
+            pdf=f"{OUT}/figures/fragility_{{recordset}}.pdf",
         log:
-            f"{OUT}/logs/figures/fragility.log",
+            f"{OUT}/logs/figures/fragility_{{recordset}}.log",
         params:
             expect=expect,
             plotting=PLOTTING,
@@ -150,3 +197,22 @@ if BEYOND:
         threads: 1
         script:
             "../scripts/figure_fragility.py"
+
+    rule figure_record_thresholds:
+        input:
+            f"{OUT}/fragility/{{recordset}}.nc",
+        output:
+            png=report(f"{OUT}/figures/record_thresholds_{{recordset}}.png",
+                       caption="../report/record_thresholds.rst", category="Figures",
+                       subcategory="Records (beyond the paper)",
+                       labels=report_pages.labels("Smallest overturning scale of each record, per strategy")),
+            pdf=f"{OUT}/figures/record_thresholds_{{recordset}}.pdf",
+        log:
+            f"{OUT}/logs/figures/record_thresholds_{{recordset}}.log",
+        params:
+            plotting=PLOTTING,
+        conda:
+            "../envs/rockstudy.yaml"
+        threads: 1
+        script:
+            "../scripts/figure_record_thresholds.py"

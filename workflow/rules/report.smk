@@ -21,8 +21,15 @@ HTML_TABLES = {
                     "Device calibration", "Device calibration: every screened anchorage and the best", "Table 1"),
 }
 if BEYOND:
-    HTML_TABLES["fragility"] = (f"{OUT}/tables/fragility.md", "fragility_table.rst", "Tables", "Fragility",
-                                "Fragility medians, dispersions and median shifts over FS", "")
+    HTML_TABLES["fragility_summary"] = (f"{OUT}/tables/fragility_summary.md", "fragility_summary.rst", "Tables",
+                                        "Fragility", "Fragility medians of every strategy on every record set", "")
+    for name in RECORD_SETS:
+        HTML_TABLES[f"fragility_{name}"] = (f"{OUT}/tables/fragility_{name}.md", "fragility_table.rst", "Tables",
+                                            "Fragility", f"Fragility on {name}: medians, dispersions, shift over FS",
+                                            "")
+        HTML_TABLES[f"record_thresholds_{name}"] = (
+            f"{OUT}/tables/record_thresholds_{name}.md", "record_thresholds_table.rst", "Tables", "Fragility",
+            f"Smallest overturning scale of each record of {name}, per strategy", "")
 
 
 for key, (md, caption, category, subcategory, shows, paper) in HTML_TABLES.items():
@@ -48,7 +55,7 @@ for key, (md, caption, category, subcategory, shows, paper) in HTML_TABLES.items
 
 
 HTML_IN_ALL = [HTML_TABLES[k][0].removesuffix(".md") + ".html"
-               for k in ("table1", "timing_sampling", "timing_delay", "fragility") if k in HTML_TABLES]
+               for k in HTML_TABLES if k not in ("readings", "calibration")]
 
 
 rule html_claims:

@@ -335,15 +335,46 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
         intervals, ``fit_status``; ``median_ratio`` θ/θ_FS with its bootstrap 95 % interval and
         ``median_shift_percent`` 100·(θ/θ_FS − 1), per strategy.
     """
+    _check_fragility_inputs(controls, n_boot)
+    levels = np.asarray(levels, dtype=float)
+    t0 = time.perf_counter()
+    overturned, rotation, scale = stripe_outcomes(block, anchorage, controls, records, levels, measure=measure,
+                                                  overturn_criterion=overturn_criterion, free_time=free_time)
+    ds = fragility_from_stripes(block, anchorage, controls, records, levels, overturned, scale, rotation=rotation,
+                                measure=measure, n_boot=n_boot, seed=seed, overturn_criterion=overturn_criterion,
+                                free_time=free_time, record_attrs=record_attrs)
+    ds.attrs["compute_time_s"] = time.perf_counter() - t0
+    return ds
+
+
+def _check_fragility_inputs(controls, n_boot):
     strategies = [c.strategy for c in controls]
     if "FS" not in strategies:
         raise ValueError(f"controls must include FS, the reference of the median shift, got {strategies}")
     if isinstance(n_boot, bool) or not isinstance(n_boot, int) or n_boot < 0:
         raise ValueError(f"n_boot must be an integer >= 0, got {n_boot!r}")
+    return strategies
+
+
+def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records, levels, overturned, scale, *,
+                           rotation=None, measure: str = "pga_ratio", n_boot: int = 200, seed: int = 0,
+                           overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
+                           record_attrs=None) -> xr.Dataset:
+    """The fits, median shifts and dataset of :func:`fragility_dataset` from stripes already run.
+
+    Parameters
+    ----------
+    overturned : ndarray of bool, shape (control, record, level)
+    scale : ndarray, shape (record, level)
+        Factor applied to each record. [-]
+    rotation : ndarray, shape (control, record, level), optional
+        max|θ|/α of each run (stored when given).
+    Others as for :func:`fragility_dataset`.
+    """
+    strategies = _check_fragility_inputs(controls, n_boot)
     levels = np.asarray(levels, dtype=float)
-    t0 = time.perf_counter()
-    overturned, rotation, scale = stripe_outcomes(block, anchorage, controls, records, levels, measure=measure,
-                                                  overturn_criterion=overturn_criterion, free_time=free_time)
+    overturned = np.asarray(overturned, dtype=bool)
+    dims3 = ("strategy", "record", "intensity")
     n_records = len(records)
     counts = overturned.sum(axis=1)
     fits = [fit_lognormal(levels, np.full(levels.size, n_records), counts[c]) for c in range(len(controls))]
@@ -357,12 +388,10 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
     intervals = np.array([f.median_interval() if f.status == "ok" else (math.nan, math.nan) for f in fits])
     ratio = medians / medians[reference]
     im_attrs = {"units": "1", "long_name": INTENSITY_MEASURES.get(measure, measure)}
-    dims3 = ("strategy", "record", "intensity")
     ds = xr.Dataset(
         {
             "overturned": (dims3, overturned.astype(np.int8), {"long_name": "the record scaled to the IM level "
                                                                "overturns the block", "flag_values": [0, 1]}),
-            "max_rotation_ratio": (dims3, rotation, {"units": "1", "long_name": "max |theta| / alpha"}),
             "scale": (("record", "intensity"), scale, {"units": "1", "long_name": "factor applied to the record"}),
             "fraction": (("strategy", "intensity"), counts / n_records,
                          {"units": "1", "long_name": "fraction of the records that overturn the block"}),
@@ -415,7 +444,8 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
             **block.to_attrs(), **anchorage.to_attrs(block), **(record_attrs or {}),
         },
     )
-    ds.attrs["compute_time_s"] = time.perf_counter() - t0
+    if rotation is not None:
+        ds["max_rotation_ratio"] = (dims3, np.asarray(rotation), {"units": "1", "long_name": "max |theta| / alpha"})
     return ds
 
 
@@ -434,4 +464,202 @@ def fragility_markdown(ds: xr.Dataset) -> str:
     lines.append(f"{ds.attrs['n_records']} records, {ds.sizes['intensity']} IM levels "
                  f"({float(ds.intensity.min()):g}–{float(ds.intensity.max()):g}); "
                  f"{ds.attrs['n_bootstrap']} bootstrap draws over records.")
+    return "\n".join(lines) + "\n"
+
+
+# --- fragility over a named record suite, with every record's threshold -----------------------------
+OTHER_MEASURE = {"pga_ratio": "pgv_ratio", "pgv_ratio": "pga_ratio"}
+
+
+def fit_lognormal_points(im, overturned) -> FragilityFit:
+    """Lognormal MLE (Eq. F2) of single runs at arbitrary intensities: each run is a stripe of one. [-]"""
+    im = np.asarray(im, dtype=float).ravel()
+    overturned = np.asarray(overturned, dtype=float).ravel()
+    order = np.argsort(im, kind="stable")
+    return fit_lognormal(im[order], np.ones(im.size), overturned[order])
+
+
+def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entries, levels, *,
+                            suite: str, measure: str = "pga_ratio", resolution: float = 0.01, n_boot: int = 200,
+                            seed: int = 0, overturn_criterion: str = "flat",
+                            free_time: float = DEFAULT_FREE_TIME) -> xr.Dataset:
+    """Fragility of each strategy over a record suite, and the threshold of every record.
+
+    The stripes run on the compiled engine (:func:`rockstudy.analysis.record_scan.stripes_and_thresholds`);
+    each record's threshold is the smallest intensity that overturns the block, found with the
+    spectra's scan rules (every lower level of ``levels`` shown safe) and bisected to ``resolution``.
+    Besides the fit in ``measure`` (:func:`fragility_from_stripes`), the dataset holds the median in
+    physical units (PGA in g, or PGV in m/s) and a fit in the other measure of
+    :data:`INTENSITY_MEASURES` from the same runs (each run one observation at its own intensity).
+
+    Parameters
+    ----------
+    block, anchorage : Block, Anchorage
+    controls : sequence of Control
+        The strategies, FS among them.
+    entries : sequence of (RecordInfo, Record)
+        From :mod:`rockstudy.model.record_suites`.
+    levels : array_like
+        Intensity levels of the stripes, in ``measure``. [IM]
+    suite : str
+        Name of the record set (stored, and in the title).
+    resolution : float
+        Resolution of the records' thresholds. [IM]
+    measure, n_boot, seed, overturn_criterion, free_time
+        As for :func:`fragility_dataset`.
+
+    Returns
+    -------
+    xarray.Dataset
+        The variables of :func:`fragility_from_stripes` plus ``outcome`` (strategy, record, intensity);
+        ``threshold_intensity``, ``last_safe_intensity``, ``threshold_scale`` and ``threshold_pga``
+        [g] (strategy, record); ``fragility_median_physical`` with its interval; ``fragility_median_other``,
+        ``fragility_dispersion_other`` and the interval in the other measure; the records' catalogue as
+        coordinates (suite, id, event, station, year, magnitude, distance, site class, PGA, PGV, pulse).
+    """
+    from rockstudy.analysis.record_scan import is_overturned, stripes_and_thresholds
+    from rockstudy.engine.outcome import OUTCOME_MEANINGS
+    from rockstudy.model.records import STANDARD_GRAVITY
+    _check_fragility_inputs(controls, n_boot)
+    if measure not in INTENSITY_MEASURES:
+        raise ValueError(f"intensity measure must be one of {', '.join(INTENSITY_MEASURES)}, got {measure!r}")
+    infos = [i for i, _ in entries]
+    records = [r for _, r in entries]
+    levels = np.asarray(levels, dtype=float)
+    t0 = time.perf_counter()
+    base = np.array([intensity(r, block, measure) for r in records])
+    runs = stripes_and_thresholds(block, anchorage, controls, records, levels, base, resolution=resolution,
+                                  overturn_criterion=overturn_criterion, free_time=free_time)
+    overturned = is_overturned(runs["outcome"])
+    ds = fragility_from_stripes(block, anchorage, controls, records, levels, overturned, runs["scale"],
+                                measure=measure, n_boot=n_boot, seed=seed, overturn_criterion=overturn_criterion,
+                                free_time=free_time, record_attrs={"record_suite": suite})
+    dims2, dims3 = ("strategy", "record"), ("strategy", "record", "intensity")
+    ds["outcome"] = (dims3, runs["outcome"], {"long_name": "outcome of the run at each level",
+                                              "flag_values": np.arange(len(OUTCOME_MEANINGS), dtype=np.int8),
+                                              "flag_meanings": " ".join(OUTCOME_MEANINGS)})
+    im_attrs = {"units": "1", "long_name": INTENSITY_MEASURES[measure]}
+    threshold_scale = runs["threshold"] / base[None, :]
+    pga_g = np.array([r.pga for r in records]) / STANDARD_GRAVITY
+    ds["threshold_intensity"] = (dims2, runs["threshold"], {
+        **im_attrs, "long_name": f"smallest {INTENSITY_MEASURES[measure]} that overturns the block",
+        "description": "upward scan of the stripe levels (every lower level shown safe), then bisection to "
+                       "threshold_resolution; NaN: no overturning up to the last level"})
+    ds["last_safe_intensity"] = (dims2, runs["last_safe"], {**im_attrs, "long_name": "highest intensity shown "
+                                                            "safe below the threshold"})
+    ds["threshold_scale"] = (dims2, threshold_scale, {"units": "1", "long_name": "smallest factor on the "
+                                                      "as-recorded motion that overturns the block"})
+    ds["threshold_pga"] = (dims2, threshold_scale * pga_g[None, :], {"units": "g", "long_name": "PGA of the record "
+                                                                    "at its threshold scale (standard gravity)"})
+    ds["n_simulations"] = (dims2, runs["n_simulations"], {"units": "1", "long_name": "runs of the stripes and "
+                                                          "the threshold scan"})
+    # the median in physical units: PGA [g] = ratio * g tan(alpha) / g_n; PGV [m/s] = ratio * g tan(alpha) / p
+    unit_factor = (block.uplift_acceleration / STANDARD_GRAVITY if measure == "pga_ratio"
+                   else block.uplift_acceleration / block.p)
+    unit = "g" if measure == "pga_ratio" else "m/s"
+    physical = "PGA" if measure == "pga_ratio" else "PGV"
+    for name, source in (("fragility_median_physical", "fragility_median"), ("median_low_physical", "median_low"),
+                         ("median_high_physical", "median_high")):
+        ds[name] = ds[source] * unit_factor
+        ds[name].attrs = {"units": unit, "long_name": f"{ds[source].attrs.get('long_name', source)}, as {physical} "
+                          f"[{unit}]"}
+    # the other measure, from the same runs
+    other = OTHER_MEASURE[measure]
+    ratio_other = np.array([intensity(r, block, other) for r in records]) / base
+    points = levels[None, :] * ratio_other[:, None]
+    fits = [fit_lognormal_points(points, overturned[c]) for c in range(len(controls))]
+    intervals = np.array([f.median_interval() if f.status == "ok" else (math.nan, math.nan) for f in fits])
+    other_attrs = {"units": "1", "long_name": INTENSITY_MEASURES[other]}
+    ds["fragility_median_other"] = ("strategy", [f.median for f in fits], {
+        **other_attrs, "long_name": f"fragility median of {INTENSITY_MEASURES[other]}, MLE of the same runs "
+                                    "(each run one observation at its own intensity)"})
+    ds["fragility_dispersion_other"] = ("strategy", [f.dispersion for f in fits],
+                                        {"units": "1", "long_name": f"fragility dispersion in {other}"})
+    ds["median_low_other"] = ("strategy", intervals[:, 0], {**other_attrs, "long_name": "95 % Wald interval, low"})
+    ds["median_high_other"] = ("strategy", intervals[:, 1], {**other_attrs, "long_name": "95 % Wald interval, high"})
+    ds["fit_status_other"] = ("strategy", [f.status for f in fits], {"long_name": "see FragilityFit.status"})
+    coords = {
+        "record_suite_name": [i.suite for i in infos], "record_id": [i.id for i in infos],
+        "record_event": [i.event for i in infos], "record_station": [i.station for i in infos],
+        "record_year": [i.year for i in infos], "record_magnitude": [i.magnitude for i in infos],
+        "record_distance": [i.distance_km for i in infos], "record_site_class": [i.site_class for i in infos],
+        "record_pga": pga_g, "record_pgv": [i.pgv for i in infos], "record_pulse": [i.pulse for i in infos],
+        "record_other_intensity": base * ratio_other,
+    }
+    units = {"record_distance": "km", "record_pga": "g", "record_pgv": "m/s", "record_magnitude": "1",
+             "record_other_intensity": "1"}
+    ds = ds.assign_coords({k: ("record", v, {"units": units[k]} if k in units else {}) for k, v in coords.items()})
+    ds.attrs.update(title=f"Fragility of the controlled block over the record suite {suite} (multiple stripe "
+                          "analysis) and each record's threshold",
+                    record_suite=suite, other_intensity_measure=other,
+                    other_intensity_measure_definition=INTENSITY_MEASURES[other],
+                    threshold_resolution=float(resolution),
+                    threshold_rule="upward scan of the intensity levels, every lower level shown safe, then "
+                                   "bisection (the overturning spectra's rule)",
+                    engine="fast (compiled), energy bound on", compute_time_s=time.perf_counter() - t0)
+    return ds
+
+
+def suite_summary(datasets) -> "list[dict]":
+    """One row per (suite, strategy): medians with 95 % intervals in every unit, dispersion, shift over FS."""
+    rows = []
+    for ds in datasets:
+        for s in ds.strategy.values:
+            d = ds.sel(strategy=s)
+            rows.append({"suite": ds.attrs["record_suite"], "strategy": str(s), "n_records": ds.attrs["n_records"],
+                         "intensity_measure": ds.attrs["intensity_measure"],
+                         "median": float(d.fragility_median), "median_low": float(d.median_low),
+                         "median_high": float(d.median_high),
+                         "median_physical": float(d.fragility_median_physical),
+                         "median_physical_low": float(d.median_low_physical),
+                         "median_physical_high": float(d.median_high_physical),
+                         "physical_unit": ds["fragility_median_physical"].attrs["units"],
+                         "dispersion": float(d.fragility_dispersion), "dispersion_se": float(d.dispersion_se),
+                         "other_measure": ds.attrs["other_intensity_measure"],
+                         "median_other": float(d.fragility_median_other),
+                         "median_other_low": float(d.median_low_other),
+                         "median_other_high": float(d.median_high_other),
+                         "dispersion_other": float(d.fragility_dispersion_other),
+                         "median_ratio": float(d.median_ratio), "median_ratio_low": float(d.median_ratio_low),
+                         "median_ratio_high": float(d.median_ratio_high),
+                         "median_shift_percent": float(d.median_shift_percent), "fit": str(d.fit_status.values)})
+    return rows
+
+
+def suite_summary_markdown(rows) -> str:
+    """Markdown table of :func:`suite_summary`."""
+    if not rows:
+        return ""
+    r0 = rows[0]
+    lines = [f"| suite | strategy | median {INTENSITY_MEASURES[r0['intensity_measure']]} (95 % CI) | median "
+             f"[{r0['physical_unit']}] (95 % CI) | β ± se | median {INTENSITY_MEASURES[r0['other_measure']]} (95 % CI) "
+             "| θ/θ_FS (bootstrap 95 % CI) | shift over FS | fit |", "|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['suite']} | {r['strategy']} | {r['median']:.3f} ({r['median_low']:.3f}–"
+                     f"{r['median_high']:.3f}) | {r['median_physical']:.3f} ({r['median_physical_low']:.3f}–"
+                     f"{r['median_physical_high']:.3f}) | {r['dispersion']:.3f} ± {r['dispersion_se']:.3f} | "
+                     f"{r['median_other']:.3f} ({r['median_other_low']:.3f}–{r['median_other_high']:.3f}) | "
+                     f"{r['median_ratio']:.3f} ({r['median_ratio_low']:.3f}–{r['median_ratio_high']:.3f}) | "
+                     f"{r['median_shift_percent']:+.1f} % | {r['fit']} |")
+    return "\n".join(lines) + "\n"
+
+
+def threshold_markdown(ds: xr.Dataset) -> str:
+    """Markdown table of every record's threshold: the smallest PGA [g] (and scale) that overturns the block,
+    per strategy; "—" where nothing up to the last level overturns it."""
+    strategies = [str(s) for s in ds.strategy.values]
+    lines = ["| record | event | station | PGA [g] | " + " | ".join(f"{s}: PGA [g] (scale)" for s in strategies)
+             + " |", "|---" * (4 + len(strategies)) + "|"]
+    for k, name in enumerate(ds.record.values):
+        cells = []
+        for s in strategies:
+            g = float(ds.threshold_pga.sel(strategy=s).values[k])
+            sc = float(ds.threshold_scale.sel(strategy=s).values[k])
+            cells.append("—" if not np.isfinite(g) else f"{g:.3f} ({sc:.2f}{' *' if sc <= 1 else ''})")
+        lines.append(f"| {name} | {ds.record_event.values[k]} | {ds.record_station.values[k]} | "
+                     f"{float(ds.record_pga.values[k]):.3f} | " + " | ".join(cells) + " |")
+    lines.append("")
+    lines.append(f"Threshold: smallest scale that overturns the block, every lower stripe level shown safe, bisected "
+                 f"to {ds.attrs['threshold_resolution']:g} in {ds.attrs['intensity_measure_definition']}. "
+                 "* : the record as recorded (scale <= 1) already overturns the block.")
     return "\n".join(lines) + "\n"

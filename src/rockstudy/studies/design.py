@@ -1,0 +1,272 @@
+"""Design charts beyond the paper's one block: a sweep of block sizes and slendernesses, and a device sweep.
+
+**Block sweep.** For a block of half diagonal R and slenderness α (:meth:`Block.slender`), every
+strategy's noise-free overturning spectrum under the paper's excitation (Eq. 23) on a frequency grid
+ω_p/p, its utility index J_OS over free standing (Eqs. 18–22, a_max,0 in g), and its fragility
+median on a record suite (stripes at PGA levels in g; lognormal maximum likelihood, Eqs. F1–F2 of
+:mod:`rockstudy.analysis.fragility`). In the rigid-block model the spectrum in a_p/(g·tanα) against
+ω_p/p depends on α (and the dimensionless device, κ and ξ) only, not on R (Dimitrakopoulos and
+DeJong 2012): J_OS maps vary along α, not R. Real records have their own time scale, so the
+fragility median in g grows with R (the size effect).
+
+**Device sweep.** For one block and suite, the fragility median of each strategy over a grid of
+κ_max and ξ, and the smallest κ_max whose median reaches a target PGA.
+
+Each point (one block, or one device) is one independent call, so the workflow runs one job each.
+
+References
+----------
+.. [1] E. G. Dimitrakopoulos, M. J. DeJong (2012). Revisiting the rocking block: closed-form
+   solutions and similarity laws. Proceedings of the Royal Society A 468, 2294–2318.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import xarray as xr
+
+from rockstudy._version import __version__
+from rockstudy.analysis.fragility import fit_lognormal
+from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturned
+from rockstudy.analysis.scenario import Scenario
+from rockstudy.analysis.spectra import AmplitudeGrid, spectrum
+from rockstudy.analysis.utility_index import utility_index
+from rockstudy.engine.simulate import DEFAULT_FREE_TIME
+from rockstudy.model.anchorage import Anchorage
+from rockstudy.model.block import Block
+from rockstudy.model.control import Control
+from rockstudy.model.records import STANDARD_GRAVITY
+
+
+def pga_levels(start: float = 0.05, stop: float = 3.0, count: int = 30) -> np.ndarray:
+    """Geometric PGA levels of the stripes, from ``start`` to ``stop`` in ``count`` points. [g]"""
+    if not (0 < start < stop and int(count) >= 2):
+        raise ValueError(f"PGA levels need 0 < start < stop and count >= 2, got {start}, {stop}, {count}")
+    return np.geomspace(start, stop, int(count))
+
+
+def fragility_medians_g(block: Block, anchorage: Anchorage, controls, records, levels_g, *,
+                        overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME):
+    """Fragility median [g] of each control over ``records`` scaled to the PGA ``levels_g`` (stripes, MLE).
+
+    Returns
+    -------
+    medians : ndarray, shape (control,)
+        Median PGA [g] (NaN when nothing or everything overturns).
+    dispersions : ndarray, shape (control,)
+    fractions : ndarray, shape (control, level)
+        Fraction of the records that overturn the block at each level.
+    status : list of str
+    """
+    levels_g = np.asarray(levels_g, dtype=float)
+    ratio = levels_g * STANDARD_GRAVITY / block.uplift_acceleration  # PGA/(g tan(alpha)) of each level
+    counts = np.zeros((len(controls), levels_g.size))
+    for c, control in enumerate(controls):
+        for record in records:
+            run = RecordRun(block, anchorage, control, record, overturn_criterion=overturn_criterion,
+                            free_time=free_time)
+            counts[c] += is_overturned(grid_outcomes(run, ratio))
+    fits = [fit_lognormal(levels_g, np.full(levels_g.size, len(records)), counts[c]) for c in range(len(controls))]
+    return (np.array([f.median for f in fits]), np.array([f.dispersion for f in fits]), counts / len(records),
+            [f.status for f in fits])
+
+
+def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, frequency_ratios, *,
+                amplitude_start: float, amplitude_step: float, resolution: float, a_max0_g: float, records,
+                levels_g, suite: str, excitation: str = "modulated", overturn_criterion: str = "flat",
+                free_time: float = DEFAULT_FREE_TIME) -> xr.Dataset:
+    """One point of the block sweep: spectra, J_OS over FS and fragility medians of every strategy.
+
+    Parameters
+    ----------
+    R : float
+        Half diagonal of the block. [m]
+    alpha : float
+        Slenderness angle. [rad]
+    anchorage : Anchorage
+    strategies : sequence of str
+        FS among them (the reference of J_OS).
+    frequency_ratios : array_like
+        ω_p/p of the spectra. [-]
+    amplitude_start, amplitude_step, resolution : float
+        The amplitude scan a_p/(g·tanα); it stops one step above a_max,0 (thresholds above it are capped). [-]
+    a_max0_g : float
+        a_max,0 of J_OS. [g]
+    records : sequence of Record
+        The suite of the fragility.
+    levels_g : array_like
+        PGA levels of the stripes. [g]
+    suite : str
+        Name of the suite (stored).
+    excitation, overturn_criterion, free_time
+        As for :class:`rockstudy.analysis.scenario.Scenario`.
+    """
+    if "FS" not in strategies:
+        raise ValueError(f"strategies must include FS (the reference of J_OS), got {list(strategies)}")
+    t0 = time.perf_counter()
+    block = Block.slender(alpha, R)
+    controls = [Control(s) for s in strategies]
+    a_max0_ratio = a_max0_g * STANDARD_GRAVITY / block.uplift_acceleration
+    grid = AmplitudeGrid(start=amplitude_start, stop=max(a_max0_ratio + amplitude_step, amplitude_start
+                                                         + amplitude_step), step=amplitude_step,
+                         resolution=resolution)
+    freqs = np.asarray(frequency_ratios, dtype=float)
+    thresholds = np.array([spectrum(Scenario(block, anchorage, c, excitation=excitation,
+                                             overturn_criterion=overturn_criterion, free_time=free_time),
+                                    freqs, grid=grid, progress_chunks=1)["threshold"].values for c in controls])
+    fs = thresholds[list(strategies).index("FS")]
+    jos = np.array([utility_index(t, fs, a_max0_ratio, undefined="nan")[0] for t in thresholds])
+    medians, betas, _, status = fragility_medians_g(block, anchorage, controls, records, levels_g,
+                                                    overturn_criterion=overturn_criterion, free_time=free_time)
+    ds = xr.Dataset(
+        {"threshold": (("strategy", "frequency_ratio"), thresholds,
+                       {"units": "1", "long_name": "minimum overturning amplitude ratio a_p/(g tan(alpha)), "
+                        "noise-free; NaN: none up to the scan's end (one step above a_max,0)"}),
+         "jos": ("strategy", jos, {"units": "percent", "long_name": "utility index J_OS over FS (Eqs. 18-22)"}),
+         "fragility_median": ("strategy", medians, {"units": "g", "long_name": f"fragility median PGA on {suite}"}),
+         "fragility_dispersion": ("strategy", betas, {"units": "1", "long_name": "fragility dispersion beta"}),
+         "fit_status": ("strategy", status, {"long_name": "see rockstudy.analysis.fragility.FragilityFit"})},
+        coords={"strategy": ("strategy", list(strategies)),
+                "frequency_ratio": ("frequency_ratio", freqs, {"units": "1", "long_name": "omega_p/p"}),
+                "R": ((), float(R), {"units": "m", "long_name": "half diagonal of the block"}),
+                "alpha": ((), float(alpha), {"units": "rad", "long_name": "slenderness angle"})},
+        attrs={"title": f"Design point: block R = {R:g} m, alpha = {alpha:g} rad", "rockstudy_version": __version__,
+               "excitation": excitation, "a_max0_g": a_max0_g, "a_max0_ratio": a_max0_ratio,
+               "record_suite": suite, "n_records": len(records), "pga_levels_g": list(map(float, levels_g)),
+               "amplitude_grid": f"{grid.start:g}..{grid.stop:g} step {grid.step:g}, resolution {grid.resolution:g}",
+               **block.to_attrs(), **anchorage.to_attrs(block)},
+    )
+    ds.attrs["compute_time_s"] = time.perf_counter() - t0
+    return ds
+
+
+def device_point(block: Block, kappa_max: float, damping_ratio: float, strategies, records, levels_g, *,
+                 suite: str, kappa_min: float = 0.0, overturn_criterion: str = "flat",
+                 free_time: float = DEFAULT_FREE_TIME) -> xr.Dataset:
+    """One point of the device sweep: the fragility median [g] of each strategy with this device."""
+    t0 = time.perf_counter()
+    anchorage = Anchorage(kappa_max=kappa_max, kappa_min=kappa_min, damping_ratio=damping_ratio)
+    medians, betas, _, status = fragility_medians_g(block, anchorage, [Control(s) for s in strategies], records,
+                                                    levels_g, overturn_criterion=overturn_criterion,
+                                                    free_time=free_time)
+    ds = xr.Dataset(
+        {"fragility_median": ("strategy", medians, {"units": "g", "long_name": f"fragility median PGA on {suite}"}),
+         "fragility_dispersion": ("strategy", betas, {"units": "1", "long_name": "fragility dispersion beta"}),
+         "fit_status": ("strategy", status, {"long_name": "see rockstudy.analysis.fragility.FragilityFit"})},
+        coords={"strategy": ("strategy", list(strategies)),
+                "kappa_max": ((), float(kappa_max), {"units": "1", "long_name": "4 K_max b^2/(m g R)"}),
+                "damping_ratio": ((), float(damping_ratio), {"units": "1", "long_name": "xi"})},
+        attrs={"title": f"Device point: kappa_max = {kappa_max:g}, xi = {damping_ratio:g}",
+               "rockstudy_version": __version__, "record_suite": suite, "n_records": len(records),
+               "pga_levels_g": list(map(float, levels_g)), **block.to_attrs(), **anchorage.to_attrs(block)},
+    )
+    ds.attrs["compute_time_s"] = time.perf_counter() - t0
+    return ds
+
+
+def gather_blocks(points) -> xr.Dataset:
+    """The block sweep over (R, alpha) from its points (:func:`block_point`)."""
+    points = list(points)
+    Rs = sorted({float(p.R) for p in points})
+    alphas = sorted({float(p.alpha) for p in points})
+    strategies = list(points[0].strategy.values)
+    shape = (len(strategies), len(Rs), len(alphas))
+    jos, med = np.full(shape, np.nan), np.full(shape, np.nan)
+    for p in points:
+        i, j = Rs.index(float(p.R)), alphas.index(float(p.alpha))
+        jos[:, i, j] = p.jos.sel(strategy=strategies).values
+        med[:, i, j] = p.fragility_median.sel(strategy=strategies).values
+    dims = ("strategy", "R", "alpha")
+    return xr.Dataset(
+        {"jos": (dims, jos, points[0].jos.attrs), "fragility_median": (dims, med, points[0].fragility_median.attrs)},
+        coords={"strategy": strategies, "R": ("R", Rs, {"units": "m"}), "alpha": ("alpha", alphas, {"units": "rad"})},
+        attrs={k: points[0].attrs[k] for k in ("excitation", "a_max0_g", "record_suite", "n_records",
+                                               "rockstudy_version")}
+        | {"title": "Block sweep: J_OS over FS and fragility median of every strategy over (R, alpha)",
+           "compute_time_s": float(sum(p.attrs["compute_time_s"] for p in points))},
+    )
+
+
+def gather_devices(points) -> xr.Dataset:
+    """The device sweep over (kappa_max, damping_ratio) from its points (:func:`device_point`)."""
+    points = list(points)
+    kappas = sorted({float(p.kappa_max) for p in points})
+    xis = sorted({float(p.damping_ratio) for p in points})
+    strategies = list(points[0].strategy.values)
+    med = np.full((len(strategies), len(kappas), len(xis)), np.nan)
+    for p in points:
+        med[:, kappas.index(float(p.kappa_max)), xis.index(float(p.damping_ratio))] = \
+            p.fragility_median.sel(strategy=strategies).values
+    attrs = {k: v for k, v in points[0].attrs.items() if k.startswith("block_") or k in ("record_suite", "n_records")}
+    return xr.Dataset(
+        {"fragility_median": (("strategy", "kappa_max", "damping_ratio"), med, points[0].fragility_median.attrs)},
+        coords={"strategy": strategies, "kappa_max": ("kappa_max", kappas, {"units": "1"}),
+                "damping_ratio": ("damping_ratio", xis, {"units": "1"})},
+        attrs={**attrs, "title": "Device sweep: fragility median of every strategy over (kappa_max, xi)",
+               "rockstudy_version": __version__,
+               "compute_time_s": float(sum(p.attrs["compute_time_s"] for p in points))},
+    )
+
+
+def smallest_kappa(devices: xr.Dataset, strategy: str, damping_ratio: float, target_g: float) -> float:
+    """Smallest κ_max of the sweep whose fragility median reaches ``target_g`` [g] (NaN: none does). [-]"""
+    medians = devices.fragility_median.sel(strategy=strategy, damping_ratio=damping_ratio).values
+    reached = np.flatnonzero(np.nan_to_num(medians, nan=-np.inf) >= target_g)
+    return float(devices.kappa_max.values[reached[0]]) if reached.size else math.nan
+
+
+def design_markdown(devices: xr.Dataset, target_g: float, block_label: str) -> str:
+    """The device table (median [g] per strategy, κ_max, ξ) and one sentence per strategy and ξ: the
+    smallest κ_max that keeps the median at or above the target."""
+    strategies = [str(s) for s in devices.strategy.values]
+    lines = [f"Fragility median PGA [g] on {devices.attrs['record_suite']} ({devices.attrs['n_records']} records), "
+             f"{block_label}.", "", "| κ_max | ξ | " + " | ".join(strategies) + " |",
+             "|---|---|" + "---|" * len(strategies)]
+    for k in devices.kappa_max.values:
+        for xi in devices.damping_ratio.values:
+            row = devices.fragility_median.sel(kappa_max=k, damping_ratio=xi)
+            lines.append(f"| {k:g} | {xi:g} | " + " | ".join(f"{float(row.sel(strategy=s)):.3f}" for s in strategies)
+                         + " |")
+    lines += ["", f"Target: median PGA >= {target_g:g} g.", ""]
+    for xi in devices.damping_ratio.values:
+        for s in strategies:
+            if s == "FS":
+                continue
+            k = smallest_kappa(devices, s, float(xi), target_g)
+            if math.isnan(k):
+                lines.append(f"- For this object, {s} with ξ = {xi:g} does not reach a median of {target_g:g} g "
+                             f"with κ_max up to {float(devices.kappa_max.max()):g}.")
+            else:
+                m = float(devices.fragility_median.sel(strategy=s, kappa_max=k, damping_ratio=xi))
+                lines.append(f"- For this object, {s} with ξ = {xi:g} and κ_max ≥ {k:g} keeps the median above "
+                             f"{target_g:g} g ({m:.3f} g at κ_max = {k:g}, the smallest κ_max of the sweep that "
+                             "does).")
+    return "\n".join(lines) + "\n"
+
+
+def check_config(section: dict) -> None:
+    """The config's ``design:`` section is consistent (after the schema): FS among the strategies,
+    increasing PGA levels, a suite whose records can be read.
+
+    Raises
+    ------
+    ValueError
+        (:class:`rockstudy.core.validation.InputError`) naming the key, the value and what is allowed.
+    """
+    from rockstudy.core.validation import InputError
+    from rockstudy.model import record_suites
+    if "FS" not in section["strategies"]:
+        raise InputError(f"design.strategies: FS is needed as the reference of J_OS, got {section['strategies']}")
+    levels = section["pga_levels_g"]
+    if not levels["start"] < levels["stop"]:
+        raise InputError(f"design.pga_levels_g: start ({levels['start']}) must be below stop ({levels['stop']}) [g]")
+    grid = section["blocks"]["amplitude_grid"]
+    if grid["resolution"] > grid["step"]:
+        raise InputError(f"design.blocks.amplitude_grid.resolution = {grid['resolution']} is not allowed: it must "
+                         f"not exceed step ({grid['step']})")
+    try:
+        record_suites.record_ids(section["suite"])
+    except record_suites.RecordSuiteError as exc:
+        raise InputError(f"design.suite: {exc}") from None

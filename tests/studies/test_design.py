@@ -1,0 +1,68 @@
+"""Design charts: the similarity of the rocking block's spectra, the device sweep, the gathered sweeps."""
+import math
+
+import numpy as np
+import pytest
+
+from rockstudy import AmplitudeGrid, Block, Scenario, spectrum
+from rockstudy.model.records import Record
+from rockstudy.studies import design
+
+
+def test_spectra_in_dimensionless_form_do_not_depend_on_size():
+    """Similarity (Dimitrakopoulos and DeJong 2012): a_p/(g tan alpha) against omega_p/p of the free-standing
+    block depends on alpha only. The equation of motion in tau = p t holds only alpha, a_p/g and omega_p/p,
+    and the engine's step bound and rest velocity scale with p, so two blocks of alpha = 0.15 with R = 0.5 m
+    and 2 m must agree to the bisection's resolution (0.01), the only tolerance left when an adaptive step in
+    seconds decides an outcome right at the bracket's edge; they are found identical."""
+    grid = AmplitudeGrid(start=0.9, stop=6.0, step=0.1, resolution=0.01)
+    freqs = [1.0, 2.0, 3.0]
+    small, large = (spectrum(Scenario(Block.slender(0.15, R)), freqs, grid=grid, progress_chunks=1)["threshold"].values
+                    for R in (0.5, 2.0))
+    assert np.all(np.isfinite(small)) and np.all(np.isfinite(large))
+    assert np.max(np.abs(small - large)) <= grid.resolution
+
+
+def step_pulse(duration, dt=0.01):
+    """A constant unit ground acceleration for ``duration`` seconds (a one-sample ramp at each end)."""
+    values = np.ones(int(round(duration / dt)) + 1)
+    values[0] = values[-1] = 0.0
+    return Record(f"step{duration:g}", dt, values)
+
+
+def test_a_stiffer_passive_device_raises_the_median_under_long_pushes(blc06):
+    """PASSIVE (spring always on, kappa_min = kappa_max), no damping, long constant pushes (4-8 s, far longer
+    than 1/p = 0.33 s): along the same path to theta = alpha the push does the same work whatever the spring,
+    while the energy the spring stores on the way grows with kappa_max; beyond alpha the springs are broken.
+    So the overturning PGA of each record, and the median, cannot fall as kappa_max grows, and rises once the
+    spring can hold the block against the push."""
+    records = [step_pulse(T) for T in (4.0, 6.0, 8.0)]
+    levels = design.pga_levels(0.2, 2.0, 40)
+    medians = [float(design.device_point(blc06, k, 0.0, ["PASSIVE"], records, levels, suite="steps",
+                                         free_time=10.0).fragility_median.values[0]) for k in (0.0, 1.0, 2.0, 4.0)]
+    assert all(np.isfinite(medians))
+    assert all(b >= a for a, b in zip(medians, medians[1:])), medians
+    assert medians[-1] > 1.3 * medians[0] and medians[-1] > medians[-2] > medians[1], medians
+
+
+def test_gathered_sweeps_and_the_design_answer(blc06):
+    """Points gathered over (kappa_max, xi) and the smallest kappa_max reaching a target, read off the table."""
+    import xarray as xr
+    points = []
+    for k, m in ((0.5, 0.7), (1.0, 0.9), (2.0, 1.1)):
+        points.append(xr.Dataset({"fragility_median": ("strategy", [0.6, m]), "fit_status": ("strategy", ["ok"] * 2)},
+                                 coords={"strategy": ["FS", "CS01"], "kappa_max": k, "damping_ratio": 0.05},
+                                 attrs={"record_suite": "s", "n_records": 3, "compute_time_s": 1.0}))
+    devices = design.gather_devices(points)
+    assert devices.fragility_median.sel(strategy="CS01", damping_ratio=0.05).values.tolist() == [0.7, 0.9, 1.1]
+    assert design.smallest_kappa(devices, "CS01", 0.05, 0.85) == 1.0
+    assert math.isnan(design.smallest_kappa(devices, "CS01", 0.05, 2.0))
+    text = design.design_markdown(devices, 0.85, "block BLC06")
+    assert "CS01 with ξ = 0.05 and κ_max ≥ 1 keeps the median above 0.85 g" in text
+
+
+def test_pga_levels_are_geometric():
+    levels = design.pga_levels(0.1, 1.0, 3)
+    np.testing.assert_allclose(levels, [0.1, math.sqrt(0.1), 1.0])
+    with pytest.raises(ValueError):
+        design.pga_levels(1.0, 0.5, 3)
