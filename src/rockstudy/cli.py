@@ -422,8 +422,8 @@ def _cmd_simulate(args, parser):
     print(json.dumps(out, indent=2))
 
 
-def _cmd_simulate_record(args, parser):
-    """``simulate --record FILE``: one run under a recorded (or synthetic) ground motion."""
+def _check_record_options(args, parser) -> None:
+    """The options every ``--record`` command shares: no noise level, a known ``--record-unit``."""
     from rockstudy.model.records import unit_factor
     if args.noise_level != 0:
         parser.error("argument --noise-level: noise contaminates the analytic excitations; not with --record")
@@ -432,6 +432,11 @@ def _cmd_simulate_record(args, parser):
             unit_factor(args.record_unit)
         except ValueError as exc:
             parser.error(f"argument --record-unit: {exc}")
+
+
+def _cmd_simulate_record(args, parser):
+    """``simulate --record FILE``: one run under a recorded (or synthetic) ground motion."""
+    _check_record_options(args, parser)
     try:
         _check_common(args, single_frequency=False)
         validation.check_positive("--record-scale", args.record_scale)
@@ -536,14 +541,8 @@ def _record_description(info) -> dict:
 def _cmd_threshold_record(args, parser):
     """``threshold --record``: the smallest scale of a record that overturns the block (the spectra's scan)."""
     from rockstudy.analysis.record_scan import RecordRun, record_threshold
-    from rockstudy.model.records import STANDARD_GRAVITY, unit_factor
-    if args.noise_level != 0:
-        parser.error("argument --noise-level: noise contaminates the analytic excitations; not with --record")
-    if args.record_unit is not None:
-        try:
-            unit_factor(args.record_unit)
-        except ValueError as exc:
-            parser.error(f"argument --record-unit: {exc}")
+    from rockstudy.model.records import STANDARD_GRAVITY
+    _check_record_options(args, parser)
     try:
         _check_common(args, single_frequency=False)
         grid, _ = _grid(args, parser)
