@@ -66,7 +66,7 @@ def test_simulate_names_a_wrong_type(args, name):
 
 
 def test_the_event_cap_is_an_undetermined_result_not_an_exception(monkeypatch):
-    kn = simulate_module.kn
+    kn = simulate_module._kernel
     real = kn.simulate_kernel
 
     def capped(*args):  # the kernel's result (a KernelResult named tuple) as if it had reached the cap

@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from rockstudy.engine import _kernel as kn
+from rockstudy.engine import _kernel
 from rockstudy.engine._kernel.scan import S_J, S_PHASE, SCANNING
 from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, UNDETERMINED
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME, kernel_record, pack_parameters
@@ -49,12 +49,12 @@ class RecordRun:
         motion = unit_peak_record(record).motion(1.0)
         self.P = pack_parameters(block, anchorage, control, motion, overturn_criterion=overturn_criterion,
                                  free_time=free_time, energy_bound=True)
-        self.samples = kn.writable(kernel_record(control, motion))
+        self.samples = _kernel.writable(kernel_record(control, motion))
         self.vertical = np.zeros(0)
 
     def outcome(self, amplitude_ratio: float) -> int:
         """:class:`~rockstudy.engine.outcome.Outcome` code of the record scaled to PGA/(g·tanα) = amplitude_ratio."""
-        return int(kn.outcome_kernel(self.P, self.samples, self.vertical, float(amplitude_ratio), 1.0))
+        return int(_kernel.outcome_kernel(self.P, self.samples, self.vertical, float(amplitude_ratio), 1.0))
 
     def scale(self, amplitude_ratio) -> np.ndarray:
         """Factor on the record that gives it PGA/(g·tanα) = amplitude_ratio. [-]"""
@@ -91,17 +91,17 @@ def record_threshold(run: RecordRun, grid, resolution: float, outcomes=None) -> 
         raise ValueError("grid must be an increasing 1-D list of positive amplitude ratios")
     if not (resolution > 0 and math.isfinite(resolution)):
         raise ValueError(f"resolution must be a positive number, got {resolution!r}")
-    state, n_sim, n_und = kn.scan_start(), 0, 0
+    state, n_sim, n_und = _kernel.scan_start(), 0, 0
     done = False
     while not done:
-        amplitude = float(kn.scan_amplitude(state, grid))
+        amplitude = float(_kernel.scan_amplitude(state, grid))
         known = outcomes is not None and state[S_PHASE] == SCANNING
         code = int(outcomes[int(state[S_J])]) if known else run.outcome(amplitude)
         if not known:
             n_sim += code != NO_UPLIFT
             n_und += code == UNDETERMINED
-        done = kn.scan_update(state, grid, float(resolution), 1.0, bool(is_overturned(code)))
-    return {"amplitude_ratio": float(state[kn.S_HI]), "last_safe_amplitude_ratio": float(state[kn.S_LO]),
+        done = _kernel.scan_update(state, grid, float(resolution), 1.0, bool(is_overturned(code)))
+    return {"amplitude_ratio": float(state[_kernel.S_HI]), "last_safe_amplitude_ratio": float(state[_kernel.S_LO]),
             "n_simulations": int(n_sim), "n_undetermined": int(n_und)}
 
 

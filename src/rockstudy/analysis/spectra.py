@@ -18,7 +18,7 @@ import xarray as xr
 
 from rockstudy._version import __version__
 from rockstudy.analysis.scenario import Scenario
-from rockstudy.core import validation as v
+from rockstudy.core import validation
 from rockstudy.core.constants import PAPER
 from rockstudy.engine import _kernel as kernel
 from rockstudy.engine.outcome import OUTCOME_MEANINGS, Outcome
@@ -80,9 +80,9 @@ GRID_NAMES = ("AmplitudeGrid.start", "AmplitudeGrid.stop", "AmplitudeGrid.step",
 def _check_call(scenario, grid) -> None:
     """The library's entry points take a Scenario and an AmplitudeGrid (named when not)."""
     if not isinstance(scenario, Scenario):
-        raise v.InputError(f"scenario must be a rockstudy Scenario, got {type(scenario).__name__}")
+        raise validation.InputError(f"scenario must be a rockstudy Scenario, got {type(scenario).__name__}")
     if not isinstance(grid, AmplitudeGrid):
-        raise v.InputError(f"grid must be a rockstudy AmplitudeGrid, got {type(grid).__name__}")
+        raise validation.InputError(f"grid must be a rockstudy AmplitudeGrid, got {type(grid).__name__}")
 
 
 def _realisation_list(realisations) -> list[int]:
@@ -90,17 +90,19 @@ def _realisation_list(realisations) -> list[int]:
     (counted before an iterator is drawn further)."""
     import itertools
     if isinstance(realisations, (str, bytes)) or not hasattr(realisations, "__iter__"):
-        raise v.InputError(f"realisations must be a sequence of integers, got {realisations!r}")
+        raise validation.InputError(f"realisations must be a sequence of integers, got {realisations!r}")
     try:
         n, counted = len(realisations), f"{len(realisations)} indices"
     except TypeError:
-        realisations = list(itertools.islice(realisations, v.MAX_REALISATIONS + 1))
-        n, counted = len(realisations), f"more than {v.MAX_REALISATIONS} indices"
-    if n > v.MAX_REALISATIONS:
-        v.fail("realisations", counted, f"at most {v.MAX_REALISATIONS} realisations (the paper uses 100)")
-    out = [v.check_int_range(f"realisations[{i}]", k, 0, v.MAX_INTEGER) for i, k in enumerate(realisations)]
+        realisations = list(itertools.islice(realisations, validation.MAX_REALISATIONS + 1))
+        n, counted = len(realisations), f"more than {validation.MAX_REALISATIONS} indices"
+    if n > validation.MAX_REALISATIONS:
+        validation.fail("realisations", counted,
+                        f"at most {validation.MAX_REALISATIONS} realisations (the paper uses 100)")
+    out = [validation.check_int_range(f"realisations[{i}]", k, 0, validation.MAX_INTEGER)
+           for i, k in enumerate(realisations)]
     if len(out) == 0 or len(set(out)) != len(out):
-        raise v.InputError(f"realisations must be distinct integers >= 0, got {out!r}")
+        raise validation.InputError(f"realisations must be distinct integers >= 0, got {out!r}")
     return out
 
 
@@ -180,8 +182,8 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     record's energy and PGA ratios.
     """
     _check_call(scenario, grid)
-    frequency_ratio = v.check_positive("frequency_ratio", frequency_ratio, high=v.MAX_FREQUENCY_RATIO)
-    realisation = v.check_int_range("realisation", realisation, 0, v.MAX_INTEGER)
+    frequency_ratio = validation.check_positive("frequency_ratio", frequency_ratio, high=validation.MAX_FREQUENCY_RATIO)
+    realisation = validation.check_int_range("realisation", realisation, 0, validation.MAX_INTEGER)
     scenario.check_span([frequency_ratio])
     values = grid.values()
     case = scenario.kernel_case(frequency_ratio, realisation, energy_bound=energy_bound)
@@ -275,19 +277,20 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     try:
         freqs = np.asarray(frequency_ratios, dtype=float)
     except (TypeError, ValueError):
-        raise v.InputError(f"frequency_ratios must be a 1-D list of numbers, got {frequency_ratios!r}") from None
+        raise validation.InputError(
+            f"frequency_ratios must be a 1-D list of numbers, got {frequency_ratios!r}") from None
     if freqs.ndim != 1 or len(freqs) == 0 or not np.all(np.isfinite(freqs)) or np.any(freqs <= 0):
-        raise v.InputError("frequency_ratios must be a non-empty 1-D list of finite positive numbers")
-    if len(freqs) > v.MAX_GRID_POINTS or freqs.max() > v.MAX_FREQUENCY_RATIO:
-        v.fail("frequency_ratios", f"{len(freqs)} values up to {freqs.max():g}",
-               f"at most {v.MAX_GRID_POINTS} values up to {v.MAX_FREQUENCY_RATIO:g}")
+        raise validation.InputError("frequency_ratios must be a non-empty 1-D list of finite positive numbers")
+    if len(freqs) > validation.MAX_GRID_POINTS or freqs.max() > validation.MAX_FREQUENCY_RATIO:
+        validation.fail("frequency_ratios", f"{len(freqs)} values up to {freqs.max():g}",
+               f"at most {validation.MAX_GRID_POINTS} values up to {validation.MAX_FREQUENCY_RATIO:g}")
     realisations = _realisation_list(realisations)
     if scenario.noise_level == 0 and len(realisations) > 1:
         realisations = realisations[:1]  # without noise every realisation is the same record
-    sims = v.check_amplitude_grid(grid.start, grid.stop, grid.step, grid.resolution, names=GRID_NAMES)
+    sims = validation.check_amplitude_grid(grid.start, grid.stop, grid.step, grid.resolution, names=GRID_NAMES)
     scenario.check_span([freqs.min(), freqs.max()], frequency_name="frequency_ratios")
     n_real = len(realisations)
-    v.check_workload("realisations", n_real, n_real * len(freqs), sims * (2 if with_map else 1),
+    validation.check_workload("realisations", n_real, n_real * len(freqs), sims * (2 if with_map else 1),
                      scenario.record_bytes(freqs, n_real))
     values = grid.values()
     Pm, recs, off, lens, peaks, e_ratio, p_ratio = _cases(scenario, freqs, realisations, energy_bound)

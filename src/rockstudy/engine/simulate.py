@@ -10,10 +10,10 @@ import math
 
 import numpy as np
 
-from rockstudy.core import validation as v
+from rockstudy.core import validation
 from rockstudy.core.constants import FAST_ATOL, FAST_RTOL, FREE_TIME, MAX_STEP_FRACTION
 from rockstudy.core.constants import rest_velocity as default_rest_velocity
-from rockstudy.engine import _kernel as kn
+from rockstudy.engine import _kernel
 from rockstudy.engine.simulation_result import (
     FRACTURE_ELEMENTS,
     STATUS_CANNOT_OVERTURN,
@@ -58,45 +58,45 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
     """
     if not (free_time >= 0 and math.isfinite(free_time)):
         raise ValueError(f"free_time must be a finite number >= 0 [s], got {free_time!r}")
-    P = np.zeros(kn.NPAR)
-    P[kn.I_P] = block.p
-    P[kn.I_ALPHA] = block.alpha
-    P[kn.I_SINA] = math.sin(block.alpha)
-    P[kn.I_COSA] = math.cos(block.alpha)
-    P[kn.I_G] = block.gravity
-    P[kn.I_E] = block.e
-    P[kn.I_KMAX] = anchorage.kappa_max
-    P[kn.I_KMIN] = anchorage.kappa_min
-    P[kn.I_CD] = 2.0 * anchorage.damping_ratio * block.p
-    P[kn.I_TKU] = anchorage.theta_spring(block)
-    P[kn.I_TDU] = anchorage.theta_damper(block)
-    P[kn.I_TOVER] = overturn_rotation(block, overturn_criterion)
-    P[kn.I_STRAT] = control.code
-    P[kn.I_TS] = control.sampling_time
-    P[kn.I_DELAY] = control.delay
-    P[kn.I_VREST] = default_rest_velocity(block.p, block.alpha) if rest_velocity is None else rest_velocity
-    P[kn.I_RTOL] = rtol
-    P[kn.I_ATOL] = atol
-    P[kn.I_FREE] = free_time
-    P[kn.I_KIND] = motion.code
-    P[kn.I_AMP] = motion.amplitude
-    P[kn.I_OMEGA] = motion.omega if motion.omega > 0 else 1.0
-    P[kn.I_DUR] = motion.duration
-    P[kn.I_RDT] = motion.record_dt if motion.record_dt > 0 else 1.0
-    P[kn.I_VDT] = motion.vertical_dt if motion.vertical_dt > 0 else 1.0
-    P[kn.I_TH0] = initial_rotation
-    P[kn.I_THD0] = initial_velocity
+    P = np.zeros(_kernel.NPAR)
+    P[_kernel.I_P] = block.p
+    P[_kernel.I_ALPHA] = block.alpha
+    P[_kernel.I_SINA] = math.sin(block.alpha)
+    P[_kernel.I_COSA] = math.cos(block.alpha)
+    P[_kernel.I_G] = block.gravity
+    P[_kernel.I_E] = block.e
+    P[_kernel.I_KMAX] = anchorage.kappa_max
+    P[_kernel.I_KMIN] = anchorage.kappa_min
+    P[_kernel.I_CD] = 2.0 * anchorage.damping_ratio * block.p
+    P[_kernel.I_TKU] = anchorage.theta_spring(block)
+    P[_kernel.I_TDU] = anchorage.theta_damper(block)
+    P[_kernel.I_TOVER] = overturn_rotation(block, overturn_criterion)
+    P[_kernel.I_STRAT] = control.code
+    P[_kernel.I_TS] = control.sampling_time
+    P[_kernel.I_DELAY] = control.delay
+    P[_kernel.I_VREST] = default_rest_velocity(block.p, block.alpha) if rest_velocity is None else rest_velocity
+    P[_kernel.I_RTOL] = rtol
+    P[_kernel.I_ATOL] = atol
+    P[_kernel.I_FREE] = free_time
+    P[_kernel.I_KIND] = motion.code
+    P[_kernel.I_AMP] = motion.amplitude
+    P[_kernel.I_OMEGA] = motion.omega if motion.omega > 0 else 1.0
+    P[_kernel.I_DUR] = motion.duration
+    P[_kernel.I_RDT] = motion.record_dt if motion.record_dt > 0 else 1.0
+    P[_kernel.I_VDT] = motion.vertical_dt if motion.vertical_dt > 0 else 1.0
+    P[_kernel.I_TH0] = initial_rotation
+    P[_kernel.I_THD0] = initial_velocity
     # the largest step: a fraction of the free-rocking and of the excitation time scales
     hmax = MAX_STEP_FRACTION * 2 * math.pi / block.p
     if motion.kind in ("one-sine", "modulated"):
         hmax = min(hmax, MAX_STEP_FRACTION * 2 * math.pi / motion.omega)
-    P[kn.I_HMAX] = hmax
-    P[kn.I_BOUND] = 1.0 if energy_bound else 0.0
-    P[kn.I_SDT] = 1.0
+    P[_kernel.I_HMAX] = hmax
+    P[_kernel.I_BOUND] = 1.0 if energy_bound else 0.0
+    P[_kernel.I_SDT] = 1.0
     if control.sensor_band is not None:  # the sensed samples follow the driving ones (kernel_record)
-        P[kn.I_SENSE] = 1.0
-        P[kn.I_SOFF] = len(motion.record)
-        P[kn.I_SDT] = sensed_step(motion)
+        P[_kernel.I_SENSE] = 1.0
+        P[_kernel.I_SOFF] = len(motion.record)
+        P[_kernel.I_SDT] = sensed_step(motion)
     return P
 
 
@@ -117,23 +117,23 @@ def _result_from_kernel(out, block: Block, engine: str = "fast") -> SimulationRe
     status, t_over, t_end, max_abs = out.status, out.overturn_time, out.end_time, out.max_abs_theta
     impacts, uplifts, rests, frac, H = out.impact_times, out.uplift_times, out.rest_times, out.fracture_times, \
         out.history
-    if status == kn.ST_ELIMIT:  # no outcome: reported as such, never as "safe"
+    if status == _kernel.ST_ELIMIT:  # no outcome: reported as such, never as "safe"
         return SimulationResult(
             status=STATUS_UNDETERMINED, overturned=False, overturn_time=math.nan, end_time=float(t_end),
             max_rotation_ratio=float(max_abs / block.alpha), impact_times=np.asarray(impacts).copy(),
             uplift_times=np.asarray(uplifts).copy(), rest_times=np.asarray(rests).copy(), engine=engine,
-            message=f"the fast engine located its cap of {kn.MAX_EVENTS} events (impacts, controller samples, "
+            message=f"the fast engine located its cap of {_kernel.MAX_EVENTS} events (impacts, controller samples, "
                     f"record knots, switches) by t = {t_end:.6g} s, before the run ended: a long run with many "
                     "events, or a chattering sequence it cannot resolve, so the outcome is undetermined; "
                     "engine='reference' decides it (slowly)")
-    name = {kn.ST_REST: STATUS_REST, kn.ST_OVER: STATUS_OVERTURNED, kn.ST_TLIM: STATUS_TIME_LIMIT,
-            kn.ST_BOUND: STATUS_CANNOT_OVERTURN}[status]
+    name = {_kernel.ST_REST: STATUS_REST, _kernel.ST_OVER: STATUS_OVERTURNED, _kernel.ST_TLIM: STATUS_TIME_LIMIT,
+            _kernel.ST_BOUND: STATUS_CANNOT_OVERTURN}[status]
     history = None
     if len(H):
         history = {"t": H[:, 0].copy(), "theta": H[:, 1].copy(), "theta_dot": H[:, 2].copy(),
                    "kappa": H[:, 3].copy(), "ground_acceleration": H[:, 4].copy()}
     return SimulationResult(
-        status=name, overturned=status == kn.ST_OVER, overturn_time=float(t_over), end_time=float(t_end),
+        status=name, overturned=status == _kernel.ST_OVER, overturn_time=float(t_over), end_time=float(t_end),
         max_rotation_ratio=float(max_abs / block.alpha), impact_times=np.asarray(impacts).copy(),
         uplift_times=np.asarray(uplifts).copy(), rest_times=np.asarray(rests).copy(),
         fracture_times={k: float(v) for k, v in zip(FRACTURE_ELEMENTS, frac) if np.isfinite(v)},
@@ -162,24 +162,26 @@ def check_inputs(block, anchorage, control, motion, *, engine="fast", overturn_c
     for name, value, kind in (("block", block, Block), ("anchorage", anchorage, Anchorage),
                               ("control", control, Control), ("motion", motion, GroundMotion)):
         if not isinstance(value, kind):
-            raise v.InputError(f"{name} must be a rockstudy {kind.__name__}, got {type(value).__name__} {value!r}")
+            raise validation.InputError(
+                f"{name} must be a rockstudy {kind.__name__}, got {type(value).__name__} {value!r}")
     if not isinstance(engine, str) or engine not in ENGINES:
-        raise v.InputError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")
+        raise validation.InputError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")
     if not isinstance(overturn_criterion, str) or overturn_criterion not in OVERTURN_CRITERIA:
-        raise v.InputError(f"overturn_criterion must be one of {', '.join(OVERTURN_CRITERIA)}, "
+        raise validation.InputError(f"overturn_criterion must be one of {', '.join(OVERTURN_CRITERIA)}, "
                            f"got {overturn_criterion!r}")
-    free_time = v.check_nonnegative("free_time", free_time, "s", v.MAX_FREE_TIME)
-    v.check_range("initial_rotation", initial_rotation, -math.pi / 2, math.pi / 2, "rad")
-    v.check_number("initial_velocity", initial_velocity, "rad/s")
+    free_time = validation.check_nonnegative("free_time", free_time, "s", validation.MAX_FREE_TIME)
+    validation.check_range("initial_rotation", initial_rotation, -math.pi / 2, math.pi / 2, "rad")
+    validation.check_number("initial_velocity", initial_velocity, "rad/s")
     if rest_velocity is not None:
-        v.check_nonnegative("rest_velocity", rest_velocity, "rad/s")
+        validation.check_nonnegative("rest_velocity", rest_velocity, "rad/s")
     if rtol is not None:
-        v.check_range("rtol", rtol, *RTOL_RANGE)
+        validation.check_range("rtol", rtol, *RTOL_RANGE)
     if atol is not None:
-        v.check_range("atol", atol, *ATOL_RANGE)
-    if motion.end_time + free_time > v.MAX_TIME_SPAN:
-        v.fail("free_time", free_time, f"the motion lasts {motion.end_time:.4g} s; with free_time a run lasts "
-                                       f"{motion.end_time + free_time:.4g} s, the limit is {v.MAX_TIME_SPAN:g} s", "s")
+        validation.check_range("atol", atol, *ATOL_RANGE)
+    if motion.end_time + free_time > validation.MAX_TIME_SPAN:
+        validation.fail("free_time", free_time,
+                        f"the motion lasts {motion.end_time:.4g} s; with free_time a run lasts "
+                        f"{motion.end_time + free_time:.4g} s, the limit is {validation.MAX_TIME_SPAN:g} s", "s")
 
 
 def simulate(block: Block, anchorage: Anchorage, control: Control, motion: GroundMotion, *,
@@ -237,6 +239,6 @@ def simulate(block: Block, anchorage: Anchorage, control: Control, motion: Groun
                         free_time=free_time, initial_rotation=initial_rotation,
                         initial_velocity=initial_velocity, rest_velocity=rest_velocity,
                         rtol=FAST_RTOL if rtol is None else rtol, atol=FAST_ATOL if atol is None else atol)
-    out = kn.simulate_kernel(P, kn.writable(kernel_record(control, motion)), kn.writable(motion.vertical),
-                             bool(record_history), True)
+    out = _kernel.simulate_kernel(P, _kernel.writable(kernel_record(control, motion)),
+                                  _kernel.writable(motion.vertical), bool(record_history), True)
     return _result_from_kernel(out, block)

@@ -35,7 +35,7 @@ import math
 
 import numpy as np
 
-from rockstudy.core import validation as v
+from rockstudy.core import validation
 from rockstudy.core.constants import NOISE_DT
 from rockstudy.model.excitation import EXCITATIONS, GroundMotion, analytic
 from rockstudy.model.noise import sample_count
@@ -59,8 +59,8 @@ def check_band(band, step: float, name: str = "sensor_band") -> float:
     name : str
         How the caller names ``band`` in the error message.
     """
-    band = v.check_positive(name, band, "Hz", why="or None, the ideal sensor")
-    return v.check_range(name, band, high=0.5 / step, unit="Hz", high_open=True,
+    band = validation.check_positive(name, band, "Hz", why="or None, the ideal sensor")
+    return validation.check_range(name, band, high=0.5 / step, unit="Hz", high_open=True,
                          why=f"the Nyquist frequency 1/(2 step) of the record it reads, step {step:g} s; "
                              "None is the ideal sensor")
 

@@ -43,7 +43,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from rockstudy._version import __version__
-from rockstudy.core import validation as v
+from rockstudy.core import validation
 from rockstudy.model.records import STANDARD_GRAVITY, Record
 
 SYNTHETIC_KEY = 13
@@ -94,7 +94,8 @@ class GroundMotionModel:
                  "filter_damping": "-", "peak_time": "s", "envelope_shape": "-", "duration": "s", "dt": "s",
                  "pga": "m/s^2"}
         for name, unit in units.items():
-            object.__setattr__(self, name, v.check_positive(f"GroundMotionModel.{name}", getattr(self, name), unit))
+            value = validation.check_positive(f"GroundMotionModel.{name}", getattr(self, name), unit)
+            object.__setattr__(self, name, value)
         if self.filter_frequency >= self.ground_frequency:
             raise ValueError(f"GroundMotionModel.filter_frequency ({self.filter_frequency}) must be below "
                              f"ground_frequency ({self.ground_frequency}) [rad/s]")
@@ -204,12 +205,12 @@ class SuiteRanges:
     def __post_init__(self):
         for name in ("ground_frequency_hz", "ground_damping", "peak_time"):
             lo, hi = getattr(self, name)
-            v.check_positive(f"SuiteRanges.{name}", lo)
+            validation.check_positive(f"SuiteRanges.{name}", lo)
             if hi < lo:
                 raise ValueError(f"SuiteRanges.{name} must be (low, high) with low <= high, got {(lo, hi)!r}")
             object.__setattr__(self, name, (float(lo), float(hi)))
         for name in ("envelope_shape", "filter_ratio", "duration", "dt", "pga"):
-            v.check_positive(f"SuiteRanges.{name}", getattr(self, name))
+            validation.check_positive(f"SuiteRanges.{name}", getattr(self, name))
         if self.filter_ratio >= 1:
             raise ValueError(f"SuiteRanges.filter_ratio must be below 1, got {self.filter_ratio!r}")
 
