@@ -79,21 +79,25 @@ class SimulationResult:
         """
         return history_dataset(self, block, anchorage, motion, ground_dt)
 
+    def _outcome_fields(self) -> dict:
+        """The fields both summaries open with: engine, status, outcome, end, peak, impact count."""
+        return {
+            "engine": self.engine,
+            "status": self.status,
+            "overturned": None if self.status == STATUS_UNDETERMINED else bool(self.overturned),
+            "overturn_time_s": float(self.overturn_time) if np.isfinite(self.overturn_time) else None,
+            "end_time_s": float(self.end_time),
+            "max_rotation_ratio": float(self.max_rotation_ratio),
+            "n_impacts": self.n_impacts,
+        }
+
     def compact_summary(self) -> dict:
         """The outcome in a few fields (JSON-friendly): status, the counts of impacts, uplifts,
         returns to rest and broken elements, the first and last impact, the peak rotation and
         the end time; :meth:`summary` has the full event lists."""
-        def _f(x):
-            return None if not np.isfinite(x) else float(x)
         impacts = np.asarray(self.impact_times, dtype=float)
         out = {
-            "engine": self.engine,
-            "status": self.status,
-            "overturned": None if self.status == STATUS_UNDETERMINED else bool(self.overturned),
-            "overturn_time_s": _f(self.overturn_time),
-            "end_time_s": float(self.end_time),
-            "max_rotation_ratio": float(self.max_rotation_ratio),
-            "n_impacts": self.n_impacts,
+            **self._outcome_fields(),
             "first_impact_s": float(impacts[0]) if impacts.size else None,
             "last_impact_s": float(impacts[-1]) if impacts.size else None,
             "n_uplifts": int(len(self.uplift_times)),
@@ -106,16 +110,8 @@ class SimulationResult:
 
     def summary(self) -> dict:
         """JSON-friendly summary (no history)."""
-        def _f(x):
-            return None if not np.isfinite(x) else float(x)
         out = {
-            "engine": self.engine,
-            "status": self.status,
-            "overturned": None if self.status == STATUS_UNDETERMINED else bool(self.overturned),
-            "overturn_time_s": _f(self.overturn_time),
-            "end_time_s": float(self.end_time),
-            "max_rotation_ratio": float(self.max_rotation_ratio),
-            "n_impacts": self.n_impacts,
+            **self._outcome_fields(),
             "impact_times_s": [float(x) for x in self.impact_times],
             "uplift_times_s": [float(x) for x in self.uplift_times],
             "rest_times_s": [float(x) for x in self.rest_times],
