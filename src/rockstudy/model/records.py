@@ -250,6 +250,25 @@ def read_at2(path) -> Record:
     return Record(name=name, dt=dt, acceleration=np.asarray(values) * STANDARD_GRAVITY, source=str(path), unit="g")
 
 
+def _data_lines(lines):
+    """The lines of a text record that hold data or a header: ``(line number, text, fields)``,
+    blank lines and ``#`` comments left out."""
+    for number, text in enumerate(lines, start=1):
+        stripped = text.strip()
+        if stripped and not stripped.startswith("#"):
+            yield number, stripped, [f for f in _SEPARATORS.split(stripped) if f]
+
+
+def _stated_unit(path, unit: str | None, header_unit: str | None, header_example: str) -> str:
+    """The acceleration unit: the caller's, else the header's; neither is an error naming both ways."""
+    if unit is not None:
+        return unit
+    if not header_unit:
+        raise RecordFormatError(path, None, "a stated acceleration unit: pass unit= (--record-unit) or name "
+                                f"it in a header line such as '{header_example}'")
+    return header_unit
+
+
 def read_two_column(path, unit: str | None = None) -> Record:
     """Read a two-column text/CSV record: time [s] and acceleration in ``unit``.
 
@@ -279,11 +298,7 @@ def read_two_column(path, unit: str | None = None) -> Record:
     lines = path.read_text(errors="replace").splitlines()
     header, header_unit, rows, row_lines, time_factor = None, None, [], [], 1.0
     expected = "two numbers: time [s] and acceleration"
-    for number, text in enumerate(lines, start=1):
-        stripped = text.strip()
-        if not stripped or stripped.startswith("#"):
-            continue
-        fields = [f for f in _SEPARATORS.split(stripped) if f]
+    for number, stripped, fields in _data_lines(lines):
         try:
             row = [_float(f) for f in fields]
         except ValueError:
@@ -304,11 +319,7 @@ def read_two_column(path, unit: str | None = None) -> Record:
     if len(rows) < 2:
         raise RecordFormatError(path, len(lines) + 1, "at least 2 rows of time and acceleration",
                                 f"end of file after {len(rows)}")
-    if unit is None:
-        if not header_unit:
-            raise RecordFormatError(path, None, "a stated acceleration unit: pass unit= (--record-unit) or name "
-                                    "it in a header line such as 'time [s], acceleration [g]'")
-        unit = header_unit
+    unit = _stated_unit(path, unit, header_unit, "time [s], acceleration [g]")
     factor = unit_factor(unit)
     data = np.asarray(rows)
     data[:, 0] *= time_factor  # the header's time unit, to seconds
@@ -363,11 +374,7 @@ def read_one_column(path, dt: float, unit: str | None = None) -> Record:
     lines = path.read_text(errors="replace").splitlines()
     header_unit, values, rows = None, [], []
     seen_header = False
-    for number, text in enumerate(lines, start=1):
-        stripped = text.strip()
-        if not stripped or stripped.startswith("#"):
-            continue
-        fields = [f for f in _SEPARATORS.split(stripped) if f]
+    for number, stripped, fields in _data_lines(lines):
         try:
             row = [_float(f) for f in fields]
         except ValueError:
@@ -387,11 +394,7 @@ def read_one_column(path, dt: float, unit: str | None = None) -> Record:
             raise RecordFormatError(path, None, "one column of accelerations: every row holds two numbers and the "
                                     "first increases by a uniform step, as a time column does; read it as two "
                                     "columns (without dt / --record-dt)")
-    if unit is None:
-        if not header_unit:
-            raise RecordFormatError(path, None, "a stated acceleration unit: pass unit= (--record-unit) or name "
-                                    "it in a header line such as 'acceleration [g]'")
-        unit = header_unit
+    unit = _stated_unit(path, unit, header_unit, "acceleration [g]")
     factor = unit_factor(unit)
     return Record(name=path.stem, dt=float(dt), acceleration=np.asarray(values) * factor, source=str(path),
                   unit=unit)
