@@ -125,7 +125,7 @@ def test_figures_use_the_colour_blind_safe_palette_and_say_what_they_show(histor
 
 def test_history_velocity_line_shows_the_jump_at_each_impact(history):
     t, v = plotting.velocity_with_impacts(history)
-    assert len(t) == history.sizes["time"] + history.sizes["impact"] and np.all(np.diff(t) >= 0)
+    assert len(t) == history.sizes["t"] + history.sizes["impact"] and np.all(np.diff(t) >= 0)
     i = int(np.searchsorted(t, float(history["impact_time"][0])))
     assert v[i] == float(history["velocity_before_impact_ratio"][0])
     assert v[i + 1] == float(history["velocity_after_impact_ratio"][0])

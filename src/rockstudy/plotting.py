@@ -149,7 +149,7 @@ def velocity_with_impacts(hist):
     """Times and θ̇/(p·α) of a history with the velocity just before each impact put back in front of
     the value just after it, so that a line shows the jump (older files without an ``impact``
     dimension are returned as they are)."""
-    t, v = hist["time"].values, hist["velocity_ratio"].values
+    t, v = hist["t"].values, hist["velocity_ratio"].values
     if "velocity_before_impact_ratio" not in hist or hist.sizes.get("impact", 0) == 0:
         return t, v
     ti, vi = hist["impact_time"].values, hist["velocity_before_impact_ratio"].values
@@ -162,9 +162,9 @@ def velocity_with_impacts(hist):
 
 def plot_history(ax, hist):
     """Normalised ground motion Ẍ_g/(g·tanα), rotation θ/α and velocity θ̇/(p·α) against time."""
-    t = hist["time"].values
+    t = hist["t"].values
     tv, v = velocity_with_impacts(hist)
-    return [ax.plot(hist["ground_time"].values, hist["ground_ratio"], color="0.55", ls="--", lw=0.9,
+    return [ax.plot(hist["t_ground"].values, hist["ground_ratio"], color="0.55", ls="--", lw=0.9,
                     label=r"$\ddot X_g/(g\tan\alpha)$")[0],
             ax.plot(t, hist["rotation_ratio"], color=OKABE_ITO["blue"], lw=1.4, label=r"$\theta/\alpha$")[0],
             ax.plot(tv, v, color=OKABE_ITO["vermillion"], lw=0.8, label=r"$\dot\theta/(p\,\alpha)$")[0]]
@@ -172,7 +172,7 @@ def plot_history(ax, hist):
 
 def plot_stiffness(ax, hist):
     """Anchorage stiffness K/K_max set by the control law (piecewise constant)."""
-    (line,) = ax.step(hist["time"].values, hist["stiffness_ratio"].values, where="post",
+    (line,) = ax.step(hist["t"].values, hist["stiffness_ratio"].values, where="post",
                       color=OKABE_ITO["bluish_green"], lw=1.0, label=r"$K/K_{max}$")
     ax.set_ylim(-0.15, 1.15)
     ax.set_yticks([0, 1], [r"$K_{min}$", r"$K_{max}$"])
@@ -245,7 +245,7 @@ def figure_control_history(hist, paper_figure: str):
     ax.legend(loc="upper right", ncol=3)
     plot_stiffness(axk, hist)
     axk.set_xlabel("time $t$ [s]")
-    end = min(float(hist["time"][-1]), 1.3 * hist.attrs["excitation_end_s"])
+    end = min(float(hist["t"][-1]), 1.3 * hist.attrs["excitation_end_s"])
     axk.set_xlim(0, end)
     a = hist.attrs
     ax.set_title(f"Response of the block under {a['control_strategy']} control and the anchorage stiffness it "
@@ -259,7 +259,7 @@ def figure_control_history(hist, paper_figure: str):
 def figure_excitation(noise):
     """Fig. 4: (a) baseline Eq. 23 excitation; (b) the same contaminated with noise."""
     fig, (a, b) = plt.subplots(2, 1, sharex=True, sharey=True, figsize=(7, 4.8))
-    t = noise["time"].values
+    t = noise["t"].values
     plot_excitation(a, t, noise["baseline"].values, color=OKABE_ITO["black"], lw=1.0, label="baseline, Eq. (23)")
     env = np.abs(noise["baseline"].values).max()
     a.axhline(env, color="0.5", lw=0.6, ls=":")
@@ -289,7 +289,7 @@ def figure_realisations(spectrum, histories, point: dict):
     plot_threshold_family(a, [(name, spectrum["threshold_realisation"].sel(realisation=h.attrs["noise_realisation"]))
                               for name, h in zip(names, histories)], prefix="noise realisation ")
     for i, (name, hist) in enumerate(zip(names, histories)):
-        b.plot(hist["time"], hist["rotation_ratio"], color=CURVE_COLOURS[i % len(CURVE_COLOURS)],
+        b.plot(hist["t"], hist["rotation_ratio"], color=CURVE_COLOURS[i % len(CURVE_COLOURS)],
                ls=CURVE_DASHES[i % len(CURVE_DASHES)], lw=1.0, label=f"{name}: {hist.attrs['status']}")
     plot_a_max0(a, point["a_max0_ratio"])
     a.plot(point["frequency_ratio"], point["amplitude_ratio"], ls="none", marker="*", color=OKABE_ITO["black"],

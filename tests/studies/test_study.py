@@ -194,7 +194,7 @@ def test_noise_dataset_regenerates_records_exactly():
     np.testing.assert_array_equal(ds["record"].sel(record_realisation=1).values, rec.values)
     assert ds.sizes["record_realisation"] == 2
     np.testing.assert_array_equal(ds["spawn_key"].values[:, 1], [0, 1, 2])
-    assert ds.attrs["noise_seed"] == 7 and ds["time"].attrs["units"] == "s"
+    assert ds.attrs["noise_seed"] == 7 and ds["t"].attrs["units"] == "s"
     datasets.check_noise(ds, sc)
     with pytest.raises(ValueError, match="noise_seed"):
         datasets.check_noise(ds, Scenario(BLC06, noise_level=0.05, seed=8))

@@ -588,7 +588,16 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
     }
     units = {"record_distance": "km", "record_pga": "g", "record_pgv": "m/s", "record_magnitude": "1",
              "record_other_intensity": "1"}
-    ds = ds.assign_coords({k: ("record", v, {"units": units[k]} if k in units else {}) for k, v in coords.items()})
+    names = {"record_suite_name": "record suite", "record_id": "id within the suite", "record_event": "earthquake",
+             "record_station": "recording station (component)",
+             "record_year": "year of the event (0: not applicable)", "record_magnitude": "moment magnitude",
+             "record_distance": "closest distance to the fault rupture plane", "record_site_class": "NEHRP site class",
+             "record_pga": "peak ground acceleration of the unscaled record (standard gravity)",
+             "record_pgv": "peak ground velocity of the unscaled record",
+             "record_pulse": "velocity pulse (P695 classification)",
+             "record_other_intensity": f"{INTENSITY_MEASURES[other]} of the unscaled record"}
+    ds = ds.assign_coords({k: ("record", v, {**({"units": units[k]} if k in units else {}), "long_name": names[k]})
+                           for k, v in coords.items()})
     ds.attrs.update(title=f"Fragility of the controlled block over the record suite {suite} (multiple stripe "
                           "analysis) and each record's threshold",
                     record_suite=suite, other_intensity_measure=other,

@@ -97,20 +97,24 @@ def cf_attributes(attrs: dict) -> dict:
     """``attrs`` with the CF global attributes rockstudy adds to every netCDF file.
 
     ``Conventions`` (:data:`~rockstudy.core.constants.CF_CONVENTIONS`), ``source`` (the package
-    and version), ``references`` (the paper, :data:`~rockstudy.core.constants.PAPER_REFERENCE`),
-    ``title`` (kept if present) and ``history``: a line naming the writer appended to any history
-    already there. The history line carries no time stamp, so that a rerun writes the same file.
+    and version), ``references`` (the paper, :data:`~rockstudy.core.constants.PAPER_REFERENCE`, after
+    the references the data set names itself), ``title`` (kept if present) and ``history``: a line
+    naming the writer appended to any history already there. The history line carries no time
+    stamp, so that a rerun writes the same file.
     """
     line = f"written by rockstudy {__version__} (rockstudy.core.io.write_netcdf)"
     history = str(attrs.get("history", "")).strip()
     if line not in history.splitlines():
         history = f"{history}\n{line}" if history else line
+    references = str(attrs.get("references", "")).strip()
+    if PAPER_REFERENCE not in references:  # the paper, after the references the data set names itself
+        references = f"{references}\n{PAPER_REFERENCE}" if references else PAPER_REFERENCE
     return {"Conventions": CF_CONVENTIONS,
             "title": attrs.get("title", "rockstudy dataset"),
             "source": f"rockstudy {__version__}: numerical simulation of rigid rocking blocks with on-off "
                       "controlled anchorages",
-            "references": PAPER_REFERENCE,
-            **{k: v for k, v in attrs.items() if k not in ("Conventions", "title", "history")},
+            **{k: v for k, v in attrs.items() if k not in ("Conventions", "title", "history", "references")},
+            "references": references,
             "history": history}
 
 

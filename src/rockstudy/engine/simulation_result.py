@@ -141,13 +141,16 @@ def unique_times(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def history_dataset(result: SimulationResult, block=None, anchorage=None, motion=None,
                     ground_dt: float = NOISE_DT) -> xr.Dataset:
-    """A run's history as a Dataset with a strictly increasing ``time`` and the events on their own
-    dimensions (``impact``, ``uplift``, ``rest``; the elements' fracture times as attributes).
+    """A run's history as a Dataset with a strictly increasing time axis ``t`` and the events on their
+    own dimensions (``impact``, ``uplift``, ``rest``; the elements' fracture times as attributes).
 
-    ``time`` holds every recorded instant once (the integrator's steps and the events); where the
-    state jumps the value is the one just after the jump (right-continuous: κ is a step function
-    with ``where="post"``). The impacts (θ = 0) are on their own dimension ``impact`` with the
-    angular velocity just before and just after each (their ratio is the restitution of Eq. 15).
+    ``t`` (seconds since the start of the ground motion) holds every recorded instant once (the
+    integrator's steps and the events); where the state jumps the value is the one just after the
+    jump (right-continuous: κ is a step function with ``where="post"``). The axis is not named
+    ``time``: CF keeps a coordinate of that name for calendar time ("seconds since <epoch>"), which
+    xarray decodes into dates, and ``ds.sel(t=2.0, method="nearest")`` is meant to work. The
+    impacts (θ = 0) are on their own dimension ``impact`` with the angular velocity just before and
+    just after each (their ratio is the restitution of Eq. 15).
 
     Parameters
     ----------
@@ -160,7 +163,7 @@ def history_dataset(result: SimulationResult, block=None, anchorage=None, motion
         Adds ``stiffness_ratio`` κ/κ_max (κ itself when κ_max = 0).
     motion : GroundMotion, optional
         With ``block``, adds the ground motion Ẍ_g/(g·tanα) sampled every ``ground_dt`` [s] on
-        ``ground_time`` (``ground_ratio``).
+        ``t_ground`` (``ground_ratio``).
     """
     if result.history is None:
         raise ValueError("the simulation has no history: run it with record_history=True")
@@ -175,18 +178,18 @@ def history_dataset(result: SimulationResult, block=None, anchorage=None, motion
     after = np.full(len(impacts), np.nan)
     before[found] = h["theta_dot"][first[at[found]]]
     after[found] = h["theta_dot"][last[at[found]]]
-    data = {"theta": ("time", h["theta"][last], {"units": "rad", "long_name": "rotation theta"}),
-            "theta_dot": ("time", h["theta_dot"][last],
+    data = {"theta": ("t", h["theta"][last], {"units": "rad", "long_name": "rotation theta"}),
+            "theta_dot": ("t", h["theta_dot"][last],
                           {"units": "rad/s", "long_name": "angular velocity (just after a jump at an event)"}),
-            "kappa": ("time", h["kappa"][last], {**one, "long_name": "dimensionless stiffness 4Kb^2/(mgR)"}),
+            "kappa": ("t", h["kappa"][last], {**one, "long_name": "dimensionless stiffness 4Kb^2/(mgR)"}),
             "theta_dot_before_impact": ("impact", before, {"units": "rad/s",
                                                            "long_name": "angular velocity just before the impact"}),
             "theta_dot_after_impact": ("impact", after, {"units": "rad/s",
                                                          "long_name": "angular velocity just after the impact"})}
     if "ground_acceleration" in h:
-        data["ground_acceleration"] = ("time", h["ground_acceleration"][last], {"units": "m/s^2", "long_name": "X_g"})
-    coords = {"time": ("time", t, {"units": "s", "long_name": "time since the start of the ground motion "
-                                                             "(integrator steps and events)"}),
+        data["ground_acceleration"] = ("t", h["ground_acceleration"][last], {"units": "m/s^2", "long_name": "X_g"})
+    coords = {"t": ("t", t, {"units": "s", "long_name": "time since the start of the ground motion "
+                                                       "(integrator steps and events)"}),
               "impact_time": ("impact", impacts, {"units": "s", "long_name": "time of the impact (theta = 0)"}),
               "uplift_time": ("uplift", np.asarray(result.uplift_times, dtype=float),
                               {"units": "s", "long_name": "time the block uplifted from rest"}),
@@ -194,20 +197,21 @@ def history_dataset(result: SimulationResult, block=None, anchorage=None, motion
                             {"units": "s", "long_name": "time the block came to rest"})}
     if block is not None:
         scale = block.p * block.alpha
-        data["rotation_ratio"] = ("time", h["theta"][last] / block.alpha, {**one, "long_name": "theta/alpha"})
-        data["velocity_ratio"] = ("time", h["theta_dot"][last] / scale, {**one, "long_name": "theta_dot/(p alpha)"})
+        data["rotation_ratio"] = ("t", h["theta"][last] / block.alpha, {**one, "long_name": "theta/alpha"})
+        data["velocity_ratio"] = ("t", h["theta_dot"][last] / scale, {**one, "long_name": "theta_dot/(p alpha)"})
         data["velocity_before_impact_ratio"] = ("impact", before / scale,
                                                 {**one, "long_name": "theta_dot/(p alpha) just before the impact"})
         data["velocity_after_impact_ratio"] = ("impact", after / scale,
                                                {**one, "long_name": "theta_dot/(p alpha) just after the impact"})
     if anchorage is not None:
         kappa_ref = anchorage.kappa_max if anchorage.kappa_max > 0 else 1.0
-        data["stiffness_ratio"] = ("time", h["kappa"][last] / kappa_ref, {**one, "long_name": "K/K_max"})
+        data["stiffness_ratio"] = ("t", h["kappa"][last] / kappa_ref, {**one, "long_name": "K/K_max"})
     if motion is not None and block is not None:
-        ground_time = np.arange(0.0, result.end_time + ground_dt, ground_dt)
-        data["ground_ratio"] = ("ground_time", motion.horizontal(ground_time) / block.uplift_acceleration,
+        t_ground = np.arange(0.0, result.end_time + ground_dt, ground_dt)
+        data["ground_ratio"] = ("t_ground", motion.horizontal(t_ground) / block.uplift_acceleration,
                                 {**one, "long_name": "X_g/(g tan(alpha))"})
-        coords["ground_time"] = ("ground_time", ground_time, {"units": "s", "long_name": "time (uniform)"})
+        coords["t_ground"] = ("t_ground", t_ground, {"units": "s", "long_name": "time since the start of the "
+                                                     "ground motion (uniform step)"})
     summary = result.summary()
     return xr.Dataset(data, coords=coords,
                       attrs={"status": summary["status"], "overturned": int(summary["overturned"]),

@@ -275,7 +275,7 @@ def suite_dataset(suite, seed: int, ranges: SuiteRanges = SuiteRanges()):
     n = min(r.acceleration.size for r in records)
     hz = {"units": "rad/s"}
     return xr.Dataset(
-        {"acceleration": (("record", "time"), np.array([r.acceleration[:n] for r in records]),
+        {"acceleration": (("record", "t"), np.array([r.acceleration[:n] for r in records]),
                           {"units": "m/s^2", "long_name": "horizontal ground acceleration"}),
          "ground_frequency": ("record", [m.ground_frequency for m in models], {**hz, "long_name": "omega_g"}),
          "ground_damping": ("record", [m.ground_damping for m in models], {"units": "1", "long_name": "zeta_g"}),
@@ -284,8 +284,8 @@ def suite_dataset(suite, seed: int, ranges: SuiteRanges = SuiteRanges()):
          "peak_time": ("record", [m.peak_time for m in models], {"units": "s", "long_name": "envelope peak t_m"}),
          "pga": ("record", [r.pga for r in records], {"units": "m/s^2", "long_name": "peak ground acceleration"})},
         coords={"record": ("record", [r.name for r in records]),
-                "time": ("time", np.arange(n) * records[0].dt,
-                         {"units": "s", "long_name": "time since the start of the record"})},
+                "t": ("t", np.arange(n) * records[0].dt,
+                      {"units": "s", "long_name": "time since the start of the record"})},
         attrs={"title": "Synthetic ground-motion suite", "model": MODEL_REFERENCE, "seed": int(seed),
                "seed_sequence": f"SeedSequence(seed, spawn_key=({SYNTHETIC_KEY}, record index))",
                "rockstudy_version": __version__, **ranges.to_attrs()},

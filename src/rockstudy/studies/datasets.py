@@ -68,16 +68,17 @@ def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_
                        {**ratio, "long_name": "noisy record PGA / baseline PGA"}),
          "spawn_key": (("realisation", "key"), np.array([[level_key(level), k] for k in ks], dtype=np.int64),
                        {"long_name": "SeedSequence spawn key (level_key, realisation)"}),
-         "baseline": ("time", base, {**ratio, "long_name": "unit-amplitude baseline excitation X_g/a_p",
+         "baseline": ("t", base, {**ratio, "long_name": "unit-amplitude baseline excitation X_g/a_p",
                                      "frequency_ratio": reference_frequency_ratio}),
-         "record": (("record_realisation", "time"), recs,
+         "record": (("record_realisation", "t"), recs,
                     {**ratio, "long_name": "unit-amplitude noisy record X_g/a_p",
                      "frequency_ratio": reference_frequency_ratio})},
         coords={"realisation": ("realisation", np.array(ks, dtype=np.int64), {"long_name": "noise realisation k"}),
                 "record_realisation": ("record_realisation", np.array(kept, dtype=np.int64),
                                        {"long_name": "noise realisation k of the stored records"}),
                 "frequency_ratio": ("frequency_ratio", freqs, {"units": "1", "long_name": "omega_p/p"}),
-                "time": ("time", np.arange(len(base)) * dt, {"units": "s", "long_name": "time"})},
+                "t": ("t", np.arange(len(base)) * dt,
+                      {"units": "s", "long_name": "time since the start of the ground motion"})},
         attrs={"title": f"Noise realisations, level {level:g} (noise energy / baseline energy)", "paper": PAPER,
                "paper_section": "5 (Fig. 4)", "rockstudy_version": __version__, "noise_level": level,
                "noise_seed": sc.seed, "noise_level_key": level_key(level), **sc.noise.to_attrs(),
@@ -138,10 +139,10 @@ def convergence_dataset(ds: xr.Dataset) -> xr.Dataset:
 def history_dataset(result, scenario: Scenario, motion, frequency_ratio: float, amplitude_ratio: float,
                     realisation: int = 0, dt: float = NOISE_DT) -> xr.Dataset:
     """A :class:`SimulationResult` history as a labelled Dataset with the paper's normalisations
-    (Figs. 2, 3, 5b): θ/α, θ̇/(p·α), κ/κ_max on a strictly increasing ``time`` (the integrator's
+    (Figs. 2, 3, 5b): θ/α, θ̇/(p·α), κ/κ_max on a strictly increasing ``t`` [s] (the integrator's
     steps and events, each once, the state just after a jump), the velocities just before and
     after each impact on the ``impact`` dimension, and the ground motion Ẍ_g/(g·tanα) of
-    ``motion`` sampled every ``dt`` [s] (``ground_time``); the layout of
+    ``motion`` sampled every ``dt`` [s] (on ``t_ground``); the layout of
     :meth:`SimulationResult.to_dataset` with the scenario's attributes."""
     ds = result.to_dataset(scenario.block, scenario.anchorage, motion, dt)
     ds.attrs = {"title": f"Time history, {scenario.control.strategy}, omega_p/p={frequency_ratio:g}, "

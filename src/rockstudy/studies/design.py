@@ -181,7 +181,8 @@ def gather_blocks(points) -> xr.Dataset:
     dims = ("strategy", "R", "alpha")
     return xr.Dataset(
         {"jos": (dims, jos, points[0].jos.attrs), "fragility_median": (dims, med, points[0].fragility_median.attrs)},
-        coords={"strategy": strategies, "R": ("R", Rs, {"units": "m"}), "alpha": ("alpha", alphas, {"units": "rad"})},
+        coords={"strategy": strategies, "R": ("R", Rs, {"units": "m", "long_name": "half diagonal of the block"}),
+                "alpha": ("alpha", alphas, {"units": "rad", "long_name": "slenderness angle"})},
         attrs={k: points[0].attrs[k] for k in ("excitation", "a_max0_g", "record_suite", "n_records",
                                                "rockstudy_version")}
         | {"title": "Block sweep: J_OS over FS and fragility median of every strategy over (R, alpha)",
@@ -202,8 +203,9 @@ def gather_devices(points) -> xr.Dataset:
     attrs = {k: v for k, v in points[0].attrs.items() if k.startswith("block_") or k in ("record_suite", "n_records")}
     return xr.Dataset(
         {"fragility_median": (("strategy", "kappa_max", "damping_ratio"), med, points[0].fragility_median.attrs)},
-        coords={"strategy": strategies, "kappa_max": ("kappa_max", kappas, {"units": "1"}),
-                "damping_ratio": ("damping_ratio", xis, {"units": "1"})},
+        coords={"strategy": strategies,
+                "kappa_max": ("kappa_max", kappas, {"units": "1", "long_name": "4 K_max b^2/(m g R)"}),
+                "damping_ratio": ("damping_ratio", xis, {"units": "1", "long_name": "xi"})},
         attrs={**attrs, "title": "Device sweep: fragility median of every strategy over (kappa_max, xi)",
                "rockstudy_version": __version__,
                "compute_time_s": float(sum(p.attrs["compute_time_s"] for p in points))},

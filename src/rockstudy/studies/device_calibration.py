@@ -229,18 +229,26 @@ def candidates_dataset(block: Block, devices: list[dict], tables, coarse_rms, at
         "j_os": (dims, rows, {**pct, "long_name": "J_OS (Eq. 21), full settings"}),
         "paper": (dims[1:], paper_rows(), {**pct, "long_name": "the paper's Table 1"}),
         "residual": (dims, resid, {**pct, "long_name": "ours minus paper (points)"}),
-        "rms_residual": ("candidate", np.sqrt(np.mean(resid.reshape(len(devices), -1) ** 2, axis=1)), pct),
-        "max_abs_residual": ("candidate", np.max(np.abs(resid.reshape(len(devices), -1)), axis=1), pct),
+        "rms_residual": ("candidate", np.sqrt(np.mean(resid.reshape(len(devices), -1) ** 2, axis=1)),
+                         {**pct, "long_name": "RMS of the 12 residuals"}),
+        "max_abs_residual": ("candidate", np.max(np.abs(resid.reshape(len(devices), -1)), axis=1),
+                             {**pct, "long_name": "largest absolute residual"}),
         "coarse_rms_residual": ("candidate", np.asarray(coarse_rms, float),
                                 {**pct, "long_name": "RMS residual in the coarse screening"}),
-        "kappa_max": ("candidate", [a.kappa_max for a in anchorages], {"units": "1"}),
-        "kappa_min": ("candidate", [a.kappa_min for a in anchorages], {"units": "1"}),
-        "damping_ratio": ("candidate", [a.damping_ratio for a in anchorages], {"units": "1"}),
+        "kappa_max": ("candidate", [a.kappa_max for a in anchorages],
+                      {"units": "1", "long_name": "4 K_max b^2/(m g R)"}),
+        "kappa_min": ("candidate", [a.kappa_min for a in anchorages],
+                      {"units": "1", "long_name": "4 K_min b^2/(m g R)"}),
+        "damping_ratio": ("candidate", [a.damping_ratio for a in anchorages], {"units": "1", "long_name": "xi"}),
     }
-    for key, unit in (("K_max_N_per_m", "N/m"), ("K_min_N_per_m", "N/m"), ("D_N_s_per_m", "N s/m"),
-                      ("theta_K_u_rad", "rad"), ("theta_D_u_rad", "rad")):
-        data[key] = ("candidate", [p[key] for p in phys], {"units": unit})
-    return xr.Dataset(data, coords={"candidate": np.arange(len(devices)), "strategy": list(STRATEGIES),
+    for key, unit, name in (("K_max_N_per_m", "N/m", "spring stiffness K_max"),
+                            ("K_min_N_per_m", "N/m", "spring stiffness K_min"),
+                            ("D_N_s_per_m", "N s/m", "damper coefficient D"),
+                            ("theta_K_u_rad", "rad", "ultimate rotation of the spring"),
+                            ("theta_D_u_rad", "rad", "ultimate rotation of the damper")):
+        data[key] = ("candidate", [p[key] for p in phys], {"units": unit, "long_name": name})
+    candidate = ("candidate", np.arange(len(devices)), {"long_name": "rank of the candidate in the screening"})
+    return xr.Dataset(data, coords={"candidate": candidate, "strategy": list(STRATEGIES),
                                     "reference": list(REFERENCES), "noise_level": list(PAPER_LEVELS)},
                       attrs={"title": "Device calibration: best candidates recomputed with the study's settings",
                              "paper": PAPER, "rockstudy_version": __version__, **block.to_attrs(), **(attrs or {})})
@@ -348,7 +356,8 @@ def device_table(fs_spectra, device_spectra_list, levels: dict, a_max0_g: float)
                     j[ri, si, li] = utility_index(system["threshold"].values, ref["threshold"].values, ratio)[0]
                 except ValueError:  # N* = 0: J_OS undefined
                     j[ri, si, li] = math.nan
-    table = xr.Dataset({"j_os": (("reference", "strategy", "noise_level"), j, {"units": "percent"})},
+    table = xr.Dataset({"j_os": (("reference", "strategy", "noise_level"), j,
+                                 {"units": "percent", "long_name": "utility index J_OS (Eq. 21)"})},
                        coords={"reference": list(REFERENCES), "strategy": strategies,
                                "noise_level": list(PAPER_LEVELS)},
                        attrs={"a_max0_g": float(a_max0_g), "rockstudy_version": __version__})
