@@ -158,3 +158,24 @@ def test_a_figure_saves_to_the_same_bytes_twice(tmp_path):
                              tmp_path / f"{name}.pdf")
     for suffix in ("png", "pdf"):
         assert (tmp_path / f"a.{suffix}").read_bytes() == (tmp_path / f"b.{suffix}").read_bytes(), suffix
+
+
+@pytest.mark.parametrize("n_panels", [1, 4])
+def test_probability_colour_bar_stays_inside_the_figure(n_panels):
+    """With one panel the colour bar and its label used to fall off the right edge."""
+    from rockstudy.analysis.probability import probability_surface
+    from rockstudy.analysis.spectra import AmplitudeGrid
+    surface = probability_surface(Scenario(BLC06, control=Control("FS"), noise_level=0.05), [1.0, 2.0],
+                                  realisations=range(2), grid=AmplitudeGrid(start=0.9, stop=2.7, step=0.6,
+                                                                            resolution=0.1))
+    surfaces = [surface.assign_coords(strategy=s) for s in ("FS", "PASSIVE", "CS01", "CS02")[:n_panels]]
+    fig = plotting.figure_probability(surfaces, 4.0)
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    bar = next(ax for ax in fig.axes if ax.get_ylabel().startswith("P(overturn)"))
+    inside = fig.bbox.padded(1.0)
+    for ax in fig.axes:
+        box = ax.get_tightbbox(renderer)
+        assert inside.x0 <= box.x0 and box.x1 <= inside.x1 and inside.y0 <= box.y0 and box.y1 <= inside.y1, ax
+    assert bar.get_position().x0 > max(ax.get_position().x1 for ax in fig.axes if ax is not bar)
+    plt.close(fig)

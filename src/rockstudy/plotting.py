@@ -66,10 +66,16 @@ def _level_label(level: float) -> str:
 
 
 def same_curve(a, b) -> bool:
-    """True when two thresholds are the same curve: the same frequencies and the same values
-    (NaN where both have no overturning)."""
-    return (a.sizes == b.sizes and np.array_equal(a["frequency_ratio"].values, b["frequency_ratio"].values)
-            and np.array_equal(np.asarray(a.values, float), np.asarray(b.values, float), equal_nan=True))
+    """True when two curves (DataArrays, e.g. thresholds over ω_p/p or J_OS over the noise level) are
+    the same: the same dimensions, the same coordinate values along them and the same values (NaN
+    where both have none, e.g. no overturning)."""
+    if a.dims != b.dims or a.sizes != b.sizes:
+        return False
+    for dim in a.dims:
+        if (dim in a.coords) != (dim in b.coords) or (dim in a.coords and not np.array_equal(a[dim].values,
+                                                                                           b[dim].values)):
+            return False
+    return np.array_equal(np.asarray(a.values, float), np.asarray(b.values, float), equal_nan=True)
 
 
 def group_same_curves(curves):
@@ -430,15 +436,18 @@ def plot_readings(ax, table, closest: str | None = None):
     """FS J_OS against the noise level, one line per noise reading, the paper's values as markers.
 
     ``table`` is a readings table (:func:`rockstudy.studies.noise_readings.readings_table`); the closest reading
-    is drawn thicker. Returns the lines drawn.
+    is drawn thicker. Readings whose J_OS values coincide at every level (:func:`same_curve`) are drawn
+    once, with one legend entry naming all of them ("A = B"). Returns the lines drawn.
     """
     x = 100 * np.asarray(table["level_value"].values, dtype=float)
+    curves = [(str(name), table["j_os"].sel(reading=name)) for name in table["reading"].values]
     lines = []
-    for name in table["reading"].values:
-        t = table.sel(reading=name)
-        bold = name == closest
-        (line,) = ax.plot(x, t["j_os"].values, marker="o", ms=3, lw=2.4 if bold else 1.0,
-                          label=f"{name}: {t['label'].item()}" + (" (closest)" if bold else ""))
+    for i, (names, j_os) in enumerate(group_same_curves(curves)):
+        bold = closest in names
+        label = " = ".join(f"{name}: {table['label'].sel(reading=name).item()}" for name in names)
+        (line,) = ax.plot(x, j_os.values, marker="o", ms=3, lw=2.4 if bold else 1.0,
+                          color=CURVE_COLOURS[i % len(CURVE_COLOURS)], ls=CURVE_DASHES[i % len(CURVE_DASHES)],
+                          label=label + (" (closest)" if bold else ""))
         lines.append(line)
     lines.append(ax.plot(x, table["paper"].values, ls="none", marker="*", ms=12, color=OKABE_ITO["black"],
                          label="paper, Table 1", zorder=5)[0])
@@ -455,7 +464,7 @@ def figure_readings(table):
     plot_readings(ax, table, table.attrs.get("closest_reading"))
     ax.set_title("Utility index of the free-standing block against the noise level, under each reading of the "
                  "noise model")
-    ax.legend(fontsize=7, loc="lower left")
+    ax.legend(fontsize=7, loc="best")
     return fig
 
 
@@ -467,7 +476,10 @@ def figure_calibration(grid, best: dict | None = None):
     ``j_os`` over (strategy, reference, noise_level, ultimate_rotation_ratio, kappa_min_ratio,
     kappa_max, damping_ratio). The maps are drawn at the θ_u/α and κ_min/κ_max of ``best`` (an
     anchorage dict, marked with a star; without it, at the first values of the design); the
-    paper's value of each panel is in its title.
+    paper's value of each panel is in its title. With a single ξ (or a single κ_max) a map has no
+    area: each panel is then J_OS against κ_max (or ξ), one line per ξ (or κ_max), with the paper's
+    value as a dashed line. Only panels with at least one J_OS are drawn (Eq. 21 leaves J_OS
+    undefined where neither spectrum overturns below a_max,0).
     """
     at = {"ultimate_rotation_ratio": 0, "kappa_min_ratio": 0}
     if best is not None:
@@ -478,27 +490,57 @@ def figure_calibration(grid, best: dict | None = None):
         at["kappa_min_ratio"] = int(np.argmin(np.abs(grid["kappa_min_ratio"].values - k_ratio)))
     where = (rf"$\theta_u/\alpha$ = {float(grid['ultimate_rotation_ratio'][at['ultimate_rotation_ratio']]):g}, "
              rf"$\kappa_{{min}}/\kappa_{{max}}$ = {float(grid['kappa_min_ratio'][at['kappa_min_ratio']]):g}")
-    levels = list(grid["noise_level"].values)
-    strategies = list(grid["strategy"].values)
+    kx, xi = grid["kappa_max"].values, grid["damping_ratio"].values
+
+    def values(s, level):
+        return grid["j_os"].sel(strategy=s, reference="fs_same_noise", noise_level=level).isel(**at).transpose(
+            "kappa_max", "damping_ratio").values
+
+    has_data = {(s, level): bool(np.isfinite(values(s, level)).any())
+                for s in grid["strategy"].values for level in grid["noise_level"].values}
+    strategies = [s for s in grid["strategy"].values if any(has_data[s, lv] for lv in grid["noise_level"].values)]
+    levels = [lv for lv in grid["noise_level"].values if any(has_data[s, lv] for s in strategies)]
+    if not strategies:
+        raise ValueError("figure_calibration: no J_OS in the grid (every panel would be empty)")
+    as_map = min(len(kx), len(xi)) >= 2
     fig, axes = plt.subplots(len(strategies), len(levels), figsize=(3.6 * len(levels), 3.0 * len(strategies)),
                              squeeze=False, constrained_layout=True)
-    kx, xi = grid["kappa_max"].values, grid["damping_ratio"].values
     for i, s in enumerate(strategies):
         for j, level in enumerate(levels):
             ax = axes[i, j]
-            z = grid["j_os"].sel(strategy=s, reference="fs_same_noise", noise_level=level).isel(**at).transpose(
-                "kappa_max", "damping_ratio").values
-            mesh = ax.pcolormesh(kx, xi, z.T, shading="nearest", cmap="viridis")
+            if not has_data[s, level]:
+                ax.remove()
+                continue
+            z = values(s, level)
             paper = float(grid["paper"].sel(strategy=s, reference="fs_same_noise", noise_level=level))
-            if min(z.shape) >= 2 and np.nanmin(z) < paper < np.nanmax(z):  # a contour needs a 2 x 2 grid
-                cs = ax.contour(kx, xi, z.T, levels=[paper], colors="w", linewidths=1.2)
-                ax.clabel(cs, fmt="paper %.1f", fontsize=6)
-            fig.colorbar(mesh, ax=ax, label=r"$J_{OS}$ vs FS [%]")
-            if best is not None:
-                ax.plot(best["kappa_max"], best["damping_ratio"], marker="*", ms=12, color=OKABE_ITO["vermillion"],
-                        markeredgecolor="w")
-            ax.set_xlabel(r"$\kappa_{max}$ [-]")
-            ax.set_ylabel(r"$\xi$ [-]")
+            if as_map:
+                mesh = ax.pcolormesh(kx, xi, z.T, shading="nearest", cmap="viridis")
+                if np.nanmin(z) < paper < np.nanmax(z):
+                    cs = ax.contour(kx, xi, z.T, levels=[paper], colors="w", linewidths=1.2)
+                    ax.clabel(cs, fmt="paper %.1f", fontsize=6)
+                fig.colorbar(mesh, ax=ax, label=r"$J_{OS}$ vs FS [%]")
+                if best is not None:
+                    ax.plot(best["kappa_max"], best["damping_ratio"], marker="*", ms=12,
+                            color=OKABE_ITO["vermillion"], markeredgecolor="w")
+                ax.set_xlabel(r"$\kappa_{max}$ [-]")
+                ax.set_ylabel(r"$\xi$ [-]")
+            else:
+                along_kappa = len(kx) >= len(xi)
+                x, others = (kx, xi) if along_kappa else (xi, kx)
+                curves = z.T if along_kappa else z
+                other_name = r"$\xi$" if along_kappa else r"$\kappa_{max}$"
+                for k, (other, curve) in enumerate(zip(others, curves)):
+                    ax.plot(x, curve, marker="o", ms=4, color=CURVE_COLOURS[k % len(CURVE_COLOURS)],
+                            ls=CURVE_DASHES[k % len(CURVE_DASHES)], label=f"{other_name} = {other:g}")
+                ax.axhline(paper, color=OKABE_ITO["black"], lw=1.0, ls=(0, (6, 3)), label="paper")
+                if best is not None:
+                    bk = int(np.argmin(np.abs(kx - best["kappa_max"])))
+                    bj = int(np.argmin(np.abs(xi - best["damping_ratio"])))
+                    ax.plot(kx[bk] if along_kappa else xi[bj], z[bk, bj], ls="none", marker="*", ms=12,
+                            color=OKABE_ITO["vermillion"], markeredgecolor="w", label="best", zorder=5)
+                ax.set_xlabel(r"$\kappa_{max}$ [-]" if along_kappa else r"$\xi$ [-]")
+                ax.set_ylabel(r"$J_{OS}$ vs FS [%]")
+                ax.legend(fontsize=7)
             ax.set_title(f"{s} vs FS, {level} (paper {paper:+.1f} %)", fontsize=9)
     fig.suptitle(f"Utility index of CS01 and CS02 against the free-standing block over the device's "
                  f"stiffness and damping ({where})", fontsize=9)
@@ -563,8 +605,9 @@ def figure_probability(surfaces, a_max0: float):
     """P(overturn) surfaces: one row per noise level, one column per strategy, lower envelope on top."""
     levels = sorted({float(ds["noise_level"]) for ds in surfaces})
     strategies = list(dict.fromkeys(str(ds["strategy"].values) for ds in surfaces))
-    fig, axes = plt.subplots(len(levels), len(strategies), figsize=(4.2 * len(strategies), 0.6 + 3.8 * len(levels)),
-                             sharex=True, sharey=True, squeeze=False)
+    fig, axes = plt.subplots(len(levels), len(strategies), figsize=(1.0 + 4.2 * len(strategies),
+                                                                     0.6 + 3.8 * len(levels)),
+                             sharex=True, sharey=True, squeeze=False, layout="constrained")
     mesh = None
     for ds in surfaces:
         ax = axes[levels.index(float(ds["noise_level"])), strategies.index(str(ds["strategy"].values))]
@@ -580,9 +623,7 @@ def figure_probability(surfaces, a_max0: float):
     handles.append(Line2D([], [], color=OKABE_ITO["sky_blue"], lw=1.2, label="P = 0.5"))
     axes.flat[0].legend(handles=handles, fontsize=7, loc="upper left")
     fig.suptitle("Probability of overturning over the noise realisations")
-    fig.tight_layout(rect=(0, 0, 0.93, 1))
-    cax = fig.add_axes((0.94, 0.15, 0.012, 0.7))
-    fig.colorbar(mesh, cax=cax, label="P(overturn) over the realisations [-]")
+    fig.colorbar(mesh, ax=axes, shrink=0.85, pad=0.015, label="P(overturn) over the realisations [-]")
     return fig
 
 

@@ -132,6 +132,49 @@ def test_figure_calibration_draws_the_slice_of_the_best_device():
     matplotlib.pyplot.close(fig)
 
 
+def test_figure_calibration_with_one_xi_draws_curves_and_only_the_panels_with_data():
+    """One ξ leaves a map no area (it used to draw blank panels): each panel is then J_OS against
+    κ_max with the values of the grid; a strategy or level without any J_OS gets no panel."""
+    import matplotlib
+    matplotlib.use("Agg")
+    from rockstudy import plotting
+    design = calibration.CalibrationDesign(kappa_max=(1.0, 2.0, 4.0), damping_ratio=(0.05,))
+    devices = design.devices(BLC06.alpha)
+    cs01 = [(10 + i, 20 + i, 30 + i) for i in range(len(devices))]
+    tables = [table1_of(c, (math.nan,) * 3) for c in cs01]  # CS02: J_OS undefined everywhere
+    grid = calibration.grid_dataset(design, tables, BLC06.alpha)
+    fig = plotting.figure_calibration(grid, devices[1])
+    panels = [ax for ax in fig.axes if "vs FS" in ax.get_title()]
+    assert [ax.get_title().split(" (")[0] for ax in panels] == ["CS01 vs FS, R001", "CS01 vs FS, R005",
+                                                                "CS01 vs FS, R010"]
+    assert len(fig.axes) == 3  # no empty CS02 row, no colour bar of an empty map
+    for j, ax in enumerate(panels):
+        curve = next(line for line in ax.get_lines() if line.get_label().startswith(r"$\xi$"))
+        np.testing.assert_array_equal(curve.get_xdata(), [1.0, 2.0, 4.0])
+        np.testing.assert_array_equal(curve.get_ydata(), [c[j] for c in cs01])
+    matplotlib.pyplot.close(fig)
+
+
+def test_figure_readings_names_coinciding_readings_together():
+    import matplotlib
+    matplotlib.use("Agg")
+    from rockstudy import plotting
+    ref = fake("FS", 0.0, [2.0] * len(FREQS))
+    value = {"a": -5.0, "b": -5.0, "c": -20.0}  # a and b give the same J_OS at every level
+    spectra = {(name, lv): fake("FS", v, below(value[name])) for name in value for lv, v in LEVELS.items()}
+    table = readings.readings_table(spectra, ref, {"a": NoiseReading(), "b": NoiseReading(rescale="none"),
+                                                   "c": NoiseReading(step=0.01)}, LEVELS, 1.0)
+    fig = plotting.figure_readings(table)
+    ax = fig.axes[0]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert len(labels) == 3 and labels[0].startswith("a: ") and " = b: " in labels[0]
+    assert labels[1].startswith("c: ") and labels[2] == "paper, Table 1"
+    drawn = [line for line in ax.get_lines() if line.get_label() in labels[:2]]
+    np.testing.assert_allclose(drawn[0].get_ydata(), -5.0)
+    np.testing.assert_allclose(drawn[1].get_ydata(), -20.0)
+    matplotlib.pyplot.close(fig)
+
+
 def test_physical_device_for_blc06():
     an = Anchorage(kappa_max=1.0, damping_ratio=0.05)
     phys = calibration.physical(BLC06, an)
