@@ -34,7 +34,7 @@ from rockstudy.core.constants import (
     TIME_TOLERANCE,
 )
 from rockstudy.engine._kernel import dopri, maps
-from rockstudy.engine._kernel.events import locate, scan_exit
+from rockstudy.engine._kernel.events import exit_value, locate, scan_exit
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from rockstudy.engine._kernel.layout import (
     C_BOUND,
@@ -44,6 +44,7 @@ from rockstudy.engine._kernel.layout import (
     C_FRACTURE,
     C_KMAX,
     C_KMIN,
+    C_QUIET_KNOTS,
     C_SAMPLED,
     C_SWITCHING,
     C_T_STOP,
@@ -224,6 +225,7 @@ def setup(P, vert, want_history, want_log):
     C[C_BOUND] = _flag(P[I_BOUND] != 0.0 and not want_history and not want_log)
     # with sampled control a stale K_max can give energy back: a weaker bound over half-cycles
     C[C_BOUND_SWITCHING] = _flag(sampled and kmax != kmin)
+    C[C_QUIET_KNOTS] = _flag(int(P[I_KIND]) == RECORD and not sampled and nvert == 0 and not want_history)
     return C
 
 
@@ -326,6 +328,24 @@ def ground_phase(S, C, P, rec, vert, t_next):
     S[R_MODE] = MODE_ROCK
     S[R_THD] = 0.0
     return LEFT_HOLD
+
+
+@njit(cache=True, inline=inline_into("simulate_kernel"))
+def pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next):
+    """REST under a record, without sampled control or vertical motion: pass the record knots before
+    the end of the excitation at which the block is still at rest in one loop. Each knot gets what the
+    driver's loop would give it — the same uplift test at the knot (:func:`ground_phase`), the same
+    known-time events (none: a knot changes nothing, only a pending apex invalidates the stored
+    derivative) and the same next known time — without the rest of the loop. Returns the known-time
+    event from which :func:`ground_phase` goes on. [s]"""
+    while t_next < P[I_DUR] and t_next > S[R_T]:
+        if exit_value(MODE_REST, t_next, 0.0, 1.0, 0.0, 0.0, True, P, rec, vert) > 0.0:
+            break  # uplift inside (t, t_next]: ground_phase locates it
+        S[R_T] = t_next
+        if S[R_APEX] != 0.0:
+            S[R_F0_OK] = 0.0
+        t_next = next_known_time(S, C, P, vert, queue_times)
+    return t_next
 
 
 @njit(cache=True, inline=inline_into("simulate_kernel"))
@@ -682,6 +702,8 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
             if mode == MODE_REST and S[R_T] >= C[C_EXC_END]:
                 status = ST_REST
                 break
+            if mode == MODE_REST and C[C_QUIET_KNOTS] != 0.0 and S[R_H_ON] != 0.0:
+                t_next = pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next)
             left = ground_phase(S, C, P, rec, vert, t_next)
             if left == UPLIFTED and want_log:
                 uplifts, n_up = _push(uplifts, n_up, S[R_T])

@@ -56,7 +56,8 @@ C_SWITCHING = 7  # 1: continuous CS01/CS02 control that switches (κ_max != κ_m
 C_FRACTURE = 8   # 1: elements that can break (not FS, some stiffness or damping)
 C_BOUND = 9      # 1: outcome run that may stop below the overturning energy (docs/model.md)
 C_BOUND_SWITCHING = 10  # 1: ... with the half-cycle bound of sampled switching control
-NCONST = 11
+C_QUIET_KNOTS = 11  # 1: at rest, record knots pass in one tight loop (no sampled control, vertical record, history)
+NCONST = 12
 
 # ---- the run's state record: every quantity the driving loop changes (engine.py) ------------
 R_T = 0          # time t [s]
