@@ -32,7 +32,7 @@ DENSE = np.array([
 ])
 
 
-@njit(cache=True, inline=inline_into("rhs"))
+@njit(cache=True, inline=inline_into("rhs", "step"))
 def acceleration(th, thd, side, kap, cd, xg, yg, P):
     """θ̈ of Eqs. (1)–(7) with the block's constants from ``P``. [rad/s^2]"""
     return angular_acceleration(th, thd, side, kap, cd, xg, yg, P[I_P], P[I_G], P[I_SINA], P[I_COSA])
@@ -71,6 +71,8 @@ def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
     K[0, 1] = f0
     a0 = y0
     a1 = y1
+    xg = 0.0
+    yg = 0.0
     for s in range(1, 7):
         if s == 1:  # written (h·a21)·k1, not h·(a21·k1): the grouping of the step's first form, for its bits
             a0 = y0 + hh * STAGE[0, 0] * K[0, 0]
@@ -86,7 +88,11 @@ def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
             a0 = y0 + hh * c0
             a1 = y1 + hh * c1
         K[s, 0] = a1
-        K[s, 1] = rhs(t + STAGE_TIME[s - 1] * hh, a0, a1, side, kap, cd, h_on, P, rec, vert)
+        if s != 6:  # stages 6 and 7 are both at t + h: one reading of the ground motion serves both
+            ts = t + STAGE_TIME[s - 1] * hh
+            xg = ground_acceleration(ts, P, rec) if h_on else 0.0
+            yg = vertical_acceleration(ts, P, vert)
+        K[s, 1] = acceleration(a0, a1, side, kap, cd, xg, yg, P)
     n0 = a0  # the last stage is the 5th-order solution (first same as last)
     n1 = a1
     e0 = hh * (E1 * K[0, 0] + E3 * K[2, 0] + E4 * K[3, 0] + E5 * K[4, 0] + E6 * K[5, 0] + E7 * K[6, 0])
