@@ -215,6 +215,35 @@ def test_energy_bound_never_changes_an_outcome(blc06):
     assert n_stopped_sampled > n_cases // 40  # ... under sampled control too
 
 
+def test_quiet_knots_at_rest_pass_as_the_driver_would(blc06):
+    """At rest under a record the knots pass in one tight loop (outcome runs only); a run with its
+    history on takes every knot through the driver's loop. Both must be the very same run, to the
+    bit: ending, end time, impacts, largest rotation, fracture times."""
+    from rockstudy.engine import _kernel as kn
+    from rockstudy.engine.simulate import pack_parameters
+    from rockstudy.model.noise import noisy_record, record_motion
+
+    rng = np.random.default_rng(11)
+    n_rest_knots = 0
+    for i in range(120):
+        strategy = ("FS", "PASSIVE", "CS01", "CS02")[i % 4]
+        fr = float(rng.uniform(0.5, 5.0))
+        rec = noisy_record("modulated", fr * blc06.p, float(rng.choice([0.01, 0.05, 0.1])), i, 7)
+        kmax = float(rng.uniform(0.1, 3.0))
+        anchorage = Anchorage(kappa_max=kmax, kappa_min=float(rng.uniform(0, kmax)),
+                              damping_ratio=float(rng.uniform(0, 0.1)))
+        motion = record_motion(rec, float(rng.uniform(1.0, 4.0)) * blc06.uplift_acceleration, fr * blc06.p)
+        P = pack_parameters(blc06, anchorage, Control(strategy), motion, free_time=5.0, energy_bound=False)
+        quiet = kn.simulate_kernel(P, motion.record, motion.vertical, False, False)
+        driver = kn.simulate_kernel(P, motion.record, motion.vertical, True, False)
+        assert (quiet.status, quiet.end_time, quiet.n_impacts, quiet.max_abs_theta) == \
+            (driver.status, driver.end_time, driver.n_impacts, driver.max_abs_theta), (i, strategy)
+        np.testing.assert_array_equal(quiet.fracture_times, driver.fracture_times)
+        hist = driver.history
+        n_rest_knots += int(np.sum((hist[:, 1] == 0.0) & (hist[:, 2] == 0.0)))
+    assert n_rest_knots > 1000  # the runs do rest between knots, so the loop is exercised
+
+
 def _pumping_device_peak(block, kappa_high, theta, theta_dot, n_half_cycles=40):
     """Largest |θ| of free rocking under the worst device: K = κ_hi exactly while the block returns
     (sin θ·θ̇ < 0), 0 while it moves out; undamped; impacts by Eq. (14). Independent of the engine:
