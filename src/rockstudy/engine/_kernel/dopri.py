@@ -38,7 +38,7 @@ def acceleration(th, thd, side, kap, cd, xg, yg, P):
     return angular_acceleration(th, thd, side, kap, cd, xg, yg, P[I_P], P[I_G], P[I_SINA], P[I_COSA])
 
 
-@njit(cache=True, inline=inline_into("step"))
+@njit(cache=True)
 def rhs(t, th, thd, side, kap, cd, h_on, P, rec, vert):
     """θ̈ at time t (Ẍg only while the horizontal excitation is on). [rad/s^2]"""
     xg = ground_acceleration(t, P, rec) if h_on else 0.0
@@ -89,7 +89,7 @@ def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
             a1 = y1 + hh * c1
         K[s, 0] = a1
         if s != 6:  # stages 6 and 7 are both at t + h: one reading of the ground motion serves both
-            ts = t + STAGE_TIME[s - 1] * hh
+            ts = t + STAGE_TIME[s - 1] * hh  # the reading of rhs, written out to stay inlined here
             xg = ground_acceleration(ts, P, rec) if h_on else 0.0
             yg = vertical_acceleration(ts, P, vert)
         K[s, 1] = acceleration(a0, a1, side, kap, cd, xg, yg, P)
