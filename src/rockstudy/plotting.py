@@ -757,40 +757,35 @@ def figure_design_winner(blocks):
     return fig
 
 
-def figure_design_size_effect(blocks):
-    """The size effect: fragility median [g] against R for every strategy, one panel per alpha."""
-    alpha = blocks.alpha.values
-    fig, axes = plt.subplots(1, len(alpha), figsize=(2.6 * len(alpha), 3.4), sharey=True, squeeze=False)
-    for j, a in enumerate(alpha):
+def _median_panels(ds, panel, x, xlabel, title, panel_size, target_g=None):
+    """Fragility median [g] of every strategy against ``x`` (log axis), one panel per value of
+    ``panel`` titled ``title.format(value)``; a dashed target line when ``target_g`` is given."""
+    values = ds[panel].values
+    fig, axes = plt.subplots(1, len(values), figsize=(panel_size[0] * len(values), panel_size[1]), sharey=True,
+                             squeeze=False)
+    for j, v in enumerate(values):
         ax = axes[0, j]
-        for s in blocks.strategy.values:
-            ax.plot(blocks.R.values, blocks.fragility_median.sel(strategy=s, alpha=a).values,
+        for s in ds.strategy.values:
+            ax.plot(ds[x].values, ds.fragility_median.sel({"strategy": s, panel: v}).values,
                     marker=STRATEGY_MARKERS.get(str(s), "o"), color=STRATEGY_COLOURS.get(str(s)), label=str(s))
+        if target_g is not None:
+            ax.axhline(target_g, color="0.3", ls="--", lw=0.8, label=f"target {target_g:g} g")
         ax.set_xscale("log")
-        ax.set_title(rf"$\alpha$ = {a:g} rad", fontsize=9)
-        ax.set_xlabel("R [m]")
+        ax.set_xlabel(xlabel)
+        ax.set_title(title.format(v), fontsize=9)
         ax.grid(True, lw=0.3, alpha=0.5)
-    axes[0, 0].set_ylabel(f"fragility median PGA [g], {blocks.attrs['record_suite']}")
+    axes[0, 0].set_ylabel(f"fragility median PGA [g], {ds.attrs['record_suite']}")
     axes[0, 0].legend(fontsize=7)
     fig.tight_layout()
     return fig
+
+
+def figure_design_size_effect(blocks):
+    """The size effect: fragility median [g] against R for every strategy, one panel per alpha."""
+    return _median_panels(blocks, "alpha", "R", "R [m]", r"$\alpha$ = {:g} rad", (2.6, 3.4))
 
 
 def figure_design_devices(devices, target_g: float):
     """Fragility median [g] of every strategy against kappa_max, one panel per xi, with the target."""
-    xis = devices.damping_ratio.values
-    fig, axes = plt.subplots(1, len(xis), figsize=(4.2 * len(xis), 3.6), sharey=True, squeeze=False)
-    for j, xi in enumerate(xis):
-        ax = axes[0, j]
-        for s in devices.strategy.values:
-            ax.plot(devices.kappa_max.values, devices.fragility_median.sel(strategy=s, damping_ratio=xi).values,
-                    marker=STRATEGY_MARKERS.get(str(s), "o"), color=STRATEGY_COLOURS.get(str(s)), label=str(s))
-        ax.axhline(target_g, color="0.3", ls="--", lw=0.8, label=f"target {target_g:g} g")
-        ax.set_xscale("log")
-        ax.set_xlabel(r"$\kappa_{max}$ [-]")
-        ax.set_title(rf"$\xi$ = {xi:g}", fontsize=9)
-        ax.grid(True, lw=0.3, alpha=0.5)
-    axes[0, 0].set_ylabel(f"fragility median PGA [g], {devices.attrs['record_suite']}")
-    axes[0, 0].legend(fontsize=7)
-    fig.tight_layout()
-    return fig
+    return _median_panels(devices, "damping_ratio", "kappa_max", r"$\kappa_{max}$ [-]", r"$\xi$ = {:g}", (4.2, 3.6),
+                          target_g=target_g)
