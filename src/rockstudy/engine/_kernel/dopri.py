@@ -38,7 +38,7 @@ def acceleration(th, thd, side, kap, cd, xg, yg, P):
     return angular_acceleration(th, thd, side, kap, cd, xg, yg, P[I_P], P[I_G], P[I_SINA], P[I_COSA])
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("integrate", "simulate_kernel"))
 def rhs(t, th, thd, side, kap, cd, h_on, P, rec, vert):
     """θ̈ at time t (Ẍg only while the horizontal excitation is on). [rad/s^2]"""
     xg = ground_acceleration(t, P, rec) if h_on else 0.0
@@ -103,17 +103,40 @@ def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
     return n0, n1, err
 
 
-@njit(cache=True, inline=inline_into("event_value"))
-def dense(sig, h, y0, y1, K):
-    """State (θ, θ̇) at t0 + sig·h from the continuous extension of the step."""
-    s1 = sig
-    s2 = s1 * sig
-    s3 = s2 * sig
-    s4 = s3 * sig
-    a = y0
-    b = y1
-    for i in range(7):
-        w = DENSE[i, 0] * s1 + DENSE[i, 1] * s2 + DENSE[i, 2] * s3 + DENSE[i, 3] * s4
-        a += h * w * K[i, 0]
-        b += h * w * K[i, 1]
+@njit(cache=True, inline="always")
+def dense_coefficients(h, y0, y1, K, Q):
+    """The step's continuous extension as two quartics in sig, the fraction of the step:
+    θ(t0 + sig·h) = Σ_j Q[0, j]·sig^j and θ̇ = Σ_j Q[1, j]·sig^j (j = 0 … 4), from the stages ``K``.
+
+    Computed once for a step whose events are located: each point on the step is then a Horner
+    evaluation (:func:`dense_at`) instead of a sum over the seven stages.
+    """
+    Q[0, 0] = y0
+    Q[1, 0] = y1
+    for j in range(4):
+        c0 = DENSE[0, j] * K[0, 0]
+        c1 = DENSE[0, j] * K[0, 1]
+        for i in range(2, 7):  # the row of k2 is zero
+            c0 += DENSE[i, j] * K[i, 0]
+            c1 += DENSE[i, j] * K[i, 1]
+        Q[0, j + 1] = h * c0
+        Q[1, j + 1] = h * c1
+
+
+@njit(cache=True, inline="always")
+def dense_at(sig, Q):
+    """State (θ, θ̇) at t0 + sig·h from the step's :func:`dense_coefficients`."""
+    a = Q[0, 4]
+    b = Q[1, 4]
+    for j in range(3, -1, -1):
+        a = a * sig + Q[0, j]
+        b = b * sig + Q[1, j]
     return a, b
+
+
+@njit(cache=True)
+def dense(sig, h, y0, y1, K):
+    """State (θ, θ̇) at t0 + sig·h from the continuous extension of the step (its stages ``K``)."""
+    Q = np.empty((2, 5))
+    dense_coefficients(h, y0, y1, K, Q)
+    return dense_at(sig, Q)

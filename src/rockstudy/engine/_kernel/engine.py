@@ -34,7 +34,7 @@ from rockstudy.core.constants import (
     TIME_TOLERANCE,
 )
 from rockstudy.engine._kernel import dopri, maps
-from rockstudy.engine._kernel.events import exit_value, locate, scan_exit
+from rockstudy.engine._kernel.events import event_quartic, exit_value, locate, locate_sensed, scan_exit
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from rockstudy.engine._kernel.layout import (
     C_BOUND,
@@ -436,12 +436,13 @@ def _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec):
 
 
 @njit(cache=True, inline="always")
-def search_events(t, hh, y0, y1, n0, n1, K, side, hint, x_hint, use_thd_event, use_xg_event, th_over,
+def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event, use_xg_event, th_over,
                   track_fracture, th_ku, th_du, spring, damper, max_abs, P, rec):
     """The event search of one accepted step from (θ, θ̇) = (y0, y1) at t to (n0, n1) at t + hh (its
     stages in ``K``): the earliest state event on (t, t + hh] — an impact (side·θ reaches 0), the
     overturning rotation, a working element's ultimate rotation, the CS01 switch (θ̇ = 0), the CS02
-    switch (sensed Ẍg = 0) — located on the continuous extension.
+    switch (sensed Ẍg = 0) — located on the continuous extension, whose coefficients are written
+    to ``Q`` when an event is to be located.
 
     Returns (best, negligible, max_abs): ``best`` the event's fraction of the step (> 1: none;
     < 0: θ left 0 and came back within the step, which must be retried with a smaller one),
@@ -450,10 +451,13 @@ def search_events(t, hh, y0, y1, n0, n1, K, side, hint, x_hint, use_thd_event, u
     """
     best = 2.0
     negligible = False
+    have_q = False
     # impact: side·θ crosses to <= 0
     if side * n0 <= 0.0:
         if side * y0 > 0.0:
-            best = locate(1.0, hh, y0, y1, K, side, 0.0, 0.0, 0.0, t, P, rec)
+            dopri.dense_coefficients(hh, y0, y1, K, Q)
+            have_q = True
+            best = locate(1.0, *event_quartic(Q, side, 0.0, 0.0))
         elif hh > NEGLIGIBLE_STEP:
             return -1.0, False, max_abs
         else:
@@ -463,17 +467,24 @@ def search_events(t, hh, y0, y1, n0, n1, K, side, hint, x_hint, use_thd_event, u
     # rotation threshold may be crossed and re-crossed within the step (grazing)
     peak = side * n0
     sig_peak = 1.0
+    sa_ = -1.0
     if not negligible and side * y1 > 0.0 and side * n1 <= 0.0:
-        sa_ = locate(1.0, hh, y0, y1, K, 0.0, side, 0.0, 0.0, t, P, rec)
+        if not have_q:
+            dopri.dense_coefficients(hh, y0, y1, K, Q)
+            have_q = True
+        sa_ = locate(1.0, *event_quartic(Q, 0.0, side, 0.0))
         if sa_ >= 0.0:
-            a, b = dopri.dense(sa_, hh, y0, y1, K)
+            a, b = dopri.dense_at(sa_, Q)
             if side * a > peak:
                 peak = side * a
                 sig_peak = sa_
             if abs(a) > max_abs:
                 max_abs = abs(a)
     if not negligible and peak - th_over >= 0.0 and side * y0 - th_over < 0.0:
-        s = locate(min(best, sig_peak), hh, y0, y1, K, -side, 0.0, 0.0, th_over, t, P, rec)
+        if not have_q:
+            dopri.dense_coefficients(hh, y0, y1, K, Q)
+            have_q = True
+        s = locate(min(best, sig_peak), *event_quartic(Q, -side, 0.0, th_over))
         if s >= 0.0:
             best = s
     if track_fracture:
@@ -481,35 +492,48 @@ def search_events(t, hh, y0, y1, n0, n1, K, side, hint, x_hint, use_thd_event, u
             thu = th_ku if k == 0 else th_du
             intact = spring if k == 0 else damper
             if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and peak - thu >= 0.0:
-                s = locate(min(best, sig_peak), hh, y0, y1, K, -side, 0.0, 0.0, thu, t, P, rec)
+                if not have_q:
+                    dopri.dense_coefficients(hh, y0, y1, K, Q)
+                    have_q = True
+                s = locate(min(best, sig_peak), *event_quartic(Q, -side, 0.0, thu))
                 if s >= 0.0:
                     best = s
     if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
-        s = locate(min(best, 1.0), hh, y0, y1, K, 0.0, hint, 0.0, 0.0, t, P, rec)
+        if hint == side and best > 1.0 and side * y1 > 0.0 and side * n1 <= 0.0:
+            s = sa_  # the apex located above: the same root of the same function on (0, 1]
+        else:
+            if not have_q:
+                dopri.dense_coefficients(hh, y0, y1, K, Q)
+                have_q = True
+            s = locate(min(best, 1.0), *event_quartic(Q, 0.0, hint, 0.0))
         if s >= 0.0:
             best = s
     if not negligible and use_xg_event and x_hint != 0.0:
         if x_hint * sensed_acceleration(t + hh, P, rec) <= 0.0:
-            s = locate(min(best, 1.0), hh, y0, y1, K, 0.0, 0.0, x_hint, 0.0, t, P, rec)
+            if not have_q:
+                dopri.dense_coefficients(hh, y0, y1, K, Q)
+                have_q = True
+            s = locate_sensed(min(best, 1.0), *event_quartic(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P,
+                                  rec)
             if s >= 0.0:
                 best = s
     return best, negligible, max_abs
 
 
 @njit(cache=True, inline="always")
-def _event_point(best, negligible, t, hh, y0, y1, n0, n1, K):
+def _event_point(best, negligible, t, hh, n0, n1, Q):
     """(t, θ, θ̇) at the located event, fraction ``best`` of the step: the step's end itself when
     best = 1, back on the ground (θ = θ̇ = 0) after a negligible excursion."""
     if negligible:
         return t + hh, 0.0, 0.0
     if best == 1.0:
         return t + hh, n0, n1
-    a, b = dopri.dense(best, hh, y0, y1, K)
+    a, b = dopri.dense_at(best, Q)
     return t + best * hh, a, b
 
 
 @njit(cache=True, inline=inline_into("simulate_kernel"))
-def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
+def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history):
     """ROCK: Dormand–Prince steps towards ``t_next``, each accepted step searched for state events
     (impact, overturning rotation, fractures, the CS01/CS02 switches); stops at the earliest,
     located on the continuous extension. A step ends on every known-time event; at a record knot
@@ -561,7 +585,7 @@ def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
             h = hh * max(0.2, 0.9 * err ** -0.2)
             continue
         # ---- accepted: look for state events on (t, t + hh] ----
-        best, negligible, max_abs = search_events(t, hh, y0, y1, n0, n1, K, side, hint, x_hint, use_thd_event,
+        best, negligible, max_abs = search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event,
                                                   use_xg_event, th_over, track_fracture, th_ku, th_du, spring,
                                                   damper, max_abs, P, rec)
         if best < 0.0:
@@ -573,7 +597,7 @@ def integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history):
         if best <= 1.0:
             # ---- move to the earliest event ----
             S[R_N_EVENTS] += 1
-            t, th, thd = _event_point(best, negligible, t, hh, y0, y1, n0, n1, K)
+            t, th, thd = _event_point(best, negligible, t, hh, n0, n1, Q)
             if abs(th) > max_abs:
                 max_abs = abs(th)
             result = EVENT
@@ -681,6 +705,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     S = initial_state(P, C, rec)
     queue_times, queue_values = maps.queue_new(P[I_DELAY], P[I_TS])
     K = np.zeros((7, 2))
+    Q = np.zeros((2, 5))
     impacts = np.empty(16 if want_log else 0)
     n_imp_log = np.int64(0)
     uplifts = np.empty(16 if want_log else 0)
@@ -721,7 +746,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
             break
         if S[R_APEX] != 0.0 and apex(S, C, P, rec, vert) == HELD:
             continue
-        result, H, nh = integrate(S, C, P, rec, vert, K, t_next, queue_times, H, nh, want_history)
+        result, H, nh = integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history)
         if result == OVERTURNED:
             status = ST_OVER
             break

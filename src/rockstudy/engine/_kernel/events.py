@@ -9,43 +9,40 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from rockstudy.core._inline import inline_into
 from rockstudy.core.constants import LOCATE_TOLERANCE
-from rockstudy.engine._kernel.dopri import acceleration, dense
+from rockstudy.engine._kernel.dopri import acceleration
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from rockstudy.engine._kernel.layout import I_ALPHA, I_G, I_KIND, I_OMEGA, MODE_REST
 from rockstudy.model.excitation import MODULATED, ONE_SINE
+
+_NONE = np.zeros(0)
 
 REST_HOLD_SCAN_DIVISIONS = 256.0
 """An analytic excitation's period is scanned in this many pieces for a REST/HOLD exit (a root of a
 smooth function cannot hide inside 1/256 of a period at the amplitudes that matter)."""
 
 
-@njit(cache=True, inline=inline_into("locate"))
-def event_value(sig, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec):
-    """g = a_th·θ + a_thd·θ̇ + a_x·Ẍg + c at t + sig·hh (Ẍg as the controller senses it, only when a_x != 0)."""
-    a, b = dense(sig, hh, y0, y1, K)
-    g = a_th * a + a_thd * b + c
-    if a_x != 0.0:
-        g += a_x * sensed_acceleration(t + sig * hh, P, rec)
-    return g
+@njit(cache=True, inline="always")
+def event_quartic(Q, a_th, a_thd, c):
+    """The coefficients (g0 … g4) of g = a_th·θ + a_thd·θ̇ + c on a step, a quartic in the fraction
+    of the step, from the step's :func:`~rockstudy.engine._kernel.dopri.dense_coefficients` ``Q``."""
+    return (a_th * Q[0, 0] + a_thd * Q[1, 0] + c, a_th * Q[0, 1] + a_thd * Q[1, 1], a_th * Q[0, 2] + a_thd * Q[1, 2],
+            a_th * Q[0, 3] + a_thd * Q[1, 3], a_th * Q[0, 4] + a_thd * Q[1, 4])
 
 
-@njit(cache=True)
-def locate(hi, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec):
-    """Earliest sig in (0, hi] where g (positive at 0) reaches <= 0, by the Illinois method.
+@njit(cache=True, inline="always")
+def _quartic_at(sig, g0, g1, g2, g3, g4):
+    return (((g4 * sig + g3) * sig + g2) * sig + g1) * sig + g0
 
-    Returns -1 when g(hi) > 0 (no crossing before ``hi``). The returned point always has g <= 0.
-    """
-    fhi = event_value(hi, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec)
-    if fhi > 0.0:
-        return -1.0
+
+@njit(cache=True, inline="always")
+def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
+    """The Illinois iterations of :func:`locate` on a bracket (0, hi] with g(0) = flo > 0 >= g(hi) = fhi."""
     lo = 0.0
-    flo = event_value(0.0, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec)
-    if flo <= 0.0:
-        return hi  # degenerate start on the surface: take the step end
     last = 0
     for _ in range(200):
         if hi - lo <= LOCATE_TOLERANCE:
@@ -53,7 +50,9 @@ def locate(hi, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec):
         s = hi - fhi * (hi - lo) / (fhi - flo)
         if not (lo < s < hi):
             s = 0.5 * (lo + hi)
-        f = event_value(s, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec)
+        f = _quartic_at(s, g0, g1, g2, g3, g4)
+        if a_x != 0.0:
+            f += a_x * sensed_acceleration(t + s * hh, P, rec)
         if f <= 0.0:
             hi = s
             fhi = f
@@ -70,6 +69,33 @@ def locate(hi, hh, y0, y1, K, a_th, a_thd, a_x, c, t, P, rec):
 
 
 @njit(cache=True)
+def locate(hi, g0, g1, g2, g3, g4):
+    """Earliest sig in (0, hi] where the quartic g = g0 + g1·sig + … + g4·sig^4 (positive at 0;
+    :func:`event_quartic`) reaches <= 0, by the Illinois method.
+
+    Returns -1 when g(hi) > 0 (no crossing before ``hi``). The returned point always has g <= 0.
+    """
+    fhi = _quartic_at(hi, g0, g1, g2, g3, g4)
+    if fhi > 0.0:
+        return -1.0
+    if g0 <= 0.0:
+        return hi  # degenerate start on the surface: take the step end
+    return _illinois(hi, fhi, g0, g0, g1, g2, g3, g4, 0.0, 0.0, 0.0, _NONE, _NONE)
+
+
+@njit(cache=True)
+def locate_sensed(hi, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
+    """:func:`locate` for g = quartic + a_x·Ẍg(t + sig·hh) as the controller senses it (the CS02 switch)."""
+    fhi = _quartic_at(hi, g0, g1, g2, g3, g4) + a_x * sensed_acceleration(t + hi * hh, P, rec)
+    if fhi > 0.0:
+        return -1.0
+    flo = g0 + a_x * sensed_acceleration(t, P, rec)
+    if flo <= 0.0:
+        return hi
+    return _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, a_x, t, hh, P, rec)
+
+
+@njit(cache=True, inline=inline_into("pass_quiet_knots", "scan_exit", "simulate_kernel"))
 def exit_value(mode, t, th, side, kap_max_eff, kap_min_eff, h_on, P, rec, vert):
     """> 0 when the block leaves REST (uplift, |Ẍg| > (g + Ÿg)·tanα) or HOLD (either side of the
     CS01 sliding surface, docs/model.md, "CS01 sliding")."""
