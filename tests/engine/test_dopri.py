@@ -93,3 +93,34 @@ def test_dense_output_meets_both_ends_and_tracks_the_solution():
     sol = solve_ivp(f, (t, t + h), y, method="DOP853", rtol=1e-13, atol=1e-15, dense_output=True)
     for sig in (0.25, 0.5, 0.8):
         np.testing.assert_allclose(dopri.dense(sig, h, y[0], y[1], K), sol.sol(t + sig * h), rtol=1e-7, atol=1e-10)
+
+
+def test_dense_quartic_is_the_shampine_extension_summed_over_the_stages():
+    """dense_coefficients/dense_at (Horner in sig) against the continuous extension written as in
+    Shampine (1986): y0 + h·Σ_i b_i(sig)·k_i with b_i(sig) = Σ_j DENSE[i, j]·sig^(j+1)."""
+    P, f = _problem()
+    t, y, h = 0.6, np.array([0.05, 0.2]), 0.02
+    _, _, K = _step(P, f, t, y, h)
+    Q = np.zeros((2, 5))
+    dopri.dense_coefficients(h, y[0], y[1], K, Q)
+    for sig in np.linspace(0.0, 1.0, 11):
+        b = dopri.DENSE @ (sig ** np.arange(1, 5))
+        expected = y + h * (b @ K)
+        np.testing.assert_allclose(dopri.dense_at(sig, Q), expected, rtol=1e-14, atol=1e-17)
+
+
+def test_locate_finds_the_root_of_a_quartic_from_the_right():
+    """locate returns a point within LOCATE_TOLERANCE at or after the root, where g <= 0, and -1
+    when g stays positive; the same for locate_sensed with a_x = 0 on any record."""
+    from rockstudy.core.constants import LOCATE_TOLERANCE
+    from rockstudy.engine._kernel.events import locate, locate_sensed
+
+    for root in (1e-6, 0.137, 0.5, 0.999):
+        # g = (root - sig)·(1 + sig²)·0.3 = 0.3·(root - sig + root·sig² - sig³): positive before the root
+        g = (0.3 * root, -0.3, 0.3 * root, -0.3, 0.0)
+        s = locate(1.0, *g)
+        value = (((g[4] * s + g[3]) * s + g[2]) * s + g[1]) * s + g[0]  # Horner, as the kernel
+        assert value <= 0.0 and root <= s <= root + LOCATE_TOLERANCE + 1e-15, (root, s)
+        assert locate_sensed(1.0, *g, 0.0, 0.0, 0.01, _problem()[0], NONE) == s
+    assert locate(1.0, 1.0, 0.1, 0.0, 0.0, 0.0) == -1.0  # no crossing
+    assert locate(0.5, 0.3 * 0.7, -0.3, 0.0, 0.0, 0.0) == -1.0  # the root (0.7) lies beyond hi
