@@ -17,7 +17,8 @@ block (paper Eqs. 1–17), in numba, in small parts:
 Integration: Dormand–Prince 5(4) with error control (rtol, atol), first-same-as-last, and the
 4th-order continuous extension to locate state events: impacts (θ = 0), overturning, fractures,
 the CS01 switch (θ̇ = 0) and the CS02 switch (Ẍg = 0), by the Illinois method on the
-interpolant (a quartic in the fraction of the step, its coefficients summed once per step). Known-time events are never stepped over: the end of the excitation, record knots,
+interpolant (a quartic in the fraction of the step, its coefficients summed once per step).
+Known-time events are never stepped over: the end of the excitation, record knots,
 controller sample and actuation instants. Three modes: REST, ROCK and HOLD (the CS01 Filippov
 sliding state, docs/model.md, "CS01 sliding"). See ``docs/model.md``.
 """

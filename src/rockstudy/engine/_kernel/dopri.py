@@ -38,7 +38,7 @@ def acceleration(th, thd, side, kap, cd, xg, yg, P):
     return angular_acceleration(th, thd, side, kap, cd, xg, yg, P[I_P], P[I_G], P[I_SINA], P[I_COSA])
 
 
-@njit(cache=True, inline=inline_into("integrate", "simulate_kernel"))
+@njit(cache=True)
 def rhs(t, th, thd, side, kap, cd, h_on, P, rec, vert):
     """θ̈ at time t (Ẍg only while the horizontal excitation is on). [rad/s^2]"""
     xg = ground_acceleration(t, P, rec) if h_on else 0.0
@@ -103,7 +103,7 @@ def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
     return n0, n1, err
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def dense_coefficients(h, y0, y1, K, Q):
     """The step's continuous extension as two quartics in sig, the fraction of the step:
     θ(t0 + sig·h) = Σ_j Q[0, j]·sig^j and θ̇ = Σ_j Q[1, j]·sig^j (j = 0 … 4), from the stages ``K``.

@@ -12,7 +12,6 @@ import math
 import numpy as np
 from numba import njit
 
-from rockstudy.core._inline import inline_into
 from rockstudy.core.constants import LOCATE_TOLERANCE
 from rockstudy.engine._kernel.dopri import acceleration
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
@@ -95,7 +94,7 @@ def locate_sensed(hi, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
     return _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, a_x, t, hh, P, rec)
 
 
-@njit(cache=True, inline=inline_into("pass_quiet_knots", "scan_exit", "simulate_kernel"))
+@njit(cache=True)
 def exit_value(mode, t, th, side, kap_max_eff, kap_min_eff, h_on, P, rec, vert):
     """> 0 when the block leaves REST (uplift, |Ẍg| > (g + Ÿg)·tanα) or HOLD (either side of the
     CS01 sliding surface, docs/model.md, "CS01 sliding")."""

@@ -20,8 +20,7 @@ from rockstudy.model.excitation import (
 )
 
 
-@njit(cache=True, inline=inline_into("rhs", "step", "sensed_acceleration", "exit_value", "integrate",
-                                     "simulate_kernel"))
+@njit(cache=True, inline=inline_into("rhs", "step", "sensed_acceleration"))
 def ground_acceleration(t, P, rec):
     """Horizontal ground acceleration Ẍg(t) while the excitation lasts, zero outside. [m/s^2]"""
     dur = P[I_DUR]
@@ -51,7 +50,7 @@ def sensed_acceleration(t, P, rec):
     return P[I_AMP] * interpolate_record(t, P[I_SDT], rec[int(P[I_SOFF]):])
 
 
-@njit(cache=True, inline=inline_into("rhs", "step", "exit_value", "integrate", "simulate_kernel"))
+@njit(cache=True, inline=inline_into("rhs", "step"))
 def vertical_acceleration(t, P, vert):
     """Vertical ground acceleration Ÿg(t), linear between samples, zero outside. [m/s^2]"""
     n = vert.shape[0]
