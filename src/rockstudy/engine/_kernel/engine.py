@@ -436,6 +436,14 @@ def _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec):
 
 
 @njit(cache=True, inline="always")
+def _coefficients_once(have_q, hh, y0, y1, K, Q):
+    """Write the step's dense-output coefficients to ``Q`` unless this step already has; True."""
+    if not have_q:
+        dopri.dense_coefficients(hh, y0, y1, K, Q)
+    return True
+
+
+@njit(cache=True, inline="always")
 def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event, use_xg_event, th_over,
                   track_fracture, th_ku, th_du, spring, damper, max_abs, P, rec):
     """The event search of one accepted step from (θ, θ̇) = (y0, y1) at t to (n0, n1) at t + hh (its
@@ -455,8 +463,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event
     # impact: side·θ crosses to <= 0
     if side * n0 <= 0.0:
         if side * y0 > 0.0:
-            dopri.dense_coefficients(hh, y0, y1, K, Q)
-            have_q = True
+            have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
             best = locate(1.0, *event_quartic(Q, side, 0.0, 0.0))
         elif hh > NEGLIGIBLE_STEP:
             return -1.0, False, max_abs
@@ -469,9 +476,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event
     sig_peak = 1.0
     sa_ = -1.0
     if not negligible and side * y1 > 0.0 and side * n1 <= 0.0:
-        if not have_q:
-            dopri.dense_coefficients(hh, y0, y1, K, Q)
-            have_q = True
+        have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
         sa_ = locate(1.0, *event_quartic(Q, 0.0, side, 0.0))
         if sa_ >= 0.0:
             a, b = dopri.dense_at(sa_, Q)
@@ -481,9 +486,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event
             if abs(a) > max_abs:
                 max_abs = abs(a)
     if not negligible and peak - th_over >= 0.0 and side * y0 - th_over < 0.0:
-        if not have_q:
-            dopri.dense_coefficients(hh, y0, y1, K, Q)
-            have_q = True
+        have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
         s = locate(min(best, sig_peak), *event_quartic(Q, -side, 0.0, th_over))
         if s >= 0.0:
             best = s
@@ -492,9 +495,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event
             thu = th_ku if k == 0 else th_du
             intact = spring if k == 0 else damper
             if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and peak - thu >= 0.0:
-                if not have_q:
-                    dopri.dense_coefficients(hh, y0, y1, K, Q)
-                    have_q = True
+                have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
                 s = locate(min(best, sig_peak), *event_quartic(Q, -side, 0.0, thu))
                 if s >= 0.0:
                     best = s
@@ -502,17 +503,13 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event
         if hint == side and best > 1.0 and side * y1 > 0.0 and side * n1 <= 0.0:
             s = sa_  # the apex located above: the same root of the same function on (0, 1]
         else:
-            if not have_q:
-                dopri.dense_coefficients(hh, y0, y1, K, Q)
-                have_q = True
+            have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
             s = locate(min(best, 1.0), *event_quartic(Q, 0.0, hint, 0.0))
         if s >= 0.0:
             best = s
     if not negligible and use_xg_event and x_hint != 0.0:
         if x_hint * sensed_acceleration(t + hh, P, rec) <= 0.0:
-            if not have_q:
-                dopri.dense_coefficients(hh, y0, y1, K, Q)
-                have_q = True
+            have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
             s = locate_sensed(min(best, 1.0), *event_quartic(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P,
                                   rec)
             if s >= 0.0:
