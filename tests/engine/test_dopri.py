@@ -109,18 +109,39 @@ def test_dense_quartic_is_the_shampine_extension_summed_over_the_stages():
         np.testing.assert_allclose(dopri.dense_at(sig, Q), expected, rtol=1e-14, atol=1e-17)
 
 
+def _horner(g, s):
+    return (((g[4] * s + g[3]) * s + g[2]) * s + g[1]) * s + g[0]  # as the kernel evaluates g
+
+
 def test_locate_finds_the_root_of_a_quartic_from_the_right():
-    """locate returns a point within LOCATE_TOLERANCE at or after the root, where g <= 0, and -1
-    when g stays positive; the same for locate_sensed with a_x = 0 on any record."""
+    """locate (Newton in the bracket) returns a point within LOCATE_TOLERANCE at or after the root,
+    where g <= 0, and -1 when g stays positive; so does locate_sensed (Illinois) with a_x = 0."""
     from rockstudy.core.constants import LOCATE_TOLERANCE
     from rockstudy.engine._kernel.events import locate, locate_sensed
 
     for root in (1e-6, 0.137, 0.5, 0.999):
         # g = (root - sig)·(1 + sig²)·0.3 = 0.3·(root - sig + root·sig² - sig³): positive before the root
         g = (0.3 * root, -0.3, 0.3 * root, -0.3, 0.0)
-        s = locate(1.0, *g)
-        value = (((g[4] * s + g[3]) * s + g[2]) * s + g[1]) * s + g[0]  # Horner, as the kernel
-        assert value <= 0.0 and root <= s <= root + LOCATE_TOLERANCE + 1e-15, (root, s)
-        assert locate_sensed(1.0, *g, 0.0, 0.0, 0.01, _problem()[0], NONE) == s
+        for s in (locate(1.0, *g), locate_sensed(1.0, *g, 0.0, 0.0, 0.01, _problem()[0], NONE)):
+            assert _horner(g, s) <= 0.0 and root - 1e-15 <= s <= root + LOCATE_TOLERANCE + 1e-15, (root, s)
     assert locate(1.0, 1.0, 0.1, 0.0, 0.0, 0.0) == -1.0  # no crossing
     assert locate(0.5, 0.3 * 0.7, -0.3, 0.0, 0.0, 0.0) == -1.0  # the root (0.7) lies beyond hi
+
+
+@pytest.mark.parametrize("g, root, close", [
+    # a triple root: g' = 0 there and g is round-off noise within ~1e-5 of it; the bracket's
+    # midpoint takes over from Newton
+    ((0.4 ** 3, -3 * 0.4 ** 2, 3 * 0.4, -1.0, 0.0), 0.4, 1e-4),
+    # g rises to a maximum inside before it falls (Newton from the secant point leaves the bracket)
+    ((1e-3, 2.0, -2.5, 0.0, 0.0), (2.0 + math.sqrt(4.0 + 1e-2)) / 5.0, 1e-12),
+    # nearly flat at the start, steep at the end
+    ((1e-9, -1e-6, 0.0, 0.0, -1.0), 0.0009990039781390383, 2e-13),
+])
+def test_locate_keeps_to_the_bracket_on_hard_quartics(g, root, close):
+    """Flat and non-monotone quartics with one crossing in (0, 1]: the point returned has g <= 0
+    and lies at the root (the bracket [lo, hi] with g(lo) > 0 >= g(hi) is never lost)."""
+    from rockstudy.engine._kernel.events import locate
+
+    s = locate(1.0, *g)
+    assert _horner(g, s) <= 0.0
+    assert abs(s - root) <= close, (s, root)

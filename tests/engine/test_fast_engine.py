@@ -299,3 +299,35 @@ def test_switching_bound_against_a_pumping_device(blc06):
             pumped_over += 1
     assert accepted >= 15
     assert pumped_over >= 5
+
+
+def test_functions_compiled_without_reference_counting_count_none():
+    """The engine's hot functions are compiled with ``core._inline.NO_REFCOUNT`` (numba's private
+    ``_nrt`` flag), and numba honours the flag: a function compiled with it that reads and writes
+    arrays calls neither NRT_incref nor NRT_decref, the same function compiled without it does. A
+    numba that drops or renames the flag fails here instead of silently slowing the engine down."""
+    import re
+
+    from numba import njit
+
+    from rockstudy.core._inline import NO_REFCOUNT
+    from rockstudy.engine._kernel import dopri, engine, events, ground
+
+    for fn in (engine.integrate, dopri.rhs, dopri.dense_coefficients, ground.ground_acceleration,
+               ground.sensed_acceleration, events.scan_exit, events.locate_sensed):
+        assert all(fn.targetoptions.get(k) == v for k, v in NO_REFCOUNT.items()), fn.__name__
+
+    def body(a, b, n):
+        s = 0.0
+        for i in range(n):
+            if a[i % a.shape[0]] > 0.0:
+                b[i % b.shape[0]] = s
+                s += a[(i + 1) % a.shape[0]]
+        return s
+
+    def counts(fn):
+        fn(np.ones(3), np.zeros(2), 10)
+        return len(re.findall(r"call \w+ @NRT_(?:incref|decref)", fn.inspect_llvm(fn.signatures[0])))
+
+    assert counts(njit(**NO_REFCOUNT)(body)) == 0
+    assert counts(njit(body)) > 0

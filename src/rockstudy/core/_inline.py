@@ -24,3 +24,14 @@ def inline_into(*callers: str):
 
     cost_model.__name__ = f"inline_into_{'_'.join(sorted(names))}"
     return cost_model
+
+
+NO_REFCOUNT = {"_nrt": False}
+"""numba options of a compiled function that counts no references (numba's ``_nrt`` flag).
+
+A compiled function increfs and decrefs every array it is handed, atomically, wherever numba's
+pruning leaves the pair: in the engine's step loop that was about a tenth of a run. A function
+compiled with these options does no counting; it must allocate no array and return none (it may
+read and write the arrays it is given, which its caller keeps alive). The flag is numba's own,
+though not in its documented options, so ``tests/engine/test_fast_engine.py`` checks that the
+functions compiled with it still count nothing."""

@@ -7,7 +7,7 @@ import math
 import numpy as np
 from numba import njit
 
-from rockstudy.core._inline import inline_into
+from rockstudy.core._inline import NO_REFCOUNT, inline_into
 from rockstudy.engine._kernel.ground import ground_acceleration, vertical_acceleration
 from rockstudy.engine._kernel.layout import I_COSA, I_G, I_P, I_SINA
 from rockstudy.model.equation_of_motion import angular_acceleration
@@ -32,13 +32,13 @@ DENSE = np.array([
 ])
 
 
-@njit(cache=True, inline=inline_into("rhs", "step"))
+@njit(cache=True, inline=inline_into("rhs", "step", "exit_value"))
 def acceleration(th, thd, side, kap, cd, xg, yg, P):
     """θ̈ of Eqs. (1)–(7) with the block's constants from ``P``. [rad/s^2]"""
     return angular_acceleration(th, thd, side, kap, cd, xg, yg, P[I_P], P[I_G], P[I_SINA], P[I_COSA])
 
 
-@njit(cache=True)
+@njit(cache=True, **NO_REFCOUNT)
 def rhs(t, th, thd, side, kap, cd, h_on, P, rec, vert):
     """θ̈ at time t (Ẍg only while the horizontal excitation is on). [rad/s^2]"""
     xg = ground_acceleration(t, P, rec) if h_on else 0.0
@@ -103,7 +103,7 @@ def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
     return n0, n1, err
 
 
-@njit(cache=True)
+@njit(cache=True, **NO_REFCOUNT)
 def dense_coefficients(h, y0, y1, K, Q):
     """The step's continuous extension as two quartics in sig, the fraction of the step:
     θ(t0 + sig·h) = Σ_j Q[0, j]·sig^j and θ̇ = Σ_j Q[1, j]·sig^j (j = 0 … 4), from the stages ``K``.

@@ -24,7 +24,7 @@ import math
 import numpy as np
 from numba import njit
 
-from rockstudy.core._inline import inline_into
+from rockstudy.core._inline import NO_REFCOUNT, inline_into
 from rockstudy.core.constants import (
     FIRST_STEP,
     IMPACT_TOLERANCE,
@@ -34,7 +34,7 @@ from rockstudy.core.constants import (
     TIME_TOLERANCE,
 )
 from rockstudy.engine._kernel import dopri, maps
-from rockstudy.engine._kernel.events import event_quartic, exit_value, locate, locate_sensed, scan_exit
+from rockstudy.engine._kernel.events import event_quartic, locate, locate_sensed, scan_exit
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from rockstudy.engine._kernel.layout import (
     C_BOUND,
@@ -96,9 +96,11 @@ from rockstudy.engine._kernel.layout import (
     R_N_IMPACTS,
     R_Q_COUNT,
     R_Q_HEAD,
+    R_RESUME,
     R_SIDE,
     R_SPRING,
     R_T,
+    R_T_NEXT,
     R_T_OVER,
     R_TH,
     R_THD,
@@ -117,36 +119,65 @@ from rockstudy.model.excitation import RECORD
 
 GROWTH_CAP_ERROR = 5.8e-6
 """Below this scaled error a step's successor grows by the cap, 10x (0.9·err^-0.2 > 10.03)."""
+GROWTH_MARGIN = 1e-9
+"""Relative margin of :func:`_grows_past`, far above the rounding of the power and the products."""
 
 # what a part of the loop reports to the driver (which logs it)
 NOTHING, UPLIFTED, LEFT_HOLD, HELD = 0, 1, 2, 3
-STEPPED, EVENT, OVERTURNED = 0, 1, 2
+STEPPED, EVENT, OVERTURNED, NEED_ROOM = 0, 1, 2, 3
+GROW = -1  # drive: an array is full; grow it and call again
 IMPACT, IMPACT_UPLIFT, IMPACT_REST = 4, 5, 6
 
 
-# ---- growable logs --------------------------------------------------------------------
+# ---- growable logs: written by the loop, grown by simulate_kernel ---------------------------
+HISTORY_RESERVE = 3
+"""Rows of the history array the driver keeps free for its own rows (``integrate`` stops short of them)."""
+LOG_RESERVE = 2
+"""Free slots each event log keeps at the top of the driver's loop (one pass adds at most two)."""
+
+
+@njit(cache=True, inline="always")
+def _hist_full(H, n):
+    """True when the history array has no more room than the driver's reserve."""
+    return n + HISTORY_RESERVE >= H.shape[0]
+
+
+@njit(cache=True, inline="always")
+def _log_full(arr, n):
+    return n + LOG_RESERVE > arr.shape[0]
+
+
 @njit(cache=True)
-def _push(arr, n, v):
-    if n >= arr.shape[0]:
-        new = np.empty(max(16, 2 * arr.shape[0]))
-        new[:n] = arr[:n]
-        arr = new
+def _grow_log(arr, n):
+    """An event log twice as long (at least 16 slots) holding the first ``n`` values of ``arr``."""
+    new = np.empty(max(16, 2 * arr.shape[0]))
+    new[:n] = arr[:n]
+    return new
+
+
+@njit(cache=True, inline="always")
+def _write_log(arr, n, v):
     arr[n] = v
-    return arr, n + 1
+    return n + 1
 
 
 @njit(cache=True)
-def _push_hist(H, n, t, th, thd, kap, xg):
-    if n >= H.shape[0]:
-        new = np.empty((max(256, 2 * H.shape[0]), 5))
-        new[:n] = H[:n]
-        H = new
+def _grow_hist(H, n):
+    """A history array twice as long (at least 256 rows) holding the first ``n`` rows of ``H``."""
+    new = np.empty((max(256, 2 * H.shape[0]), 5))
+    new[:n] = H[:n]
+    return new
+
+
+@njit(cache=True, inline="always")
+def _write_hist(H, n, t, th, thd, kap, xg):
+    """Row ``n`` of the history (the caller has made room)."""
     H[n, 0] = t
     H[n, 1] = th
     H[n, 2] = thd
     H[n, 3] = kap
     H[n, 4] = xg
-    return H, n + 1
+    return n + 1
 
 
 @njit(cache=True)
@@ -291,7 +322,7 @@ def next_known_time(S, C, P, vert, queue_times):
     return t_next
 
 
-@njit(cache=True, inline=inline_into("simulate_kernel"))
+@njit(cache=True, inline=inline_into("drive"))
 def ground_phase(S, C, P, rec, vert, t_next):
     """REST or HOLD up to ``t_next``: find the exit (uplift; leaving the CS01 sliding surface) and
     apply it. Returns NOTHING (still there at ``t_next``), UPLIFTED or LEFT_HOLD."""
@@ -330,7 +361,7 @@ def ground_phase(S, C, P, rec, vert, t_next):
     return LEFT_HOLD
 
 
-@njit(cache=True, inline=inline_into("simulate_kernel"))
+@njit(cache=True, inline=inline_into("drive"))
 def pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next):
     """REST under a record, without sampled control or vertical motion: pass the record knots before
     the end of the excitation at which the block is still at rest in one loop. Each knot gets what the
@@ -338,8 +369,11 @@ def pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next):
     known-time events (none: a knot changes nothing, only a pending apex invalidates the stored
     derivative) and the same next known time — without the rest of the loop. Returns the known-time
     event from which :func:`ground_phase` goes on. [s]"""
+    # events.exit_value's REST test, (g + Ÿg)·tanα with Ÿg = 0 (no vertical record here), its tan
+    # taken once and the ground reading inlined: the same bits without a call per knot
+    uplift = P[I_G] * math.tan(P[I_ALPHA])
     while t_next < P[I_DUR] and t_next > S[R_T]:
-        if exit_value(MODE_REST, t_next, 0.0, 1.0, 0.0, 0.0, True, P, rec, vert) > 0.0:
+        if abs(ground_acceleration(t_next, P, rec)) - uplift > 0.0:
             break  # uplift inside (t, t_next]: ground_phase locates it
         S[R_T] = t_next
         if S[R_APEX] != 0.0:
@@ -348,7 +382,7 @@ def pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next):
     return t_next
 
 
-@njit(cache=True, inline=inline_into("simulate_kernel"))
+@njit(cache=True, inline=inline_into("drive"))
 def known_time_events(S, C, P, rec, queue_times, queue_values):
     """Apply what happens at a known-time event: the end of the excitation, controller samples due
     (decision k taken at k·T_s acts from k·T_s + Δτ), decisions that act now. A record knot
@@ -382,7 +416,7 @@ def known_time_events(S, C, P, rec, queue_times, queue_values):
         S[R_F0_OK] = 0.0
 
 
-@njit(cache=True, inline=inline_into("simulate_kernel"))
+@njit(cache=True, inline=inline_into("drive"))
 def below_overturning_energy(S, C, P):
     """True when the block, free of excitation, provably cannot overturn any more (docs/model.md)."""
     if C[C_BOUND_SWITCHING] != 0.0:
@@ -390,7 +424,7 @@ def below_overturning_energy(S, C, P):
     return maps.cannot_overturn(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], C[C_KMIN] * S[R_SPRING + _working(S)])
 
 
-@njit(cache=True, inline=inline_into("simulate_kernel"))
+@njit(cache=True, inline=inline_into("drive"))
 def apex(S, C, P, rec, vert):
     """The CS01 switch at θ̇ = 0 (docs/model.md, "CS01 sliding"): turn out with K_max, back with
     K_min, or hold. Returns HELD or NOTHING."""
@@ -415,6 +449,29 @@ def _events_used(S, C, P):
     strategy = int(P[I_STRAT])
     h_on = S[R_H_ON] != 0.0
     return switching and (strategy == CS01 or not h_on), switching and strategy == CS02 and h_on
+
+
+@njit(cache=True, inline="always")
+def _grown_step(hh, err):
+    """The trial step after an accepted step of size ``hh`` with scaled error ``err`` <= 1:
+    0.9·err^(-1/5) times ``hh``, at most 10 times. [s]"""
+    # growth capped at 10x: 0.9·err^-0.2 >= 10 for err <= 5.9e-6, so the power is only taken above
+    return hh * min(10.0, 0.9 * err ** -0.2) if err > GROWTH_CAP_ERROR else hh * 10.0
+
+
+@njit(cache=True, inline="always")
+def _grows_past(hh, err, d):
+    """True only when ``_grown_step(hh, err) >= d`` for certain, decided without the power.
+
+    Most steps end on a record knot with a far smaller error than the tolerance allows, so the next
+    step is cut at the next knot whatever the grown step is: the power is then not needed.
+    0.9·err^-0.2 >= d/hh is err <= (0.9·hh/d)^5; ``GROWTH_MARGIN`` covers the rounding of both
+    sides, so a case near the boundary computes the power.
+    """
+    if err <= GROWTH_CAP_ERROR:
+        return hh * 10.0 >= d
+    x = 0.9 * hh / d
+    return hh * 10.0 >= d * (1.0 + GROWTH_MARGIN) and err <= x * x * x * x * x * (1.0 - GROWTH_MARGIN)
 
 
 @njit(cache=True, inline="always")
@@ -529,13 +586,19 @@ def _event_point(best, negligible, t, hh, n0, n1, Q):
     return t + best * hh, a, b
 
 
-@njit(cache=True, inline=inline_into("simulate_kernel"))
+@njit(cache=True, **NO_REFCOUNT)
 def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history):
     """ROCK: Dormand–Prince steps towards ``t_next``, each accepted step searched for state events
     (impact, overturning rotation, fractures, the CS01/CS02 switches); stops at the earliest,
     located on the continuous extension. A step ends on every known-time event; at a record knot
     where nothing else happens the steps go on (to the next known-time event) without returning.
-    Returns (STEPPED | EVENT | OVERTURNED, H, nh)."""
+    Returns (STEPPED | EVENT | OVERTURNED | NEED_ROOM, nh).
+
+    Compiled on its own without numba's reference counting (``core._inline.NO_REFCOUNT``): it allocates nothing,
+    so the arrays it works on need no counting at each inlined call. The history rows go into ``H``
+    as far as it has room; when it is full the loop stops with NEED_ROOM and ``R_RESUME`` set, the
+    driver grows ``H`` and calls again, and the loop goes on exactly where it stopped.
+    """
     t = S[R_T]
     th = S[R_TH]
     thd = S[R_THD]
@@ -559,18 +622,45 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
     th_du = P[I_TDU]
     damper = S[R_DAMPER + sidx]
     use_thd_event, use_xg_event = _events_used(S, C, P)
-    if S[R_F0_OK] != 0.0:
+    if S[R_RESUME] != 0.0:  # the history was full: go on where the loop stopped
+        S[R_RESUME] = 0.0
+        t_next = S[R_T_NEXT]
         f0 = S[R_F0]
+        x_hint = S[R_X_HINT]
+        hint = S[R_HINT]
+        h = S[R_H]
     else:
-        f0 = dopri.rhs(t, th, thd, side, kap_eff, cd_eff, h_on, P, rec, vert)
-        if want_history:
-            H, nh = _push_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
+        if S[R_F0_OK] != 0.0:
+            f0 = S[R_F0]
+        else:
+            if want_history and _hist_full(H, nh):
+                return NEED_ROOM, nh  # nothing done yet: the call is repeated as it is
+            f0 = dopri.rhs(t, th, thd, side, kap_eff, cd_eff, h_on, P, rec, vert)
+            if want_history:
+                nh = _write_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
+        x_hint, hint, h = _segment_start(t, th, thd, f0, side, use_xg_event, S[R_X_HINT], S[R_HINT], S[R_H], P,
+                                         rec)
     f0_ok = False
-    x_hint, hint, h = _segment_start(t, th, thd, f0, side, use_xg_event, S[R_X_HINT], S[R_HINT], S[R_H], P, rec)
+    # the trial step h after an accepted step is _grown_step(h_hh, h_err), computed only when needed
+    lazy = False
+    h_hh = 0.0
+    h_err = 0.0
     max_abs = S[R_MAX_ABS]
     result = STEPPED
     while t < t_next:
-        hh = min(h, t_next - t, hmax)
+        if want_history and _hist_full(H, nh):
+            S[R_RESUME] = 1.0
+            S[R_T_NEXT] = t_next
+            result = NEED_ROOM
+            break
+        d = min(t_next - t, hmax)
+        if lazy and _grows_past(h_hh, h_err, d):
+            hh = d  # min(h, t_next - t, hmax) with h >= d
+        else:
+            if lazy:
+                h = _grown_step(h_hh, h_err)
+                lazy = False
+            hh = min(h, d)
         if t_next - (t + hh) < TIME_TOLERANCE * (1.0 + t):
             hh = t_next - t
         if hh <= 0.0:
@@ -580,6 +670,7 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
         n0, n1, err = dopri.step(t, hh, y0, y1, f0, K, side, kap_eff, cd_eff, h_on, P, rec, vert, rtol, atol)
         if err > 1.0:
             h = hh * max(0.2, 0.9 * err ** -0.2)
+            lazy = False
             continue
         # ---- accepted: look for state events on (t, t + hh] ----
         best, negligible, max_abs = search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event,
@@ -590,6 +681,7 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
             # so resolve it with a smaller one (a zero-length event here would re-uplift at the
             # same instant forever)
             h = 0.25 * hh
+            lazy = False
             continue
         if best <= 1.0:
             # ---- move to the earliest event ----
@@ -610,10 +702,10 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
         if abs(th) > max_abs:
             max_abs = abs(th)
         if want_history:
-            H, nh = _push_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
-        # growth capped at 10x: 0.9·err^-0.2 >= 10 for err <= 5.9e-6, so the power is only taken above
-        # (most steps end on a record knot with a far smaller error)
-        h = hh * min(10.0, 0.9 * err ** -0.2) if err > GROWTH_CAP_ERROR else hh * 10.0
+            nh = _write_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
+        lazy = True
+        h_hh = hh
+        h_err = err
         if hint == 0.0 and thd != 0.0:
             hint = sign(thd)
         # early overturning: nothing can bring the block back
@@ -629,20 +721,30 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
             if t_after > t:
                 t_next = t_after
                 f0_ok = False
-                x_hint, hint, h = _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec)
+                # _segment_start's cut of h after θ = 0, without the power unless it cuts
+                x_hint, hint, h_cut = _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint,
+                                                     math.inf if lazy else h, P, rec)
+                if not lazy:
+                    h = h_cut
+                elif h_cut < math.inf:
+                    h = min(_grown_step(h_hh, h_err), h_cut)
+                    lazy = False
+    if lazy:
+        h = _grown_step(h_hh, h_err)
     S[R_T] = t
     S[R_TH] = th
     S[R_THD] = thd
     S[R_F0_OK] = _flag(f0_ok)
-    S[R_F0] = K[6, 1]  # read only when R_F0_OK, i.e. after a plain step that ended the segment
+    # read only when R_F0_OK (after a plain step that ended the segment) or R_RESUME
+    S[R_F0] = f0 if result == NEED_ROOM else K[6, 1]
     S[R_H] = h
     S[R_HINT] = hint
     S[R_X_HINT] = x_hint
     S[R_MAX_ABS] = max_abs
-    return result, H, nh
+    return result, nh
 
 
-@njit(cache=True, inline=inline_into("simulate_kernel"))
+@njit(cache=True, inline=inline_into("drive"))
 def state_event(S, C, P, rec, vert):
     """Apply the maps of a located state event: fracture (Eqs. 8–11), overturning, impact
     (Eqs. 14–15: rebound, rest or uplift), the CS01 switch at θ̇ = 0 (an apex decision is due) and
@@ -695,6 +797,75 @@ def state_event(S, C, P, rec, vert):
 
 
 # ---- the driver -----------------------------------------------------------------------------
+@njit(cache=True, **NO_REFCOUNT)
+def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, nh, impacts, n_imp, uplifts, n_up, rests, n_rest,
+          want_history, want_log):
+    """The driver's loop: the parts of a run in turn until it ends. Returns (status, nh, n_imp, n_up,
+    n_rest): an ``ST_*`` code, or GROW when the history or an event log is full.
+
+    Compiled without reference counting (``core._inline.NO_REFCOUNT``), so it allocates nothing: on
+    GROW :func:`simulate_kernel` grows the full arrays and calls again. The loop keeps its state in
+    ``S`` between passes (and ``integrate`` its own, ``R_RESUME``), so the run goes on where it
+    stopped, the same run as with arrays large enough from the start."""
+    while True:
+        if S[R_N_EVENTS] > MAX_EVENTS:
+            status = ST_ELIMIT
+            break
+        if (want_history and _hist_full(H, nh)) or (want_log and (_log_full(impacts, n_imp) or _log_full(
+                uplifts, n_up) or _log_full(rests, n_rest))):
+            return GROW, nh, n_imp, n_up, n_rest
+        t_next = S[R_T_NEXT] if S[R_RESUME] != 0.0 else next_known_time(S, C, P, vert, queue_times)
+        mode = S[R_MODE]
+        if want_history and mode != MODE_ROCK:
+            nh = _write_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
+        if mode == MODE_REST or mode == MODE_HOLD:  # on the ground, or held by CS01
+            if mode == MODE_REST and S[R_T] >= C[C_EXC_END]:
+                status = ST_REST
+                break
+            if mode == MODE_REST and C[C_QUIET_KNOTS] != 0.0 and S[R_H_ON] != 0.0:
+                t_next = pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next)
+            left = ground_phase(S, C, P, rec, vert, t_next)
+            if left == UPLIFTED and want_log:
+                n_up = _write_log(uplifts, n_up, S[R_T])
+            if left != NOTHING:
+                continue
+            # still there at t_next: on to the known-time events there
+        if S[R_T] >= t_next:  # a known-time event is due
+            if S[R_T] >= C[C_T_STOP]:
+                status = ST_TLIM
+                break
+            known_time_events(S, C, P, rec, queue_times, queue_values)
+            continue
+        if C[C_BOUND] != 0.0 and S[R_T] >= C[C_EXC_END] and below_overturning_energy(S, C, P):
+            status = ST_BOUND
+            break
+        if S[R_APEX] != 0.0 and apex(S, C, P, rec, vert) == HELD:
+            continue
+        result, nh = integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history)
+        if result == NEED_ROOM:
+            return GROW, nh, n_imp, n_up, n_rest
+        if result == OVERTURNED:
+            status = ST_OVER
+            break
+        if result == STEPPED:
+            continue
+        if want_history:
+            nh = _write_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
+        what = state_event(S, C, P, rec, vert)
+        if what == OVERTURNED:
+            status = ST_OVER
+            break
+        if want_log and what >= IMPACT:
+            n_imp = _write_log(impacts, n_imp, S[R_T])
+            if what == IMPACT_UPLIFT:
+                n_up = _write_log(uplifts, n_up, S[R_T])
+            if what == IMPACT_REST:
+                n_rest = _write_log(rests, n_rest, S[R_T])
+    if want_history:
+        nh = _write_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
+    return status, nh, n_imp, n_up, n_rest
+
+
 @njit(cache=True)
 def simulate_kernel(P, rec, vert, want_history, want_log):
     """Simulate one run; returns a :class:`~rockstudy.engine._kernel.layout.KernelResult`."""
@@ -711,57 +882,20 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     n_rest = np.int64(0)
     H = np.empty((256 if want_history else 0, 5))
     nh = np.int64(0)
-    status = ST_TLIM
     while True:
-        if S[R_N_EVENTS] > MAX_EVENTS:
-            status = ST_ELIMIT
+        status, nh, n_imp_log, n_up, n_rest = drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, nh,
+                                                    impacts, n_imp_log, uplifts, n_up, rests, n_rest,
+                                                    want_history, want_log)
+        if status != GROW:
             break
-        t_next = next_known_time(S, C, P, vert, queue_times)
-        mode = S[R_MODE]
-        if want_history and mode != MODE_ROCK:
-            H, nh = _push_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
-        if mode == MODE_REST or mode == MODE_HOLD:  # on the ground, or held by CS01
-            if mode == MODE_REST and S[R_T] >= C[C_EXC_END]:
-                status = ST_REST
-                break
-            if mode == MODE_REST and C[C_QUIET_KNOTS] != 0.0 and S[R_H_ON] != 0.0:
-                t_next = pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next)
-            left = ground_phase(S, C, P, rec, vert, t_next)
-            if left == UPLIFTED and want_log:
-                uplifts, n_up = _push(uplifts, n_up, S[R_T])
-            if left != NOTHING:
-                continue
-            # still there at t_next: on to the known-time events there
-        if S[R_T] >= t_next:  # a known-time event is due
-            if S[R_T] >= C[C_T_STOP]:
-                status = ST_TLIM
-                break
-            known_time_events(S, C, P, rec, queue_times, queue_values)
-            continue
-        if C[C_BOUND] != 0.0 and S[R_T] >= C[C_EXC_END] and below_overturning_energy(S, C, P):
-            status = ST_BOUND
-            break
-        if S[R_APEX] != 0.0 and apex(S, C, P, rec, vert) == HELD:
-            continue
-        result, H, nh = integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history)
-        if result == OVERTURNED:
-            status = ST_OVER
-            break
-        if result == STEPPED:
-            continue
-        if want_history:
-            H, nh = _push_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
-        what = state_event(S, C, P, rec, vert)
-        if what == OVERTURNED:
-            status = ST_OVER
-            break
-        if want_log and what >= IMPACT:
-            impacts, n_imp_log = _push(impacts, n_imp_log, S[R_T])
-            if what == IMPACT_UPLIFT:
-                uplifts, n_up = _push(uplifts, n_up, S[R_T])
-            if what == IMPACT_REST:
-                rests, n_rest = _push(rests, n_rest, S[R_T])
-    if want_history:
-        H, nh = _push_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
+        if want_history and _hist_full(H, nh):
+            H = _grow_hist(H, nh)
+        if want_log:
+            if _log_full(impacts, n_imp_log):
+                impacts = _grow_log(impacts, n_imp_log)
+            if _log_full(uplifts, n_up):
+                uplifts = _grow_log(uplifts, n_up)
+            if _log_full(rests, n_rest):
+                rests = _grow_log(rests, n_rest)
     return KernelResult(status, S[R_T_OVER], S[R_T], S[R_MAX_ABS], np.int64(S[R_N_IMPACTS]), impacts[:n_imp_log],
                         uplifts[:n_up], rests[:n_rest], S[R_FRAC:R_FRAC + 4].copy(), H[:nh])

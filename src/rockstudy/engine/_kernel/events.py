@@ -12,6 +12,7 @@ import math
 import numpy as np
 from numba import njit
 
+from rockstudy.core._inline import NO_REFCOUNT, inline_into
 from rockstudy.core.constants import LOCATE_TOLERANCE
 from rockstudy.engine._kernel.dopri import acceleration
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
@@ -40,7 +41,7 @@ def _quartic_at(sig, g0, g1, g2, g3, g4):
 
 @njit(cache=True, inline="always")
 def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
-    """The Illinois iterations of :func:`locate` on a bracket (0, hi] with g(0) = flo > 0 >= g(hi) = fhi."""
+    """The Illinois iterations of :func:`locate_sensed` on a bracket (0, hi] with g(0) = flo > 0 >= g(hi) = fhi."""
     lo = 0.0
     last = 0
     for _ in range(200):
@@ -67,24 +68,57 @@ def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
     return hi
 
 
+@njit(cache=True, inline="always")
+def _quartic_and_slope(sig, g0, g1, g2, g3, g4):
+    """g and dg/dsig of the quartic at sig (two Horner chains side by side)."""
+    f = (((g4 * sig + g3) * sig + g2) * sig + g1) * sig + g0
+    d = ((4.0 * g4 * sig + 3.0 * g3) * sig + 2.0 * g2) * sig + g1
+    return f, d
+
+
 @njit(cache=True)
 def locate(hi, g0, g1, g2, g3, g4):
-    """Earliest sig in (0, hi] where the quartic g = g0 + g1·sig + … + g4·sig^4 (positive at 0;
-    :func:`event_quartic`) reaches <= 0, by the Illinois method.
+    """The sig in (0, hi] where the quartic g = g0 + g1·sig + … + g4·sig^4 (positive at 0;
+    :func:`event_quartic`) reaches <= 0; the callers cut ``hi`` so that g crosses once.
 
-    Returns -1 when g(hi) > 0 (no crossing before ``hi``). The returned point always has g <= 0.
+    Newton's method kept inside the bracket [lo, hi] with g(lo) > 0 >= g(hi): a Newton point outside
+    the bracket is replaced by its midpoint, and once Newton's correction falls below a quarter of
+    ``LOCATE_TOLERANCE`` the next point is taken half the tolerance across, which closes the
+    bracket. Returns hi once hi - lo <= ``LOCATE_TOLERANCE`` (about four evaluations of g and its
+    slope, against about thirteen of g by the Illinois method), or -1 when g(hi) > 0 (no crossing
+    before ``hi``). The returned point always has g <= 0.
     """
     fhi = _quartic_at(hi, g0, g1, g2, g3, g4)
     if fhi > 0.0:
         return -1.0
     if g0 <= 0.0:
         return hi  # degenerate start on the surface: take the step end
-    return _illinois(hi, fhi, g0, g0, g1, g2, g3, g4, 0.0, 0.0, 0.0, _NONE, _NONE)
+    lo = 0.0
+    s = hi - fhi * hi / (fhi - g0)  # the secant's first point
+    if not (lo < s < hi):
+        s = 0.5 * hi
+    for _ in range(200):
+        f, d = _quartic_and_slope(s, g0, g1, g2, g3, g4)
+        if f <= 0.0:
+            hi = s
+        else:
+            lo = s
+        if hi - lo <= LOCATE_TOLERANCE:
+            break
+        step = f / d if d != 0.0 else 2.0
+        if abs(step) < 0.25 * LOCATE_TOLERANCE:
+            s = hi - 0.5 * LOCATE_TOLERANCE if f <= 0.0 else lo + 0.5 * LOCATE_TOLERANCE
+        else:
+            s = s - step
+        if not (lo < s < hi):
+            s = 0.5 * (lo + hi)
+    return hi
 
 
-@njit(cache=True)
+@njit(cache=True, **NO_REFCOUNT)
 def locate_sensed(hi, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
-    """:func:`locate` for g = quartic + a_x·Ẍg(t + sig·hh) as the controller senses it (the CS02 switch)."""
+    """:func:`locate` for g = quartic + a_x·Ẍg(t + sig·hh) as the controller senses it (the CS02 switch),
+    by the Illinois method: the sensed Ẍg is piecewise linear, so g has no usable slope at its knots."""
     fhi = _quartic_at(hi, g0, g1, g2, g3, g4) + a_x * sensed_acceleration(t + hi * hh, P, rec)
     if fhi > 0.0:
         return -1.0
@@ -94,7 +128,7 @@ def locate_sensed(hi, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
     return _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, a_x, t, hh, P, rec)
 
 
-@njit(cache=True)
+@njit(cache=True, inline=inline_into("scan_exit"))
 def exit_value(mode, t, th, side, kap_max_eff, kap_min_eff, h_on, P, rec, vert):
     """> 0 when the block leaves REST (uplift, |Ẍg| > (g + Ÿg)·tanα) or HOLD (either side of the
     CS01 sliding surface, docs/model.md, "CS01 sliding")."""
@@ -107,7 +141,7 @@ def exit_value(mode, t, th, side, kap_max_eff, kap_min_eff, h_on, P, rec, vert):
     return max(a_max, -a_min)  # leave HOLD when s·a_max >= 0 or s·a_min <= 0
 
 
-@njit(cache=True)
+@njit(cache=True, **NO_REFCOUNT)
 def scan_exit(mode, t0, t1, th, side, kmx, kmn, h_on, P, rec, vert):
     """First t in (t0, t1] where the exit value becomes >= 0 (> 0 for REST), or -1.
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from numba import njit
 
-from rockstudy.core._inline import inline_into
+from rockstudy.core._inline import NO_REFCOUNT, inline_into
 from rockstudy.engine._kernel.layout import I_AMP, I_DUR, I_KIND, I_OMEGA, I_RDT, I_SDT, I_SENSE, I_SOFF, I_VDT
 from rockstudy.model.excitation import (
     MODULATED,
@@ -20,7 +20,8 @@ from rockstudy.model.excitation import (
 )
 
 
-@njit(cache=True, inline=inline_into("rhs", "step", "sensed_acceleration"))
+@njit(cache=True, inline=inline_into("rhs", "step", "sensed_acceleration", "pass_quiet_knots", "exit_value"),
+      **NO_REFCOUNT)
 def ground_acceleration(t, P, rec):
     """Horizontal ground acceleration Ẍg(t) while the excitation lasts, zero outside. [m/s^2]"""
     dur = P[I_DUR]
@@ -39,7 +40,8 @@ def ground_acceleration(t, P, rec):
     return amp  # rectangular pulse on [0, dur]
 
 
-@njit(cache=True, inline=inline_into("integrate", "_segment_start", "locate_sensed", "_illinois"))
+@njit(cache=True, inline=inline_into("integrate", "_segment_start", "locate_sensed", "_illinois"),
+      **NO_REFCOUNT)
 def sensed_acceleration(t, P, rec):
     """Ẍg(t) as the controller reads it: the driving Ẍg without a sensor, else the sensed samples
     (times a_p) interpolated linearly; zero outside the excitation [0, dur], as Ẍg. [m/s^2]"""
@@ -50,7 +52,7 @@ def sensed_acceleration(t, P, rec):
     return P[I_AMP] * interpolate_record(t, P[I_SDT], rec[int(P[I_SOFF]):])
 
 
-@njit(cache=True, inline=inline_into("rhs", "step"))
+@njit(cache=True, inline=inline_into("rhs", "step", "exit_value"))
 def vertical_acceleration(t, P, vert):
     """Vertical ground acceleration Ÿg(t), linear between samples, zero outside. [m/s^2]"""
     n = vert.shape[0]

@@ -83,7 +83,9 @@ R_Q_COUNT = 19   # sampled control: pending decisions
 R_SPRING = 20    # intact flags of the springs, by corner (LEFT, RIGHT): 2 slots
 R_DAMPER = 22    # intact flags of the dampers: 2 slots
 R_FRAC = 24      # fracture times: spring L, R, damper L, R (NaN: intact): 4 slots [s]
-NSTATE = 28
+R_RESUME = 28    # 1: integrate stopped mid-segment for a larger history array; it goes on from here
+R_T_NEXT = 29    # ... towards this known-time event [s]
+NSTATE = 30
 
 # ---- how a run ended ---------------------------------------------------------------------
 ST_REST, ST_OVER, ST_TLIM, ST_ELIMIT, ST_BOUND = 0, 1, 2, 3, 4
