@@ -39,7 +39,7 @@ from rockstudy.model.noise import noisy_record, record_motion
 BLC06 = BLOCK_PRESETS["BLC06"]
 
 
-def cases(n: int, seed: int, sensor: bool, vertical: bool):
+def cases(n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None = None):
     """(P, record, vertical record, want_history, want_log) of ``n`` random runs."""
     rng = np.random.default_rng(seed)
     records = [(noisy_record("modulated", fr * BLC06.p, 0.05, k, 7), fr * BLC06.p)
@@ -70,14 +70,15 @@ def cases(n: int, seed: int, sensor: bool, vertical: bool):
             motion = dataclasses.replace(motion, vertical_dt=0.005, vertical=vert)
         th0 = float(rng.uniform(-0.5, 0.5) * BLC06.alpha) if i % 11 == 0 else 0.0
         P = pack_parameters(BLC06, anchorage, control, motion, overturn_criterion="alpha" if i % 5 == 0 else "flat",
-                            free_time=10.0, energy_bound=bool(i % 2), initial_rotation=th0)
+                            free_time=10.0, energy_bound=bool(i % 2), initial_rotation=th0,
+                            **({} if stepper is None else {"stepper": stepper}))
         want_history, want_log = bool((i // 2) % 2), bool((i // 3) % 2)
         yield P, kn.writable(kernel_record(control, motion)), kn.writable(motion.vertical), want_history, want_log
 
 
-def save(path: str, n: int, seed: int, sensor: bool, vertical: bool) -> None:
+def save(path: str, n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None = None) -> None:
     fields = {}
-    for i, (P, rec, vert, want_history, want_log) in enumerate(cases(n, seed, sensor, vertical)):
+    for i, (P, rec, vert, want_history, want_log) in enumerate(cases(n, seed, sensor, vertical, stepper)):
         result = kn.simulate_kernel(P, rec, vert, want_history, want_log)
         for name, value in zip(kn.KernelResult._fields, result):
             fields[f"{i}/{name}"] = np.array(value, copy=True)
@@ -141,6 +142,9 @@ def main(argv=None) -> int:
     s.add_argument("--seed", type=int, default=77)
     s.add_argument("--sensor", action="store_true", help="give the controller a sensor (random band)")
     s.add_argument("--vertical", action="store_true", help="add vertical records to every other run")
+    s.add_argument("--stepper", choices=("taylor", "dopri"), default=None,
+                   help="how the engine steps between record knots (default: the engine's default; code from "
+                        "before the Taylor step has no such choice and always uses Dormand-Prince)")
     c = sub.add_parser("compare", help="compare two saved fingerprints bit for bit (or to a tolerance)")
     c.add_argument("a")
     c.add_argument("b")
@@ -148,7 +152,7 @@ def main(argv=None) -> int:
                    help="compare each run's ending and times to this relative tolerance instead of bit for bit")
     args = ap.parse_args(argv)
     if args.command == "save":
-        save(args.path, args.n, args.seed, args.sensor, args.vertical)
+        save(args.path, args.n, args.seed, args.sensor, args.vertical, args.stepper)
         return 0
     return compare(args.a, args.b, args.tolerance)
 

@@ -101,7 +101,7 @@ def test_dense_quartic_is_the_shampine_extension_summed_over_the_stages():
     P, f = _problem()
     t, y, h = 0.6, np.array([0.05, 0.2]), 0.02
     _, _, K = _step(P, f, t, y, h)
-    Q = np.zeros((2, 5))
+    Q = np.zeros((2, dopri.NQ))
     dopri.dense_coefficients(h, y[0], y[1], K, Q)
     for sig in np.linspace(0.0, 1.0, 11):
         b = dopri.DENSE @ (sig ** np.arange(1, 5))
@@ -109,8 +109,16 @@ def test_dense_quartic_is_the_shampine_extension_summed_over_the_stages():
         np.testing.assert_allclose(dopri.dense_at(sig, Q), expected, rtol=1e-14, atol=1e-17)
 
 
+def _poly(*g):
+    """The nine coefficients the event functions take: a quartic's five, zeros above."""
+    return tuple(g) + (0.0,) * (dopri.NQ - len(g))
+
+
 def _horner(g, s):
-    return (((g[4] * s + g[3]) * s + g[2]) * s + g[1]) * s + g[0]  # as the kernel evaluates g
+    v = 0.0
+    for c in reversed(g):  # as the kernel evaluates g
+        v = v * s + c
+    return v
 
 
 def test_locate_finds_the_root_of_a_quartic_from_the_right():
@@ -121,11 +129,11 @@ def test_locate_finds_the_root_of_a_quartic_from_the_right():
 
     for root in (1e-6, 0.137, 0.5, 0.999):
         # g = (root - sig)·(1 + sig²)·0.3 = 0.3·(root - sig + root·sig² - sig³): positive before the root
-        g = (0.3 * root, -0.3, 0.3 * root, -0.3, 0.0)
+        g = _poly(0.3 * root, -0.3, 0.3 * root, -0.3)
         for s in (locate(1.0, *g), locate_sensed(1.0, *g, 0.0, 0.0, 0.01, _problem()[0], NONE)):
             assert _horner(g, s) <= 0.0 and root - 1e-15 <= s <= root + LOCATE_TOLERANCE + 1e-15, (root, s)
-    assert locate(1.0, 1.0, 0.1, 0.0, 0.0, 0.0) == -1.0  # no crossing
-    assert locate(0.5, 0.3 * 0.7, -0.3, 0.0, 0.0, 0.0) == -1.0  # the root (0.7) lies beyond hi
+    assert locate(1.0, *_poly(1.0, 0.1)) == -1.0  # no crossing
+    assert locate(0.5, *_poly(0.3 * 0.7, -0.3)) == -1.0  # the root (0.7) lies beyond hi
 
 
 @pytest.mark.parametrize("g, root, close", [
@@ -142,6 +150,7 @@ def test_locate_keeps_to_the_bracket_on_hard_quartics(g, root, close):
     and lies at the root (the bracket [lo, hi] with g(lo) > 0 >= g(hi) is never lost)."""
     from rockstudy.engine._kernel.events import locate
 
+    g = _poly(*g)
     s = locate(1.0, *g)
     assert _horner(g, s) <= 0.0
     assert abs(s - root) <= close, (s, root)

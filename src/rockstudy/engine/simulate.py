@@ -46,16 +46,25 @@ def overturn_rotation(block: Block, criterion: str) -> float:
     raise ValueError(f"overturn_criterion must be one of {', '.join(OVERTURN_CRITERIA)}, got {criterion!r}")
 
 
+STEPPERS = ("taylor", "dopri")
+"""How the fast engine steps between record knots (:func:`pack_parameters`)."""
+
+
 def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion: GroundMotion, *,
                     overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
                     initial_rotation: float = 0.0, initial_velocity: float = 0.0,
                     rest_velocity: float | None = None, rtol: float = FAST_RTOL,
-                    atol: float = FAST_ATOL, energy_bound: bool = False) -> np.ndarray:
+                    atol: float = FAST_ATOL, energy_bound: bool = False,
+                    stepper: str = "taylor") -> np.ndarray:
     """The kernel's parameter vector (its named slots: :mod:`rockstudy.engine._kernel.layout`).
 
     ``energy_bound`` lets the engine end a run once it provably can no longer overturn (outcome
-    runs only: the history and event log after that point are not computed).
+    runs only: the history and event log after that point are not computed). ``stepper`` is how the
+    engine steps between the knots of a record: ``"taylor"`` (Taylor series of degree 8, one sine
+    and cosine a step) or ``"dopri"`` (Dormand–Prince 5(4), as everywhere else; docs/model.md).
     """
+    if stepper not in STEPPERS:
+        raise ValueError(f"stepper must be one of {', '.join(STEPPERS)}, got {stepper!r}")
     if not (free_time >= 0 and math.isfinite(free_time)):
         raise ValueError(f"free_time must be a finite number >= 0 [s], got {free_time!r}")
     P = np.zeros(_kernel.NPAR)
@@ -92,6 +101,7 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
         hmax = min(hmax, MAX_STEP_FRACTION * 2 * math.pi / motion.omega)
     P[_kernel.I_HMAX] = hmax
     P[_kernel.I_BOUND] = 1.0 if energy_bound else 0.0
+    P[_kernel.I_TAYLOR] = 1.0 if stepper == "taylor" else 0.0
     P[_kernel.I_SDT] = 1.0
     if control.sensor_band is not None:  # the sensed samples follow the driving ones (kernel_record)
         P[_kernel.I_SENSE] = 1.0

@@ -32,6 +32,11 @@ DENSE = np.array([
 ])
 
 
+NQ = 9
+"""Columns of a step's polynomial array ``Q``: degree 8, the Taylor step's
+(:mod:`~rockstudy.engine._kernel.taylor`); Dormand–Prince's quartic leaves the columns above 4 zero."""
+
+
 @njit(cache=True, inline=inline_into("rhs", "step", "exit_value"))
 def acceleration(th, thd, side, kap, cd, xg, yg, P):
     """θ̈ of Eqs. (1)–(7) with the block's constants from ``P``. [rad/s^2]"""
@@ -106,7 +111,8 @@ def step(t, hh, y0, y1, f0, K, side, kap, cd, h_on, P, rec, vert, rtol, atol):
 @njit(cache=True, **NO_REFCOUNT)
 def dense_coefficients(h, y0, y1, K, Q):
     """The step's continuous extension as two quartics in sig, the fraction of the step:
-    θ(t0 + sig·h) = Σ_j Q[0, j]·sig^j and θ̇ = Σ_j Q[1, j]·sig^j (j = 0 … 4), from the stages ``K``.
+    θ(t0 + sig·h) = Σ_j Q[0, j]·sig^j and θ̇ = Σ_j Q[1, j]·sig^j (j = 0 … 4; the columns above are
+    set to 0), from the stages ``K``.
 
     Computed once for a step whose events are located: each point on the step is then a Horner
     evaluation (:func:`dense_at`) instead of a sum over the seven stages.
@@ -121,14 +127,19 @@ def dense_coefficients(h, y0, y1, K, Q):
             c1 += DENSE[i, j] * K[i, 1]
         Q[0, j + 1] = h * c0
         Q[1, j + 1] = h * c1
+    for j in range(5, Q.shape[1]):
+        Q[0, j] = 0.0
+        Q[1, j] = 0.0
 
 
 @njit(cache=True, inline="always")
 def dense_at(sig, Q):
-    """State (θ, θ̇) at t0 + sig·h from the step's :func:`dense_coefficients`."""
-    a = Q[0, 4]
-    b = Q[1, 4]
-    for j in range(3, -1, -1):
+    """State (θ, θ̇) at t0 + sig·h from the step's polynomials ``Q`` (:func:`dense_coefficients`, or the
+    Taylor step's), by Horner over all :data:`NQ` columns (zero columns leave the bits of the quartic's)."""
+    n = Q.shape[1] - 1
+    a = Q[0, n]
+    b = Q[1, n]
+    for j in range(n - 1, -1, -1):
         a = a * sig + Q[0, j]
         b = b * sig + Q[1, j]
     return a, b

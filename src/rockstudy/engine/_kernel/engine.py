@@ -33,8 +33,8 @@ from rockstudy.core.constants import (
     ROTATION_TOLERANCE,
     TIME_TOLERANCE,
 )
-from rockstudy.engine._kernel import dopri, maps
-from rockstudy.engine._kernel.events import event_quartic, locate, locate_sensed, scan_exit
+from rockstudy.engine._kernel import dopri, maps, taylor
+from rockstudy.engine._kernel.events import event_poly, locate, locate_sensed, scan_exit
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from rockstudy.engine._kernel.layout import (
     C_BOUND,
@@ -48,11 +48,13 @@ from rockstudy.engine._kernel.layout import (
     C_SAMPLED,
     C_SWITCHING,
     C_T_STOP,
+    C_TAYLOR,
     C_V_END,
     I_ALPHA,
     I_ATOL,
     I_BOUND,
     I_CD,
+    I_COSA,
     I_DELAY,
     I_DUR,
     I_E,
@@ -65,7 +67,9 @@ from rockstudy.engine._kernel.layout import (
     I_P,
     I_RDT,
     I_RTOL,
+    I_SINA,
     I_STRAT,
+    I_TAYLOR,
     I_TDU,
     I_TH0,
     I_THD0,
@@ -257,6 +261,8 @@ def setup(P, vert, want_history, want_log):
     # with sampled control a stale K_max can give energy back: a weaker bound over half-cycles
     C[C_BOUND_SWITCHING] = _flag(sampled and kmax != kmin)
     C[C_QUIET_KNOTS] = _flag(int(P[I_KIND]) == RECORD and not sampled and nvert == 0 and not want_history)
+    # Taylor steps between record knots: Ẍg linear on every step, no vertical motion (docs/model.md)
+    C[C_TAYLOR] = _flag(P[I_TAYLOR] != 0.0 and int(P[I_KIND]) == RECORD and nvert == 0)
     return C
 
 
@@ -501,13 +507,13 @@ def _coefficients_once(have_q, hh, y0, y1, K, Q):
 
 
 @njit(cache=True, inline="always")
-def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event, use_xg_event, th_over,
+def search_events(t, hh, y0, y1, n0, n1, K, Q, have_q, side, hint, x_hint, use_thd_event, use_xg_event, th_over,
                   track_fracture, th_ku, th_du, spring, damper, max_abs, P, rec):
     """The event search of one accepted step from (θ, θ̇) = (y0, y1) at t to (n0, n1) at t + hh (its
     stages in ``K``): the earliest state event on (t, t + hh] — an impact (side·θ reaches 0), the
     overturning rotation, a working element's ultimate rotation, the CS01 switch (θ̇ = 0), the CS02
     switch (sensed Ẍg = 0) — located on the continuous extension, whose coefficients are written
-    to ``Q`` when an event is to be located.
+    to ``Q`` when an event is to be located (``have_q``: a Taylor step has written them already).
 
     Returns (best, negligible, max_abs): ``best`` the event's fraction of the step (> 1: none;
     < 0: θ left 0 and came back within the step, which must be retried with a smaller one),
@@ -516,12 +522,11 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event
     """
     best = 2.0
     negligible = False
-    have_q = False
     # impact: side·θ crosses to <= 0
     if side * n0 <= 0.0:
         if side * y0 > 0.0:
             have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-            best = locate(1.0, *event_quartic(Q, side, 0.0, 0.0))
+            best = locate(1.0, *event_poly(Q, side, 0.0, 0.0))
         elif hh > NEGLIGIBLE_STEP:
             return -1.0, False, max_abs
         else:
@@ -534,7 +539,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event
     sa_ = -1.0
     if not negligible and side * y1 > 0.0 and side * n1 <= 0.0:
         have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-        sa_ = locate(1.0, *event_quartic(Q, 0.0, side, 0.0))
+        sa_ = locate(1.0, *event_poly(Q, 0.0, side, 0.0))
         if sa_ >= 0.0:
             a, b = dopri.dense_at(sa_, Q)
             if side * a > peak:
@@ -544,7 +549,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event
                 max_abs = abs(a)
     if not negligible and peak - th_over >= 0.0 and side * y0 - th_over < 0.0:
         have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-        s = locate(min(best, sig_peak), *event_quartic(Q, -side, 0.0, th_over))
+        s = locate(min(best, sig_peak), *event_poly(Q, -side, 0.0, th_over))
         if s >= 0.0:
             best = s
     if track_fracture:
@@ -553,7 +558,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event
             intact = spring if k == 0 else damper
             if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and peak - thu >= 0.0:
                 have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-                s = locate(min(best, sig_peak), *event_quartic(Q, -side, 0.0, thu))
+                s = locate(min(best, sig_peak), *event_poly(Q, -side, 0.0, thu))
                 if s >= 0.0:
                     best = s
     if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
@@ -561,13 +566,13 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event
             s = sa_  # the apex located above: the same root of the same function on (0, 1]
         else:
             have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-            s = locate(min(best, 1.0), *event_quartic(Q, 0.0, hint, 0.0))
+            s = locate(min(best, 1.0), *event_poly(Q, 0.0, hint, 0.0))
         if s >= 0.0:
             best = s
     if not negligible and use_xg_event and x_hint != 0.0:
         if x_hint * sensed_acceleration(t + hh, P, rec) <= 0.0:
             have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-            s = locate_sensed(min(best, 1.0), *event_quartic(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P,
+            s = locate_sensed(min(best, 1.0), *event_poly(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P,
                                   rec)
             if s >= 0.0:
                 best = s
@@ -588,9 +593,10 @@ def _event_point(best, negligible, t, hh, n0, n1, Q):
 
 @njit(cache=True, **NO_REFCOUNT)
 def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history):
-    """ROCK: Dormand–Prince steps towards ``t_next``, each accepted step searched for state events
-    (impact, overturning rotation, fractures, the CS01/CS02 switches); stops at the earliest,
-    located on the continuous extension. A step ends on every known-time event; at a record knot
+    """ROCK: steps towards ``t_next`` — Taylor steps while a record lasts (``C_TAYLOR``), Dormand–Prince
+    steps otherwise — each accepted step searched for state events (impact, overturning rotation,
+    fractures, the CS01/CS02 switches); stops at the earliest, located on the step's polynomial.
+    A step ends on every known-time event; at a record knot
     where nothing else happens the steps go on (to the next known-time event) without returning.
     Returns (STEPPED | EVENT | OVERTURNED | NEED_ROOM, nh).
 
@@ -622,6 +628,12 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
     th_du = P[I_TDU]
     damper = S[R_DAMPER + sidx]
     use_thd_event, use_xg_event = _events_used(S, C, P)
+    # while the record lasts, every step lies between two of its knots: Ẍg is linear on it
+    use_taylor = C[C_TAYLOR] != 0.0 and h_on
+    p = P[I_P]
+    sin_alpha = P[I_SINA]
+    cos_alpha = P[I_COSA]
+    inv_g = 1.0 / P[I_G]
     if S[R_RESUME] != 0.0:  # the history was full: go on where the loop stopped
         S[R_RESUME] = 0.0
         t_next = S[R_T_NEXT]
@@ -667,15 +679,22 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
             break
         y0 = th
         y1 = thd
-        n0, n1, err = dopri.step(t, hh, y0, y1, f0, K, side, kap_eff, cd_eff, h_on, P, rec, vert, rtol, atol)
+        if use_taylor:
+            x0 = ground_acceleration(t, P, rec)
+            x1 = ground_acceleration(t + hh, P, rec)
+            n0, n1, err, f_end = taylor.step(hh, y0, y1, side, kap_eff, cd_eff, x0 * inv_g, (x1 - x0) * inv_g / hh, p,
+                                             sin_alpha, cos_alpha, Q, rtol, atol)
+        else:
+            n0, n1, err = dopri.step(t, hh, y0, y1, f0, K, side, kap_eff, cd_eff, h_on, P, rec, vert, rtol, atol)
+            f_end = K[6, 1]
         if err > 1.0:
             h = hh * max(0.2, 0.9 * err ** -0.2)
             lazy = False
             continue
         # ---- accepted: look for state events on (t, t + hh] ----
-        best, negligible, max_abs = search_events(t, hh, y0, y1, n0, n1, K, Q, side, hint, x_hint, use_thd_event,
-                                                  use_xg_event, th_over, track_fracture, th_ku, th_du, spring,
-                                                  damper, max_abs, P, rec)
+        best, negligible, max_abs = search_events(t, hh, y0, y1, n0, n1, K, Q, use_taylor, side, hint, x_hint,
+                                                  use_thd_event, use_xg_event, th_over, track_fracture, th_ku, th_du,
+                                                  spring, damper, max_abs, P, rec)
         if best < 0.0:
             # left θ = 0 and came back within one step: the excursion is shorter than the step,
             # so resolve it with a smaller one (a zero-length event here would re-uplift at the
@@ -698,7 +717,7 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
             f0_ok = True
         th = n0
         thd = n1
-        f0 = K[6, 1]
+        f0 = f_end
         if abs(th) > max_abs:
             max_abs = abs(th)
         if want_history:
@@ -734,9 +753,10 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
     S[R_T] = t
     S[R_TH] = th
     S[R_THD] = thd
-    S[R_F0_OK] = _flag(f0_ok)
+    # a Taylor step's θ̈ at its end comes from its polynomial: the next segment evaluates Eq. (1) anew
+    S[R_F0_OK] = _flag(f0_ok and not use_taylor)
     # read only when R_F0_OK (after a plain step that ended the segment) or R_RESUME
-    S[R_F0] = f0 if result == NEED_ROOM else K[6, 1]
+    S[R_F0] = f0
     S[R_H] = h
     S[R_HINT] = hint
     S[R_X_HINT] = x_hint
@@ -873,7 +893,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     S = initial_state(P, C, rec)
     queue_times, queue_values = maps.queue_new(P[I_DELAY], P[I_TS])
     K = np.zeros((7, 2))
-    Q = np.zeros((2, 5))
+    Q = np.zeros((2, dopri.NQ))
     impacts = np.empty(16 if want_log else 0)
     n_imp_log = np.int64(0)
     uplifts = np.empty(16 if want_log else 0)

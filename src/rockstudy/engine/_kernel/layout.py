@@ -42,7 +42,8 @@ I_BOUND = 28     # 1: end runs that provably cannot overturn any more (energy bo
 I_SENSE = 29     # 1: the controller reads Ẍg through a sensor (samples after the record in ``rec``), 0: driving Ẍg
 I_SOFF = 30      # index in ``rec`` of the first sensed sample (= number of driving samples) [-]
 I_SDT = 31       # sampling step of the sensed samples (1 without sensor) [s]
-NPAR = 32
+I_TAYLOR = 32    # 1: Taylor steps between record knots (engine.integrate), 0: Dormand–Prince throughout
+NPAR = 33
 
 # ---- the run's constants, fixed by the parameters (engine.setup) ---------------------------
 C_KMAX = 0       # κ_max the device applies (0 for FS) [-]
@@ -57,7 +58,8 @@ C_FRACTURE = 8   # 1: elements that can break (not FS, some stiffness or damping
 C_BOUND = 9      # 1: outcome run that may stop below the overturning energy (docs/model.md)
 C_BOUND_SWITCHING = 10  # 1: ... with the half-cycle bound of sampled switching control
 C_QUIET_KNOTS = 11  # 1: at rest, record knots pass in one tight loop (no sampled control, vertical record, history)
-NCONST = 12
+C_TAYLOR = 12    # 1: while the record lasts the steps are Taylor steps (I_TAYLOR, a record, no vertical record)
+NCONST = 13
 
 # ---- the run's state record: every quantity the driving loop changes (engine.py) ------------
 R_T = 0          # time t [s]
