@@ -129,11 +129,11 @@ def test_locate_finds_the_root_of_a_quartic_from_the_right():
 
     for root in (1e-6, 0.137, 0.5, 0.999):
         # g = (root - sig)·(1 + sig²)·0.3 = 0.3·(root - sig + root·sig² - sig³): positive before the root
-        g = _poly(0.3 * root, -0.3, 0.3 * root, -0.3)
+        g = (0.3 * root, -0.3, 0.3 * root, -0.3, 0.0)
         for s in (locate(1.0, *g), locate_sensed(1.0, *g, 0.0, 0.0, 0.01, _problem()[0], NONE)):
             assert _horner(g, s) <= 0.0 and root - 1e-15 <= s <= root + LOCATE_TOLERANCE + 1e-15, (root, s)
-    assert locate(1.0, *_poly(1.0, 0.1)) == -1.0  # no crossing
-    assert locate(0.5, *_poly(0.3 * 0.7, -0.3)) == -1.0  # the root (0.7) lies beyond hi
+    assert locate(1.0, 1.0, 0.1, 0.0, 0.0, 0.0) == -1.0  # no crossing
+    assert locate(0.5, 0.3 * 0.7, -0.3, 0.0, 0.0, 0.0) == -1.0  # the root (0.7) lies beyond hi
 
 
 @pytest.mark.parametrize("g, root, close", [
@@ -150,7 +150,22 @@ def test_locate_keeps_to_the_bracket_on_hard_quartics(g, root, close):
     and lies at the root (the bracket [lo, hi] with g(lo) > 0 >= g(hi) is never lost)."""
     from rockstudy.engine._kernel.events import locate
 
-    g = _poly(*g)
     s = locate(1.0, *g)
     assert _horner(g, s) <= 0.0
     assert abs(s - root) <= close, (s, root)
+    # the degree-8 location of Taylor steps, on the same quartic padded with zeros: the same point
+    from rockstudy.engine._kernel.events import locate_poly
+    assert locate_poly(1.0, *_poly(*g)) == s
+
+
+def test_locate_poly_finds_the_root_of_a_degree_8_polynomial():
+    """locate_poly (Taylor steps) and locate_sensed_poly on g = (root - sig)·(1 + sig^7): one crossing, at
+    the root, approached from the right within LOCATE_TOLERANCE; -1 when the root lies beyond hi."""
+    from rockstudy.core.constants import LOCATE_TOLERANCE
+    from rockstudy.engine._kernel.events import locate_poly, locate_sensed_poly
+
+    for root in (1e-6, 0.3, 0.77, 0.999):
+        g = (root, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, root, -1.0)
+        for s in (locate_poly(1.0, *g), locate_sensed_poly(1.0, *g, 0.0, 0.0, 0.01, _problem()[0], NONE)):
+            assert _horner(g, s) <= 0.0 and root - 1e-15 <= s <= root + LOCATE_TOLERANCE + 1e-15, (root, s)
+        assert locate_poly(0.9 * root, *g) == -1.0

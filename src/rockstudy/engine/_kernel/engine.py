@@ -34,7 +34,15 @@ from rockstudy.core.constants import (
     TIME_TOLERANCE,
 )
 from rockstudy.engine._kernel import dopri, maps, taylor
-from rockstudy.engine._kernel.events import event_poly, locate, locate_sensed, scan_exit
+from rockstudy.engine._kernel.events import (
+    event_poly,
+    event_quartic,
+    locate,
+    locate_poly,
+    locate_sensed,
+    locate_sensed_poly,
+    scan_exit,
+)
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from rockstudy.engine._kernel.layout import (
     C_BOUND,
@@ -499,6 +507,24 @@ def _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec):
 
 
 @njit(cache=True, inline="always")
+def _locate_on(taylor_step, hi, Q, a_th, a_thd, c):
+    """The first zero in (0, hi] of g = a_th·θ + a_thd·θ̇ + c on the step's polynomial: degree 8 after
+    a Taylor step, the quartic after a Dormand–Prince step (``taylor_step`` is a constant of each
+    compiled step loop, so only one branch is compiled into it)."""
+    if taylor_step:
+        return locate_poly(hi, *event_poly(Q, a_th, a_thd, c))
+    return locate(hi, *event_quartic(Q, a_th, a_thd, c))
+
+
+@njit(cache=True, inline="always")
+def _locate_sensed_on(taylor_step, hi, Q, x_hint, t, hh, P, rec):
+    """:func:`_locate_on` for the CS02 switch (θ terms none, the sensed Ẍg's sign ``x_hint``)."""
+    if taylor_step:
+        return locate_sensed_poly(hi, *event_poly(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P, rec)
+    return locate_sensed(hi, *event_quartic(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P, rec)
+
+
+@njit(cache=True, inline="always")
 def _coefficients_once(have_q, hh, y0, y1, K, Q):
     """Write the step's dense-output coefficients to ``Q`` unless this step already has; True."""
     if not have_q:
@@ -507,13 +533,13 @@ def _coefficients_once(have_q, hh, y0, y1, K, Q):
 
 
 @njit(cache=True, inline="always")
-def search_events(t, hh, y0, y1, n0, n1, K, Q, have_q, side, hint, x_hint, use_thd_event, use_xg_event, th_over,
+def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, use_thd_event, use_xg_event, th_over,
                   track_fracture, th_ku, th_du, spring, damper, max_abs, P, rec):
     """The event search of one accepted step from (θ, θ̇) = (y0, y1) at t to (n0, n1) at t + hh (its
     stages in ``K``): the earliest state event on (t, t + hh] — an impact (side·θ reaches 0), the
     overturning rotation, a working element's ultimate rotation, the CS01 switch (θ̇ = 0), the CS02
     switch (sensed Ẍg = 0) — located on the continuous extension, whose coefficients are written
-    to ``Q`` when an event is to be located (``have_q``: a Taylor step has written them already).
+    to ``Q`` when an event is to be located (a Taylor step, ``taylor_step``, has written them already).
 
     Returns (best, negligible, max_abs): ``best`` the event's fraction of the step (> 1: none;
     < 0: θ left 0 and came back within the step, which must be retried with a smaller one),
@@ -522,11 +548,12 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, have_q, side, hint, x_hint, use_t
     """
     best = 2.0
     negligible = False
+    have_q = taylor_step
     # impact: side·θ crosses to <= 0
     if side * n0 <= 0.0:
         if side * y0 > 0.0:
             have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-            best = locate(1.0, *event_poly(Q, side, 0.0, 0.0))
+            best = _locate_on(taylor_step, 1.0, Q, side, 0.0, 0.0)
         elif hh > NEGLIGIBLE_STEP:
             return -1.0, False, max_abs
         else:
@@ -539,7 +566,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, have_q, side, hint, x_hint, use_t
     sa_ = -1.0
     if not negligible and side * y1 > 0.0 and side * n1 <= 0.0:
         have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-        sa_ = locate(1.0, *event_poly(Q, 0.0, side, 0.0))
+        sa_ = _locate_on(taylor_step, 1.0, Q, 0.0, side, 0.0)
         if sa_ >= 0.0:
             a, b = dopri.dense_at(sa_, Q)
             if side * a > peak:
@@ -549,7 +576,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, have_q, side, hint, x_hint, use_t
                 max_abs = abs(a)
     if not negligible and peak - th_over >= 0.0 and side * y0 - th_over < 0.0:
         have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-        s = locate(min(best, sig_peak), *event_poly(Q, -side, 0.0, th_over))
+        s = _locate_on(taylor_step, min(best, sig_peak), Q, -side, 0.0, th_over)
         if s >= 0.0:
             best = s
     if track_fracture:
@@ -558,7 +585,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, have_q, side, hint, x_hint, use_t
             intact = spring if k == 0 else damper
             if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and peak - thu >= 0.0:
                 have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-                s = locate(min(best, sig_peak), *event_poly(Q, -side, 0.0, thu))
+                s = _locate_on(taylor_step, min(best, sig_peak), Q, -side, 0.0, thu)
                 if s >= 0.0:
                     best = s
     if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
@@ -566,14 +593,13 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, have_q, side, hint, x_hint, use_t
             s = sa_  # the apex located above: the same root of the same function on (0, 1]
         else:
             have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-            s = locate(min(best, 1.0), *event_poly(Q, 0.0, hint, 0.0))
+            s = _locate_on(taylor_step, min(best, 1.0), Q, 0.0, hint, 0.0)
         if s >= 0.0:
             best = s
     if not negligible and use_xg_event and x_hint != 0.0:
         if x_hint * sensed_acceleration(t + hh, P, rec) <= 0.0:
             have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-            s = locate_sensed(min(best, 1.0), *event_poly(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P,
-                                  rec)
+            s = _locate_sensed_on(taylor_step, min(best, 1.0), Q, x_hint, t, hh, P, rec)
             if s >= 0.0:
                 best = s
     return best, negligible, max_abs
@@ -591,8 +617,8 @@ def _event_point(best, negligible, t, hh, n0, n1, Q):
     return t + best * hh, a, b
 
 
-@njit(cache=True, **NO_REFCOUNT)
-def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history):
+@njit(cache=True, inline="always")
+def _integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history, use_taylor):
     """ROCK: steps towards ``t_next`` — Taylor steps while a record lasts (``C_TAYLOR``), Dormand–Prince
     steps otherwise — each accepted step searched for state events (impact, overturning rotation,
     fractures, the CS01/CS02 switches); stops at the earliest, located on the step's polynomial.
@@ -628,8 +654,6 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
     th_du = P[I_TDU]
     damper = S[R_DAMPER + sidx]
     use_thd_event, use_xg_event = _events_used(S, C, P)
-    # while the record lasts, every step lies between two of its knots: Ẍg is linear on it
-    use_taylor = C[C_TAYLOR] != 0.0 and h_on
     p = P[I_P]
     sin_alpha = P[I_SINA]
     cos_alpha = P[I_COSA]
@@ -764,6 +788,20 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
     return result, nh
 
 
+@njit(cache=True, **NO_REFCOUNT)
+def integrate_taylor(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history):
+    """:func:`_integrate` with Taylor steps: while a record without vertical motion lasts (``C_TAYLOR``),
+    every step lies between two of its knots, where Ẍg is linear."""
+    return _integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history, True)
+
+
+@njit(cache=True, **NO_REFCOUNT)
+def integrate_dopri(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history):
+    """:func:`_integrate` with Dormand–Prince steps (analytic excitations, vertical records, the free
+    motion after the excitation)."""
+    return _integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history, False)
+
+
 @njit(cache=True, inline=inline_into("drive"))
 def state_event(S, C, P, rec, vert):
     """Apply the maps of a located state event: fracture (Eqs. 8–11), overturning, impact
@@ -861,7 +899,10 @@ def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, nh, impacts, n
             break
         if S[R_APEX] != 0.0 and apex(S, C, P, rec, vert) == HELD:
             continue
-        result, nh = integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history)
+        if C[C_TAYLOR] != 0.0 and S[R_H_ON] != 0.0:
+            result, nh = integrate_taylor(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history)
+        else:
+            result, nh = integrate_dopri(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history)
         if result == NEED_ROOM:
             return GROW, nh, n_imp, n_up, n_rest
         if result == OVERTURNED:

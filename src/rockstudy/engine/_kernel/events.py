@@ -27,24 +27,46 @@ smooth function cannot hide inside 1/256 of a period at the amplitudes that matt
 
 
 @njit(cache=True, inline="always")
+def event_quartic(Q, a_th, a_thd, c):
+    """The coefficients (g0 … g4) of g = a_th·θ + a_thd·θ̇ + c on a Dormand–Prince step, a quartic in the
+    fraction of the step, from the step's :func:`~rockstudy.engine._kernel.dopri.dense_coefficients` ``Q``."""
+    return (a_th * Q[0, 0] + a_thd * Q[1, 0] + c, a_th * Q[0, 1] + a_thd * Q[1, 1], a_th * Q[0, 2] + a_thd * Q[1, 2],
+            a_th * Q[0, 3] + a_thd * Q[1, 3], a_th * Q[0, 4] + a_thd * Q[1, 4])
+
+
+@njit(cache=True, inline="always")
 def event_poly(Q, a_th, a_thd, c):
-    """The coefficients (g0 … g8) of g = a_th·θ + a_thd·θ̇ + c on a step, a polynomial in the fraction
-    of the step, from the step's ``Q`` (:data:`~rockstudy.engine._kernel.dopri.NQ` columns: Dormand–Prince's
-    quartic, :func:`~rockstudy.engine._kernel.dopri.dense_coefficients`, with zeros above degree 4, or
-    the Taylor step's polynomials, :mod:`~rockstudy.engine._kernel.taylor`)."""
+    """The coefficients (g0 … g8) of g = a_th·θ + a_thd·θ̇ + c on a Taylor step, a polynomial of degree 8
+    in the fraction of the step, from the step's polynomials ``Q`` (:mod:`~rockstudy.engine._kernel.taylor`)."""
     return (a_th * Q[0, 0] + a_thd * Q[1, 0] + c, a_th * Q[0, 1] + a_thd * Q[1, 1], a_th * Q[0, 2] + a_thd * Q[1, 2],
             a_th * Q[0, 3] + a_thd * Q[1, 3], a_th * Q[0, 4] + a_thd * Q[1, 4], a_th * Q[0, 5] + a_thd * Q[1, 5],
             a_th * Q[0, 6] + a_thd * Q[1, 6], a_th * Q[0, 7] + a_thd * Q[1, 7], a_th * Q[0, 8] + a_thd * Q[1, 8])
 
 
 @njit(cache=True, inline="always")
-def _poly_at(sig, g0, g1, g2, g3, g4, g5, g6, g7, g8):
-    """g at sig by Horner (with g5 … g8 zero, the same bits as the quartic's Horner)."""
-    return (((((((g8 * sig + g7) * sig + g6) * sig + g5) * sig + g4) * sig + g3) * sig + g2) * sig + g1) * sig + g0
+def _poly_at(sig, g0, g1, g2, g3, g4, g5, g6, g7, g8, high):
+    """g at sig by Horner: degree 8 when ``high``, else the quartic g0 … g4 (g5 … g8 unused)."""
+    v = g4
+    if high:
+        v = (((g8 * sig + g7) * sig + g6) * sig + g5) * sig + g4
+    return (((v * sig + g3) * sig + g2) * sig + g1) * sig + g0
 
 
 @njit(cache=True, inline="always")
-def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, g7, g8, a_x, t, hh, P, rec):
+def _poly_and_slope(sig, g0, g1, g2, g3, g4, g5, g6, g7, g8, high):
+    """g and dg/dsig at sig (two Horner chains side by side), of degree 8 or 4 as :func:`_poly_at`."""
+    v = g4
+    w = 4.0 * g4
+    if high:
+        v = (((g8 * sig + g7) * sig + g6) * sig + g5) * sig + g4
+        w = (((8.0 * g8 * sig + 7.0 * g7) * sig + 6.0 * g6) * sig + 5.0 * g5) * sig + 4.0 * g4
+    f = (((v * sig + g3) * sig + g2) * sig + g1) * sig + g0
+    d = ((w * sig + 3.0 * g3) * sig + 2.0 * g2) * sig + g1
+    return f, d
+
+
+@njit(cache=True, inline="always")
+def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, g7, g8, high, a_x, t, hh, P, rec):
     """The Illinois iterations of :func:`locate_sensed` on a bracket (0, hi] with g(0) = flo > 0 >= g(hi) = fhi."""
     lo = 0.0
     last = 0
@@ -54,7 +76,7 @@ def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, g7, g8, a_x, t, hh, P, r
         s = hi - fhi * (hi - lo) / (fhi - flo)
         if not (lo < s < hi):
             s = 0.5 * (lo + hi)
-        f = _poly_at(s, g0, g1, g2, g3, g4, g5, g6, g7, g8)
+        f = _poly_at(s, g0, g1, g2, g3, g4, g5, g6, g7, g8, high)
         if a_x != 0.0:
             f += a_x * sensed_acceleration(t + s * hh, P, rec)
         if f <= 0.0:
@@ -73,27 +95,9 @@ def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, g7, g8, a_x, t, hh, P, r
 
 
 @njit(cache=True, inline="always")
-def _poly_and_slope(sig, g0, g1, g2, g3, g4, g5, g6, g7, g8):
-    """g and dg/dsig at sig (two Horner chains side by side)."""
-    f = (((((((g8 * sig + g7) * sig + g6) * sig + g5) * sig + g4) * sig + g3) * sig + g2) * sig + g1) * sig + g0
-    d = ((((((8.0 * g8 * sig + 7.0 * g7) * sig + 6.0 * g6) * sig + 5.0 * g5) * sig + 4.0 * g4) * sig + 3.0 * g3) * sig
-         + 2.0 * g2) * sig + g1
-    return f, d
-
-
-@njit(cache=True)
-def locate(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8):
-    """The sig in (0, hi] where the polynomial g = g0 + g1·sig + … + g8·sig^8 (positive at 0;
-    :func:`event_poly`) reaches <= 0; the callers cut ``hi`` so that g crosses once.
-
-    Newton's method kept inside the bracket [lo, hi] with g(lo) > 0 >= g(hi): a Newton point outside
-    the bracket is replaced by its midpoint, and once Newton's correction falls below a quarter of
-    ``LOCATE_TOLERANCE`` the next point is taken half the tolerance across, which closes the
-    bracket. Returns hi once hi - lo <= ``LOCATE_TOLERANCE`` (about four evaluations of g and its
-    slope, against about thirteen of g by the Illinois method), or -1 when g(hi) > 0 (no crossing
-    before ``hi``). The returned point always has g <= 0.
-    """
-    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8)
+def _locate(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, high):
+    """The body of :func:`locate` and :func:`locate_poly` (degree 8 when ``high``)."""
+    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, high)
     if fhi > 0.0:
         return -1.0
     if g0 <= 0.0:
@@ -103,7 +107,7 @@ def locate(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8):
     if not (lo < s < hi):
         s = 0.5 * hi
     for _ in range(200):
-        f, d = _poly_and_slope(s, g0, g1, g2, g3, g4, g5, g6, g7, g8)
+        f, d = _poly_and_slope(s, g0, g1, g2, g3, g4, g5, g6, g7, g8, high)
         if f <= 0.0:
             hi = s
         else:
@@ -120,18 +124,49 @@ def locate(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8):
     return hi
 
 
-@njit(cache=True, **NO_REFCOUNT)
-def locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, a_x, t, hh, P, rec):
-    """:func:`locate` for g = polynomial + a_x·Ẍg(t + sig·hh) as the controller senses it (the CS02
-    switch), by the Illinois method: the sensed Ẍg is piecewise linear, so g has no usable slope at its
-    knots."""
-    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8) + a_x * sensed_acceleration(t + hi * hh, P, rec)
+@njit(cache=True)
+def locate(hi, g0, g1, g2, g3, g4):
+    """The sig in (0, hi] where the quartic g = g0 + g1·sig + … + g4·sig^4 (positive at 0;
+    :func:`event_quartic`) reaches <= 0; the callers cut ``hi`` so that g crosses once.
+
+    Newton's method kept inside the bracket [lo, hi] with g(lo) > 0 >= g(hi): a Newton point outside
+    the bracket is replaced by its midpoint, and once Newton's correction falls below a quarter of
+    ``LOCATE_TOLERANCE`` the next point is taken half the tolerance across, which closes the
+    bracket. Returns hi once hi - lo <= ``LOCATE_TOLERANCE`` (about four evaluations of g and its
+    slope, against about thirteen of g by the Illinois method), or -1 when g(hi) > 0 (no crossing
+    before ``hi``). The returned point always has g <= 0.
+    """
+    return _locate(hi, g0, g1, g2, g3, g4, 0.0, 0.0, 0.0, 0.0, False)
+
+
+@njit(cache=True)
+def locate_poly(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8):
+    """:func:`locate` on a polynomial of degree 8 (a Taylor step's, :func:`event_poly`)."""
+    return _locate(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, True)
+
+
+@njit(cache=True, inline="always")
+def _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, high, a_x, t, hh, P, rec):
+    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, high) + a_x * sensed_acceleration(t + hi * hh, P, rec)
     if fhi > 0.0:
         return -1.0
     flo = g0 + a_x * sensed_acceleration(t, P, rec)
     if flo <= 0.0:
         return hi
-    return _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, g7, g8, a_x, t, hh, P, rec)
+    return _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, g7, g8, high, a_x, t, hh, P, rec)
+
+
+@njit(cache=True, **NO_REFCOUNT)
+def locate_sensed(hi, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
+    """:func:`locate` for g = quartic + a_x·Ẍg(t + sig·hh) as the controller senses it (the CS02 switch),
+    by the Illinois method: the sensed Ẍg is piecewise linear, so g has no usable slope at its knots."""
+    return _locate_sensed(hi, g0, g1, g2, g3, g4, 0.0, 0.0, 0.0, 0.0, False, a_x, t, hh, P, rec)
+
+
+@njit(cache=True, **NO_REFCOUNT)
+def locate_sensed_poly(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, a_x, t, hh, P, rec):
+    """:func:`locate_sensed` on a polynomial of degree 8 (a Taylor step's)."""
+    return _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, True, a_x, t, hh, P, rec)
 
 
 @njit(cache=True, inline=inline_into("scan_exit"))
