@@ -59,6 +59,19 @@ def test_the_module_is_what_its_generator_writes():
 
 
 @pytest.mark.parametrize("side, kap, cd, u0, u1, y", CASES)
+def test_first_coefficient_is_the_one_implementation_of_eq1(side, kap, cd, u0, u1, y):
+    """θ̈ at the step's start (2·a_2, from Q) is Eq. (1) as the model writes it, the function both
+    engines call elsewhere."""
+    from rockstudy.model.equation_of_motion import angular_acceleration
+
+    h = 0.0025
+    _, _, _, Q = _taylor(h, y, side, kap, cd, u0, u1)
+    expected = angular_acceleration(y[0], y[1], side, kap, cd, u0 * BLC06.gravity, 0.0, BLC06.p, BLC06.gravity,
+                                    math.sin(BLC06.alpha), math.cos(BLC06.alpha))
+    assert 2.0 * Q[0, 2] / h ** 2 == pytest.approx(expected, rel=1e-13, abs=1e-13)
+
+
+@pytest.mark.parametrize("side, kap, cd, u0, u1, y", CASES)
 def test_step_matches_dop853_at_a_knot_step(side, kap, cd, u0, u1, y):
     """A 2.5 ms step (a noisy record's knot spacing) agrees with DOP853 at rtol 1e-13 to round-off,
     and its error estimate is far below the tolerance there."""

@@ -671,7 +671,9 @@ def _integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_histor
         else:
             if want_history and _hist_full(H, nh):
                 return NEED_ROOM, nh  # nothing done yet: the call is repeated as it is
-            f0 = dopri.rhs(t, th, thd, side, kap_eff, cd_eff, h_on, P, rec, vert)
+            # Taylor steps need no θ̈ at the start; _segment_start reads it only at θ = 0
+            f0 = dopri.rhs(t, th, thd, side, kap_eff, cd_eff, h_on, P, rec, vert) if not use_taylor or th == 0.0 \
+                else 0.0
             if want_history:
                 nh = _write_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
         x_hint, hint, h = _segment_start(t, th, thd, f0, side, use_xg_event, S[R_X_HINT], S[R_HINT], S[R_H], P,
@@ -683,6 +685,8 @@ def _integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_histor
     h_err = 0.0
     max_abs = S[R_MAX_ABS]
     result = STEPPED
+    x_at = -1.0  # a Taylor step's reading of Ẍg at its end, x_end, serves the next step when it starts there
+    x_end = 0.0
     while t < t_next:
         if want_history and _hist_full(H, nh):
             S[R_RESUME] = 1.0
@@ -704,8 +708,10 @@ def _integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_histor
         y0 = th
         y1 = thd
         if use_taylor:
-            x0 = ground_acceleration(t, P, rec)
-            x1 = ground_acceleration(t + hh, P, rec)
+            x0 = x_end if t == x_at else ground_acceleration(t, P, rec)
+            x_at = t + hh
+            x1 = ground_acceleration(x_at, P, rec)
+            x_end = x1
             n0, n1, err, f_end = taylor.step(hh, y0, y1, side, kap_eff, cd_eff, x0 * inv_g, (x1 - x0) * inv_g / hh, p,
                                              sin_alpha, cos_alpha, Q, rtol, atol)
         else:
