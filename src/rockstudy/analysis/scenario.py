@@ -145,13 +145,16 @@ class Scenario:
         _, rec = self.motion(frequency_ratio, 1.0, realisation)
         return _unit_peak(self.excitation, rec)
 
-    def kernel_case(self, frequency_ratio: float, realisation: int = 0, *, energy_bound: bool = True) -> KernelCase:
+    def kernel_case(self, frequency_ratio: float, realisation: int = 0, *, energy_bound: bool = True,
+                    integration: dict | None = None) -> KernelCase:
         """The case at a frequency ratio and realisation packed for the fast engine's amplitude scans
-        (``energy_bound``: end runs that provably cannot overturn any more, docs/model.md)."""
+        (``energy_bound``: end runs that provably cannot overturn any more, docs/model.md;
+        ``integration``: other ``rtol``, ``atol`` or ``stepper`` for
+        :func:`~rockstudy.engine.simulate.pack_parameters`, as convergence checks use)."""
         motion, rec = self.motion(frequency_ratio, 1.0, realisation)
         parameters = pack_parameters(self.block, self.anchorage, self.control, motion,
                                      overturn_criterion=self.overturn_criterion, free_time=self.free_time,
-                                     energy_bound=energy_bound)
+                                     energy_bound=energy_bound, **(integration or {}))
         return KernelCase(parameters, kernel_record(self.control, motion), motion.vertical,
                           _unit_peak(self.excitation, rec), 1.0 if rec is None else rec.energy_ratio,
                           1.0 if rec is None else rec.pga_ratio)
