@@ -12,6 +12,10 @@ steppers checked against each other at the first), and prints which folder's val
 one equals. The scenario is the study's config (``--config``) with the strategy, noise level,
 sampling time and delay of the file.
 
+The fragility files (``fragility/*.nc``, records of the FEMA P695 sets) are checked the same way: every
+(strategy, record) whose threshold or stripe outcomes differ is run again at the stripe levels and
+bisected, at the converged tolerances, with the config's anchorage and intensity measure.
+
 Exit status 0 when every moved threshold of AFTER equals the converged value and the converged value
 does not depend on the tolerance or the stepper, 1 otherwise.
 """
@@ -70,6 +74,49 @@ def _same(a: float, b: float) -> bool:
     return (np.isnan(a) and np.isnan(b)) or a == b
 
 
+def record_check(config: dict, before: Path, after: Path):
+    """(file, strategy, record, before, after, converged thresholds, stripes agree) of every (strategy,
+    record) of the fragility files whose threshold or stripe outcomes differ between the folders."""
+    from rockstudy.analysis.fragility import intensity
+    from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturned, record_threshold
+    from rockstudy.model.record_suites import load_record
+
+    frag = config["beyond"]["fragility"]
+    base = scenario_from_dict({k: config[k] for k in SCENARIO_KEYS if k in config})
+    for fa in sorted((before / "fragility").glob("*.nc")):
+        fb = after / "fragility" / fa.name
+        if not fb.exists():
+            continue
+        with xr.open_dataset(fa) as da, xr.open_dataset(fb) as db:
+            da, db = da.load(), db.load()
+        levels = db.intensity.values
+        for c, strategy in enumerate(db.strategy.values):
+            control = dataclasses.replace(base.control, strategy=str(strategy),
+                                          sampling_time=float(db.sampling_time[c]), delay=float(db.delay[c]))
+            for r, name in enumerate(db.record.values):
+                x, y = float(da.threshold_intensity[c, r]), float(db.threshold_intensity[c, r])
+                stripes_differ = not np.array_equal(da.overturned[c, r].values, db.overturned[c, r].values)
+                if _same(x, y) and not stripes_differ:
+                    continue
+                _, record = load_record(str(name))
+                per_level = record.pga / base.block.uplift_acceleration / intensity(record, base.block,
+                                                                                     frag["intensity_measure"])
+                values, stripes = [], []
+                for integration in CONVERGED:
+                    run = RecordRun(base.block, base.anchorage, control, record,
+                                    overturn_criterion=base.overturn_criterion, free_time=base.free_time)
+                    run.P[kernel.I_RTOL], run.P[kernel.I_ATOL] = integration["rtol"], integration["atol"]
+                    run.P[kernel.I_TAYLOR] = 1.0 if integration["stepper"] == "taylor" else 0.0
+                    out = grid_outcomes(run, levels * per_level)
+                    res = record_threshold(run, levels * per_level, frag["threshold_resolution"] * per_level, out)
+                    values.append(res["amplitude_ratio"] / per_level)
+                    stripes.append(is_overturned(out))
+                yield (f"fragility/{fa.name}", str(strategy), str(name), x, y, values,
+                       all(np.array_equal(stripes[0], v) for v in stripes[1:]),
+                       np.array_equal(stripes[0], db.overturned[c, r].values.astype(bool)),
+                       np.array_equal(stripes[0], da.overturned[c, r].values.astype(bool)))
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("before", type=Path)
@@ -97,7 +144,23 @@ def main(argv=None) -> int:
               f"{', '.join(f'{v:.6g}' for v in values)} -> {side}{'' if settled else ' (not settled)'}")
     print(f"{n} thresholds moved beyond one step: the converged value equals AFTER in {n_after}, BEFORE in "
           f"{n_before}, neither in {n_neither}; {n_unsettled} not settled by the tolerance or stepper")
-    return 0 if n_after == n and n_unsettled == 0 else 1
+    ok = n_after == n and n_unsettled == 0
+    m = m_after = m_unsettled = 0
+    for rel, strategy, name, x, y, values, settled, stripes_after, stripes_before in record_check(
+            config, args.before, args.after):
+        ref = values[0]
+        side = "AFTER" if _same(ref, y) else "BEFORE" if _same(ref, x) else "neither"
+        m += 1
+        m_after += side == "AFTER" and stripes_after
+        m_unsettled += not settled or not all(_same(ref, v) for v in values[1:])
+        print(f"  {rel} {strategy} {name}: threshold before {x:.6g}, after {y:.6g}, converged "
+              f"{', '.join(f'{v:.6g}' for v in values)} -> {side}; stripes converged = after {stripes_after}, "
+              f"= before {stripes_before}")
+    if m:
+        print(f"{m} (strategy, record) pairs of the fragility files differ: threshold and stripes equal to the "
+              f"converged ones in AFTER for {m_after}; {m_unsettled} not settled")
+        ok = ok and m_after == m and m_unsettled == 0
+    return 0 if ok else 1
 
 
 if __name__ == "__main__":

@@ -5,8 +5,9 @@ once (:func:`setup`, ``C_*``) and the state record ``S`` (:func:`initial_state`,
 θ, θ̇, side, mode, device state, element flags, counters, the step size). Between known-time events
 (the end of the excitation, record knots, controller samples and actuation instants,
 :func:`next_known_time`) the block is on the ground or held (:func:`ground_phase`) or rocks under
-Dormand–Prince steps (:func:`integrate`); each accepted step is searched for state events, the
-earliest is located and its map applied (:func:`state_event`); the known-time events are applied by
+Taylor steps between the knots of a record or Dormand–Prince steps (:func:`integrate`); each
+accepted step is searched for state events, the earliest is located
+and its map applied (:func:`state_event`); the known-time events are applied by
 :func:`known_time_events`, the CS01 apex decision by :func:`apex`. :func:`simulate_kernel` drives
 them and keeps the logs.
 
@@ -509,8 +510,7 @@ def _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec):
 @njit(cache=True, inline="always")
 def _locate_on(taylor_step, hi, Q, a_th, a_thd, c):
     """The first zero in (0, hi] of g = a_th·θ + a_thd·θ̇ + c on the step's polynomial: degree 8 after
-    a Taylor step, the quartic after a Dormand–Prince step (``taylor_step`` is a constant of each
-    compiled step loop, so only one branch is compiled into it)."""
+    a Taylor step, the quartic after a Dormand–Prince step (``taylor_step``)."""
     if taylor_step:
         return locate_poly(hi, *event_poly(Q, a_th, a_thd, c))
     return locate(hi, *event_quartic(Q, a_th, a_thd, c))
@@ -617,13 +617,13 @@ def _event_point(best, negligible, t, hh, n0, n1, Q):
     return t + best * hh, a, b
 
 
-@njit(cache=True, inline="always")
-def _integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history, use_taylor):
-    """ROCK: steps towards ``t_next`` — Taylor steps while a record lasts (``C_TAYLOR``), Dormand–Prince
-    steps otherwise — each accepted step searched for state events (impact, overturning rotation,
-    fractures, the CS01/CS02 switches); stops at the earliest, located on the step's polynomial.
-    A step ends on every known-time event; at a record knot
-    where nothing else happens the steps go on (to the next known-time event) without returning.
+@njit(cache=True, **NO_REFCOUNT)
+def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history, use_taylor):
+    """ROCK: steps towards ``t_next`` — Taylor steps when ``use_taylor`` (while a record without vertical
+    motion lasts, ``C_TAYLOR``), Dormand–Prince steps otherwise — each accepted step searched for state
+    events (impact, overturning rotation, fractures, the CS01/CS02 switches); stops at the earliest,
+    located on the step's polynomial. A step ends on every known-time event; at a record knot where
+    nothing else happens the steps go on (to the next known-time event) without returning.
     Returns (STEPPED | EVENT | OVERTURNED | NEED_ROOM, nh).
 
     Compiled on its own without numba's reference counting (``core._inline.NO_REFCOUNT``): it allocates nothing,
@@ -794,20 +794,6 @@ def _integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_histor
     return result, nh
 
 
-@njit(cache=True, **NO_REFCOUNT)
-def integrate_taylor(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history):
-    """:func:`_integrate` with Taylor steps: while a record without vertical motion lasts (``C_TAYLOR``),
-    every step lies between two of its knots, where Ẍg is linear."""
-    return _integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history, True)
-
-
-@njit(cache=True, **NO_REFCOUNT)
-def integrate_dopri(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history):
-    """:func:`_integrate` with Dormand–Prince steps (analytic excitations, vertical records, the free
-    motion after the excitation)."""
-    return _integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history, False)
-
-
 @njit(cache=True, inline=inline_into("drive"))
 def state_event(S, C, P, rec, vert):
     """Apply the maps of a located state event: fracture (Eqs. 8–11), overturning, impact
@@ -905,10 +891,8 @@ def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, nh, impacts, n
             break
         if S[R_APEX] != 0.0 and apex(S, C, P, rec, vert) == HELD:
             continue
-        if C[C_TAYLOR] != 0.0 and S[R_H_ON] != 0.0:
-            result, nh = integrate_taylor(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history)
-        else:
-            result, nh = integrate_dopri(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history)
+        result, nh = integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history,
+                               C[C_TAYLOR] != 0.0 and S[R_H_ON] != 0.0)
         if result == NEED_ROOM:
             return GROW, nh, n_imp, n_up, n_rest
         if result == OVERTURNED:

@@ -42,7 +42,7 @@ I_BOUND = 28     # 1: end runs that provably cannot overturn any more (energy bo
 I_SENSE = 29     # 1: the controller reads Ẍg through a sensor (samples after the record in ``rec``), 0: driving Ẍg
 I_SOFF = 30      # index in ``rec`` of the first sensed sample (= number of driving samples) [-]
 I_SDT = 31       # sampling step of the sensed samples (1 without sensor) [s]
-I_TAYLOR = 32    # 1: Taylor steps between record knots (engine.integrate_taylor), 0: Dormand–Prince throughout
+I_TAYLOR = 32    # 1: Taylor steps between record knots (engine.integrate), 0: Dormand–Prince throughout
 NPAR = 33
 
 # ---- the run's constants, fixed by the parameters (engine.setup) ---------------------------

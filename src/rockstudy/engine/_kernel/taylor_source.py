@@ -41,11 +41,13 @@ import math
 
 from numba import njit
 
+from rockstudy.core._inline import NO_REFCOUNT
+
 ORDER = {order}
 """Degree of the θ polynomial (θ̇'s is one less); the last term is the error estimate."""
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **NO_REFCOUNT)
 def step(hh, y0, y1, side, kap, cd, u0, u1, p, sin_alpha, cos_alpha, Q, rtol, atol):
     """One Taylor step of size ``hh`` from (θ, θ̇) = (y0, y1), with Ẍg/g = u0 + u1·τ on the step.
 
@@ -53,6 +55,9 @@ def step(hh, y0, y1, side, kap, cd, u0, u1, p, sin_alpha, cos_alpha, Q, rtol, at
     j = 0 … ORDER; θ̇ = Σ_j Q[1, j]·sig^j, j = 0 … ORDER − 1; the columns beyond are set to 0) and
     returns (θ, θ̇) at the step's end, the scaled error norm of the last terms (accept when <= 1)
     and θ̈ at the step's end (from the polynomial). [rad, rad/s, -, rad/s^2]
+
+    Compiled on its own and called from the step loop, without reference counting
+    (``core._inline.NO_REFCOUNT``): it writes ``Q`` only.
     """
     pp = p * p
     sa = side * sin_alpha
