@@ -29,9 +29,9 @@ smooth function cannot hide inside 1/256 of a period at the amplitudes that matt
 @njit(cache=True, inline="always")
 def event_quartic(Q, a_th, a_thd, c):
     """The coefficients (g0 … g4) of g = a_th·θ + a_thd·θ̇ + c on a Dormand–Prince step, a quartic in the
-    fraction of the step, from the step's :func:`~rockstudy.engine._kernel.dopri.dense_coefficients` ``Q``."""
-    return (a_th * Q[0, 0] + a_thd * Q[1, 0] + c, a_th * Q[0, 1] + a_thd * Q[1, 1], a_th * Q[0, 2] + a_thd * Q[1, 2],
-            a_th * Q[0, 3] + a_thd * Q[1, 3], a_th * Q[0, 4] + a_thd * Q[1, 4])
+    fraction of the step, from the step's :func:`~rockstudy.engine._kernel.dopri.dense_coefficients` ``Q``
+    (the first five of :func:`event_poly`)."""
+    return event_poly(Q, a_th, a_thd, c)[:5]
 
 
 @njit(cache=True, inline="always")
