@@ -9,6 +9,11 @@ inlines them only into the functions named.
 """
 from __future__ import annotations
 
+from llvmlite import ir
+from numba import types
+from numba.core import cgutils
+from numba.extending import intrinsic
+
 
 def inline_into(*callers: str):
     """A numba ``inline=`` cost model: inline the function only where it is called from a function
@@ -35,3 +40,23 @@ compiled with these options does no counting; it must allocate no array and retu
 read and write the arrays it is given, which its caller keeps alive). The flag is numba's own,
 though not in its documented options, so ``tests/engine/test_fast_engine.py`` checks that the
 functions compiled with it still count nothing."""
+
+
+@intrinsic
+def guarded_pow(typingctx, x, y):
+    """``x ** y`` for floats, as a call to C's ``pow`` that runs only where the code reaches it.
+
+    numba compiles ``**`` on floats to LLVM's ``llvm.pow`` intrinsic, which LLVM treats as free of
+    side effects: it may evaluate it ahead of the test that decides whether it is needed (in the
+    step loop it did, on every step, about a tenth of a run). C's ``pow`` is the very function the
+    intrinsic becomes on this target, so the bits are the same; declared as itself (it may set
+    ``errno``), the call stays behind its test.
+    """
+    sig = types.float64(types.float64, types.float64)
+
+    def codegen(context, builder, signature, args):
+        fnty = ir.FunctionType(ir.DoubleType(), [ir.DoubleType(), ir.DoubleType()])
+        fn = cgutils.get_or_insert_function(builder.module, fnty, "pow")
+        return builder.call(fn, args)
+
+    return sig, codegen

@@ -25,7 +25,7 @@ import math
 import numpy as np
 from numba import njit
 
-from rockstudy.core._inline import NO_REFCOUNT, inline_into
+from rockstudy.core._inline import NO_REFCOUNT, guarded_pow, inline_into
 from rockstudy.core.constants import (
     FIRST_STEP,
     IMPACT_TOLERANCE,
@@ -471,7 +471,7 @@ def _grown_step(hh, err):
     """The trial step after an accepted step of size ``hh`` with scaled error ``err`` <= 1:
     0.9·err^(-1/5) times ``hh``, at most 10 times. [s]"""
     # growth capped at 10x: 0.9·err^-0.2 >= 10 for err <= 5.9e-6, so the power is only taken above
-    return hh * min(10.0, 0.9 * err ** -0.2) if err > GROWTH_CAP_ERROR else hh * 10.0
+    return hh * min(10.0, 0.9 * guarded_pow(err, -0.2)) if err > GROWTH_CAP_ERROR else hh * 10.0
 
 
 @njit(cache=True, inline="always")
@@ -718,7 +718,7 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
             n0, n1, err = dopri.step(t, hh, y0, y1, f0, K, side, kap_eff, cd_eff, h_on, P, rec, vert, rtol, atol)
             f_end = K[6, 1]
         if err > 1.0:
-            h = hh * max(0.2, 0.9 * err ** -0.2)
+            h = hh * max(0.2, 0.9 * guarded_pow(err, -0.2))
             lazy = False
             continue
         # ---- accepted: look for state events on (t, t + hh] ----
