@@ -110,7 +110,7 @@ def test_dense_quartic_is_the_shampine_extension_summed_over_the_stages():
 
 
 def _poly(*g):
-    """The nine coefficients the event functions take: a quartic's five, zeros above."""
+    """The coefficients the event functions take (dopri.NQ): a quartic's five, zeros above."""
     return tuple(g) + (0.0,) * (dopri.NQ - len(g))
 
 
@@ -153,19 +153,20 @@ def test_locate_keeps_to_the_bracket_on_hard_quartics(g, root, close):
     s = locate(1.0, *g)
     assert _horner(g, s) <= 0.0
     assert abs(s - root) <= close, (s, root)
-    # the degree-8 location of Taylor steps, on the same quartic padded with zeros: the same point
+    # the location of Taylor steps (degree NQ - 1), on the same quartic padded with zeros: the same point
     from rockstudy.engine._kernel.events import locate_poly
     assert locate_poly(1.0, *_poly(*g)) == s
 
 
-def test_locate_poly_finds_the_root_of_a_degree_8_polynomial():
-    """locate_poly (Taylor steps) and locate_sensed_poly on g = (root - sig)·(1 + sig^7): one crossing, at
-    the root, approached from the right within LOCATE_TOLERANCE; -1 when the root lies beyond hi."""
+def test_locate_poly_finds_the_root_of_a_taylor_steps_polynomial():
+    """locate_poly (Taylor steps) and locate_sensed_poly on g = (root - sig)·(1 + sig^(n-1)), n = NQ - 1
+    the Taylor step's degree: one crossing, at the root, approached from the right within
+    LOCATE_TOLERANCE; -1 when the root lies beyond hi."""
     from rockstudy.core.constants import LOCATE_TOLERANCE
     from rockstudy.engine._kernel.events import locate_poly, locate_sensed_poly
 
     for root in (1e-6, 0.3, 0.77, 0.999):
-        g = (root, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, root, -1.0)
+        g = (root, -1.0) + (0.0,) * (dopri.NQ - 4) + (root, -1.0)
         for s in (locate_poly(1.0, *g), locate_sensed_poly(1.0, *g, 0.0, 0.0, 0.01, _problem()[0], NONE)):
             assert _horner(g, s) <= 0.0 and root - 1e-15 <= s <= root + LOCATE_TOLERANCE + 1e-15, (root, s)
         assert locate_poly(0.9 * root, *g) == -1.0

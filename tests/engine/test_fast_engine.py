@@ -332,3 +332,28 @@ def test_functions_compiled_without_reference_counting_count_none():
 
     assert counts(njit(**NO_REFCOUNT)(body)) == 0
     assert counts(njit(body)) > 0
+
+
+def test_guarded_pow_is_cs_pow_bit_for_bit_and_not_llvms_intrinsic():
+    """``core._inline.guarded_pow`` (the step-size power of the step loop) gives the bits of ``**`` in
+    compiled code and in plain Python, and compiles to a call of C's ``pow``, not to the
+    ``llvm.pow`` intrinsic that LLVM may evaluate ahead of the test guarding it."""
+    from numba import njit
+
+    from rockstudy.core._inline import guarded_pow
+
+    @njit
+    def guarded(x, y):
+        return guarded_pow(x, y)
+
+    @njit
+    def plain(x, y):
+        return x ** y
+
+    rng = np.random.default_rng(5)
+    for x in np.concatenate([rng.uniform(1e-12, 1.0, 200), rng.uniform(1.0, 1e6, 50)]):
+        for y in (-0.2, 0.2, -0.125, 1.0 / 7.0):
+            assert guarded(x, y) == plain(x, y) == guarded_pow(x, y) == x ** y
+    ir = guarded.inspect_llvm(guarded.signatures[0])
+    assert "@pow(" in ir and "llvm.pow" not in ir
+    assert "llvm.pow" in plain.inspect_llvm(plain.signatures[0])

@@ -12,7 +12,7 @@ from __future__ import annotations
 from llvmlite import ir
 from numba import types
 from numba.core import cgutils
-from numba.extending import intrinsic
+from numba.extending import intrinsic, overload
 
 
 def inline_into(*callers: str):
@@ -42,16 +42,21 @@ though not in its documented options, so ``tests/engine/test_fast_engine.py`` ch
 functions compiled with it still count nothing."""
 
 
-@intrinsic
-def guarded_pow(typingctx, x, y):
+def guarded_pow(x, y):
     """``x ** y`` for floats, as a call to C's ``pow`` that runs only where the code reaches it.
 
     numba compiles ``**`` on floats to LLVM's ``llvm.pow`` intrinsic, which LLVM treats as free of
     side effects: it may evaluate it ahead of the test that decides whether it is needed (in the
     step loop it did, on every step, about a tenth of a run). C's ``pow`` is the very function the
     intrinsic becomes on this target, so the bits are the same; declared as itself (it may set
-    ``errno``), the call stays behind its test.
+    ``errno``), the call stays behind its test. Plain ``x ** y`` outside compiled code.
     """
+    return x ** y
+
+
+@intrinsic
+def _c_pow(typingctx, x, y):
+    """A call to C's ``pow`` (see :func:`guarded_pow`)."""
     sig = types.float64(types.float64, types.float64)
 
     def codegen(context, builder, signature, args):
@@ -60,3 +65,8 @@ def guarded_pow(typingctx, x, y):
         return builder.call(fn, args)
 
     return sig, codegen
+
+
+@overload(guarded_pow)
+def _guarded_pow_compiled(x, y):
+    return lambda x, y: _c_pow(float(x), float(y))

@@ -60,7 +60,7 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
 
     ``energy_bound`` lets the engine end a run once it provably can no longer overturn (outcome
     runs only: the history and event log after that point are not computed). ``stepper`` is how the
-    engine steps between the knots of a record: ``"taylor"`` (Taylor series of degree 8, one sine
+    engine steps between the knots of a record: ``"taylor"`` (Taylor series of degree 6, one sine
     and cosine a step) or ``"dopri"`` (Dormand–Prince 5(4), as everywhere else; docs/model.md).
     """
     if stepper not in STEPPERS:

@@ -32,8 +32,8 @@ DENSE = np.array([
 ])
 
 
-NQ = 9
-"""Columns of a step's polynomial array ``Q``: degree 8, the Taylor step's
+NQ = 7
+"""Columns of a step's polynomial array ``Q``: degree 6, the Taylor step's
 (:mod:`~rockstudy.engine._kernel.taylor`); Dormand–Prince's quartic leaves the columns above 4 zero."""
 
 

@@ -509,7 +509,7 @@ def _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec):
 
 @njit(cache=True, inline="always")
 def _locate_on(taylor_step, hi, Q, a_th, a_thd, c):
-    """The first zero in (0, hi] of g = a_th·θ + a_thd·θ̇ + c on the step's polynomial: degree 8 after
+    """The first zero in (0, hi] of g = a_th·θ + a_thd·θ̇ + c on the step's polynomial: degree 6 after
     a Taylor step, the quartic after a Dormand–Prince step (``taylor_step``)."""
     if taylor_step:
         return locate_poly(hi, *event_poly(Q, a_th, a_thd, c))
@@ -589,8 +589,10 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, 
                 if s >= 0.0:
                     best = s
     if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
-        if hint == side and best > 1.0 and side * y1 > 0.0 and side * n1 <= 0.0:
-            s = sa_  # the apex located above: the same root of the same function on (0, 1]
+        if hint == side and side * y1 > 0.0 and side * n1 <= 0.0:
+            # the apex located above is the first zero of the same function on (0, 1], so also the
+            # one on (0, min(best, 1)] when it lies there; beyond it, there is none there
+            s = sa_ if sa_ <= min(best, 1.0) else -1.0
         else:
             have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
             s = _locate_on(taylor_step, min(best, 1.0), Q, 0.0, hint, 0.0)

@@ -36,37 +36,37 @@ def event_quartic(Q, a_th, a_thd, c):
 
 @njit(cache=True, inline="always")
 def event_poly(Q, a_th, a_thd, c):
-    """The coefficients (g0 … g8) of g = a_th·θ + a_thd·θ̇ + c on a Taylor step, a polynomial of degree 8
+    """The coefficients (g0 … g6) of g = a_th·θ + a_thd·θ̇ + c on a Taylor step, a polynomial of degree 6
     in the fraction of the step, from the step's polynomials ``Q`` (:mod:`~rockstudy.engine._kernel.taylor`)."""
     return (a_th * Q[0, 0] + a_thd * Q[1, 0] + c, a_th * Q[0, 1] + a_thd * Q[1, 1], a_th * Q[0, 2] + a_thd * Q[1, 2],
             a_th * Q[0, 3] + a_thd * Q[1, 3], a_th * Q[0, 4] + a_thd * Q[1, 4], a_th * Q[0, 5] + a_thd * Q[1, 5],
-            a_th * Q[0, 6] + a_thd * Q[1, 6], a_th * Q[0, 7] + a_thd * Q[1, 7], a_th * Q[0, 8] + a_thd * Q[1, 8])
+            a_th * Q[0, 6] + a_thd * Q[1, 6])
 
 
 @njit(cache=True, inline="always")
-def _poly_at(sig, g0, g1, g2, g3, g4, g5, g6, g7, g8, high):
-    """g at sig by Horner: degree 8 when ``high``, else the quartic g0 … g4 (g5 … g8 unused)."""
+def _poly_at(sig, g0, g1, g2, g3, g4, g5, g6, high):
+    """g at sig by Horner: degree 6 when ``high``, else the quartic g0 … g4 (g5, g6 unused)."""
     v = g4
     if high:
-        v = (((g8 * sig + g7) * sig + g6) * sig + g5) * sig + g4
+        v = (g6 * sig + g5) * sig + g4
     return (((v * sig + g3) * sig + g2) * sig + g1) * sig + g0
 
 
 @njit(cache=True, inline="always")
-def _poly_and_slope(sig, g0, g1, g2, g3, g4, g5, g6, g7, g8, high):
-    """g and dg/dsig at sig (two Horner chains side by side), of degree 8 or 4 as :func:`_poly_at`."""
+def _poly_and_slope(sig, g0, g1, g2, g3, g4, g5, g6, high):
+    """g and dg/dsig at sig (two Horner chains side by side), of degree 6 or 4 as :func:`_poly_at`."""
     v = g4
     w = 4.0 * g4
     if high:
-        v = (((g8 * sig + g7) * sig + g6) * sig + g5) * sig + g4
-        w = (((8.0 * g8 * sig + 7.0 * g7) * sig + 6.0 * g6) * sig + 5.0 * g5) * sig + 4.0 * g4
+        v = (g6 * sig + g5) * sig + g4
+        w = (6.0 * g6 * sig + 5.0 * g5) * sig + 4.0 * g4
     f = (((v * sig + g3) * sig + g2) * sig + g1) * sig + g0
     d = ((w * sig + 3.0 * g3) * sig + 2.0 * g2) * sig + g1
     return f, d
 
 
 @njit(cache=True, inline="always")
-def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, g7, g8, high, a_x, t, hh, P, rec):
+def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, high, a_x, t, hh, P, rec):
     """The Illinois iterations of :func:`locate_sensed` on a bracket (0, hi] with g(0) = flo > 0 >= g(hi) = fhi."""
     lo = 0.0
     last = 0
@@ -76,7 +76,7 @@ def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, g7, g8, high, a_x, t, hh
         s = hi - fhi * (hi - lo) / (fhi - flo)
         if not (lo < s < hi):
             s = 0.5 * (lo + hi)
-        f = _poly_at(s, g0, g1, g2, g3, g4, g5, g6, g7, g8, high)
+        f = _poly_at(s, g0, g1, g2, g3, g4, g5, g6, high)
         if a_x != 0.0:
             f += a_x * sensed_acceleration(t + s * hh, P, rec)
         if f <= 0.0:
@@ -95,9 +95,9 @@ def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, g7, g8, high, a_x, t, hh
 
 
 @njit(cache=True, inline="always")
-def _locate(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, high):
-    """The body of :func:`locate` and :func:`locate_poly` (degree 8 when ``high``)."""
-    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, high)
+def _locate(hi, g0, g1, g2, g3, g4, g5, g6, high):
+    """The body of :func:`locate` and :func:`locate_poly` (degree 6 when ``high``)."""
+    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6, high)
     if fhi > 0.0:
         return -1.0
     if g0 <= 0.0:
@@ -107,7 +107,7 @@ def _locate(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, high):
     if not (lo < s < hi):
         s = 0.5 * hi
     for _ in range(200):
-        f, d = _poly_and_slope(s, g0, g1, g2, g3, g4, g5, g6, g7, g8, high)
+        f, d = _poly_and_slope(s, g0, g1, g2, g3, g4, g5, g6, high)
         if f <= 0.0:
             hi = s
         else:
@@ -136,37 +136,37 @@ def locate(hi, g0, g1, g2, g3, g4):
     slope, against about thirteen of g by the Illinois method), or -1 when g(hi) > 0 (no crossing
     before ``hi``). The returned point always has g <= 0.
     """
-    return _locate(hi, g0, g1, g2, g3, g4, 0.0, 0.0, 0.0, 0.0, False)
+    return _locate(hi, g0, g1, g2, g3, g4, 0.0, 0.0, False)
 
 
 @njit(cache=True)
-def locate_poly(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8):
-    """:func:`locate` on a polynomial of degree 8 (a Taylor step's, :func:`event_poly`)."""
-    return _locate(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, True)
+def locate_poly(hi, g0, g1, g2, g3, g4, g5, g6):
+    """:func:`locate` on a polynomial of degree 6 (a Taylor step's, :func:`event_poly`)."""
+    return _locate(hi, g0, g1, g2, g3, g4, g5, g6, True)
 
 
 @njit(cache=True, inline="always")
-def _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, high, a_x, t, hh, P, rec):
-    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, high) + a_x * sensed_acceleration(t + hi * hh, P, rec)
+def _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, high, a_x, t, hh, P, rec):
+    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6, high) + a_x * sensed_acceleration(t + hi * hh, P, rec)
     if fhi > 0.0:
         return -1.0
     flo = g0 + a_x * sensed_acceleration(t, P, rec)
     if flo <= 0.0:
         return hi
-    return _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, g7, g8, high, a_x, t, hh, P, rec)
+    return _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, high, a_x, t, hh, P, rec)
 
 
 @njit(cache=True, **NO_REFCOUNT)
 def locate_sensed(hi, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
     """:func:`locate` for g = quartic + a_x·Ẍg(t + sig·hh) as the controller senses it (the CS02 switch),
     by the Illinois method: the sensed Ẍg is piecewise linear, so g has no usable slope at its knots."""
-    return _locate_sensed(hi, g0, g1, g2, g3, g4, 0.0, 0.0, 0.0, 0.0, False, a_x, t, hh, P, rec)
+    return _locate_sensed(hi, g0, g1, g2, g3, g4, 0.0, 0.0, False, a_x, t, hh, P, rec)
 
 
 @njit(cache=True, **NO_REFCOUNT)
-def locate_sensed_poly(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, a_x, t, hh, P, rec):
-    """:func:`locate_sensed` on a polynomial of degree 8 (a Taylor step's)."""
-    return _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, g7, g8, True, a_x, t, hh, P, rec)
+def locate_sensed_poly(hi, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
+    """:func:`locate_sensed` on a polynomial of degree 6 (a Taylor step's)."""
+    return _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, True, a_x, t, hh, P, rec)
 
 
 @njit(cache=True, inline=inline_into("scan_exit"))

@@ -16,7 +16,7 @@ from numba import njit
 
 from rockstudy.core._inline import NO_REFCOUNT
 
-ORDER = 8
+ORDER = 6
 """Degree of the θ polynomial (θ̇'s is one less); the last term is the error estimate."""
 
 
@@ -65,29 +65,17 @@ def step(hh, y0, y1, side, kap, cd, u0, u1, p, sin_alpha, cos_alpha, Q, rtol, at
     c4 = -((b1 * s3 + b2 * s2 + b3 * s1) * 0.25) - b4 * (s0 * 0.25)
     e4 = -pp * (A1 * c3 + B1 * s3) - hd * (c1 * b4 + c2 * b3 + c3 * b2)
     b6 = (e4 + bs * s4 + ac * c4) * 0.2 - (hd1 * 0.2) * b5
-    s5 = (b1 * c4 + b2 * c3 + b3 * c2 + b4 * c1) * 0.2 + b5 * (c0 * 0.2)
-    c5 = -((b1 * s4 + b2 * s3 + b3 * s2 + b4 * s1) * 0.2) - b5 * (s0 * 0.2)
-    e5 = -pp * (A1 * c4 + B1 * s4) - hd * (c1 * b5 + c2 * b4 + c3 * b3 + c4 * b2)
-    b7 = (e5 + bs * s5 + ac * c5) * 0.16666666666666666 - (hd1 * 0.16666666666666666) * b6
-    s6 = (b1 * c5 + b2 * c4 + b3 * c3 + b4 * c2 + b5 * c1) * 0.16666666666666666 + b6 * (c0 * 0.16666666666666666)
-    c6 = -((b1 * s5 + b2 * s4 + b3 * s3 + b4 * s2 + b5 * s1) * 0.16666666666666666) - b6 * (s0 * 0.16666666666666666)
-    e6 = -pp * (A1 * c5 + B1 * s5) - hd * (c1 * b6 + c2 * b5 + c3 * b4 + c4 * b3 + c5 * b2)
-    b8 = (e6 + bs * s6 + ac * c6) * 0.14285714285714285 - (hd1 * 0.14285714285714285) * b7
     a2 = b2 * 0.5
     a3 = b3 * 0.3333333333333333
     a4 = b4 * 0.25
     a5 = b5 * 0.2
     a6 = b6 * 0.16666666666666666
-    a7 = b7 * 0.14285714285714285
-    a8 = b8 * 0.125
     h1 = hh
     h2 = h1 * hh
     h3 = h2 * hh
     h4 = h3 * hh
     h5 = h4 * hh
     h6 = h5 * hh
-    h7 = h6 * hh
-    h8 = h7 * hh
     Q[0, 0] = a0
     Q[1, 0] = b1
     Q[0, 1] = a1 * h1
@@ -101,40 +89,30 @@ def step(hh, y0, y1, side, kap, cd, u0, u1, p, sin_alpha, cos_alpha, Q, rtol, at
     Q[0, 5] = a5 * h5
     Q[1, 5] = b6 * h5
     Q[0, 6] = a6 * h6
-    Q[1, 6] = b7 * h6
-    Q[0, 7] = a7 * h7
-    Q[1, 7] = b8 * h7
-    Q[0, 8] = a8 * h8
-    for j in range(8, Q.shape[1]):
+    for j in range(6, Q.shape[1]):
         Q[1, j] = 0.0
-    for j in range(9, Q.shape[1]):
+    for j in range(7, Q.shape[1]):
         Q[0, j] = 0.0
-    n0 = a8 * h8
-    n0 = n0 + a7 * h7
-    n0 = n0 + a6 * h6
+    n0 = a6 * h6
     n0 = n0 + a5 * h5
     n0 = n0 + a4 * h4
     n0 = n0 + a3 * h3
     n0 = n0 + a2 * h2
     n0 = n0 + a1 * h1
     n0 = n0 + a0
-    n1 = b8 * h7
-    n1 = n1 + b7 * h6
-    n1 = n1 + b6 * h5
+    n1 = b6 * h5
     n1 = n1 + b5 * h4
     n1 = n1 + b4 * h3
     n1 = n1 + b3 * h2
     n1 = n1 + b2 * h1
     n1 = n1 + b1
-    f_end = 7.0 * b8 * h6
-    f_end = f_end + 6.0 * b7 * h5
-    f_end = f_end + 5.0 * b6 * h4
+    f_end = 5.0 * b6 * h4
     f_end = f_end + 4.0 * b5 * h3
     f_end = f_end + 3.0 * b4 * h2
     f_end = f_end + 2.0 * b3 * h1
     f_end = f_end + b2
-    err0 = a8 * h8
-    err1 = b8 * h7
+    err0 = a6 * h6
+    err1 = b6 * h5
     w0 = err0 / (atol + rtol * max(abs(y0), abs(n0)))
     w1 = err1 / (atol + rtol * max(abs(y1), abs(n1)))
     err = math.sqrt(0.5 * (w0 * w0 + w1 * w1))

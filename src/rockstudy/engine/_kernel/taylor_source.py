@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-ORDER = 8
+ORDER = 6
 """Degree of the θ polynomial of a step; its last term is the step's error estimate."""
 
 HEADER = '''"""The Taylor-series step between record knots (written by
