@@ -20,7 +20,8 @@ from rockstudy.model.excitation import (
 )
 
 
-@njit(cache=True, inline=inline_into("rhs", "step", "sensed_acceleration", "pass_quiet_knots", "exit_value"),
+@njit(cache=True, inline=inline_into("rhs", "step", "sensed_acceleration", "pass_quiet_knots", "exit_value",
+                                      "integrate"),
       **NO_REFCOUNT)
 def ground_acceleration(t, P, rec):
     """Horizontal ground acceleration Ẍg(t) while the excitation lasts, zero outside. [m/s^2]"""
