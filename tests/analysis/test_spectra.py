@@ -130,3 +130,22 @@ def test_table1_sign_pattern_is_reachable(blc06):
     j_cs02, _ = utility_index(cs02, fs, a_max0)
     assert j_fs < 0
     assert j_cs01 > j_cs02 > 0
+
+
+def test_one_thread_and_two_threads_give_the_same_spectrum(blc06):
+    """One numba thread runs the serial batches, more the parallel ones: the same thresholds,
+    simulation counts and map, bit for bit (the results do not depend on the threads)."""
+    import numba
+
+    sc = Scenario(blc06, control=Control("CS01"), noise_level=0.05, seed=11)
+    before = numba.get_num_threads()
+    try:
+        runs = []
+        for n in (1, min(2, numba.config.NUMBA_NUM_THREADS)):
+            numba.set_num_threads(n)
+            runs.append(spectrum(sc, [1.2, 2.6], realisations=[0, 1, 2], grid=GRID, with_map=True))
+    finally:
+        numba.set_num_threads(before)
+    one, two = runs
+    for name in ("threshold_realisation", "last_safe", "n_simulations", "outcome"):
+        np.testing.assert_array_equal(one[name].values, two[name].values)

@@ -13,6 +13,7 @@ import math
 import time
 from dataclasses import asdict, dataclass, fields
 
+import numba
 import numpy as np
 import xarray as xr
 
@@ -298,8 +299,12 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     label = f"spectrum {scenario.control.strategy} noise={scenario.noise_level:g} Ts={scenario.control.sampling_time:g}"
     t0 = time.perf_counter()
 
+    # one thread (a workflow job, --threads 1): the serial batches, without numba's parallel machinery
+    serial = numba.get_num_threads() == 1
+    thresholds = kernel.threshold_serial if serial else kernel.threshold_batch
+
     def run(sl):
-        return kernel.threshold_batch(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, grid.resolution, peaks[sl])
+        return thresholds(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, grid.resolution, peaks[sl])
 
     parts = _run_chunked(run, n, label, progress_chunks)
     thr = np.concatenate([p[0] for p in parts])
@@ -315,7 +320,8 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
                           n_undetermined=nund.reshape(shape))
     if with_map:
         def run_map(sl):
-            return kernel.outcome_batch(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, peaks[sl])
+            return (kernel.outcome_serial if serial else kernel.outcome_batch)(Pm[sl], recs, off[sl], lens[sl],
+                                                                              np.zeros(0), values, peaks[sl])
         out = np.concatenate(_run_chunked(run_map, n, label + " map", progress_chunks))
         ds["outcome"] = (("realisation", "frequency_ratio", "amplitude_ratio"), out.reshape(shape + (len(values),)),
                          {"long_name": "outcome of the simulation at each grid point",

@@ -31,11 +31,13 @@ from rockstudy.engine._kernel.scan import (
                    S_LO,
                    outcome_batch,
                    outcome_kernel,
+                   outcome_serial,
                    scan_amplitude,
                    scan_start,
                    scan_update,
                    threshold_batch,
                    threshold_kernel,
+                   threshold_serial,
                    uplift_floor,
 )
 from rockstudy.model.control import CS01, CS02, FS, PASSIVE, stiffness_on
@@ -48,4 +50,4 @@ __all__ = ["MAX_EVENTS", "NEGLIGIBLE_STEP", "CS01", "CS02", "FS", "PASSIVE", "st
            "KIND_ONE_SINE", "KIND_RECORD", "KIND_RECTANGULAR", "ground_acceleration", "vertical_acceleration",
            "simulate_kernel", "outcome_batch", "outcome_kernel", "scan_amplitude", "scan_start", "scan_update",
            "S_HI", "S_LO",
-           "threshold_batch", "threshold_kernel", "uplift_floor"]
+           "threshold_batch", "threshold_kernel", "threshold_serial", "outcome_serial", "uplift_floor"]

@@ -128,32 +128,54 @@ def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
     return state[S_HI], state[S_LO], n_sim, n_und
 
 
+@njit(cache=True, inline="always")
+def _threshold_case(i, Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks, out, low, nsim, nund):
+    rec = recs[rec_off[i]:rec_off[i] + rec_len[i]]
+    out[i], low[i], nsim[i], nund[i] = threshold_kernel(Pm[i], rec, vert, grid, resolution, peaks[i])
+
+
+@njit(cache=True, inline="always")
+def _outcome_case(i, Pm, recs, rec_off, rec_len, vert, grid, peaks, out):
+    rec = recs[rec_off[i]:rec_off[i] + rec_len[i]]
+    for j in range(grid.shape[0]):
+        out[i, j] = outcome_kernel(Pm[i], rec, vert, grid[j], peaks[i])
+
+
 @njit(cache=True, parallel=True)
 def threshold_batch(Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks):
-    """threshold_kernel over many cases (rows of Pm), in parallel."""
+    """threshold_kernel over many cases (rows of Pm), in parallel. Returns (threshold, lower_safe,
+    n_simulations, n_undetermined), one value per case."""
     n = Pm.shape[0]
-    out = np.empty(n)
-    low = np.empty(n)
-    nsim = np.zeros(n, dtype=np.int64)
-    nund = np.zeros(n, dtype=np.int64)
+    out, low, nsim, nund = np.empty(n), np.empty(n), np.zeros(n, dtype=np.int64), np.zeros(n, dtype=np.int64)
     for i in prange(n):
-        rec = recs[rec_off[i]:rec_off[i] + rec_len[i]]
-        th, lo, ns, nu = threshold_kernel(Pm[i], rec, vert, grid, resolution, peaks[i])
-        out[i] = th
-        low[i] = lo
-        nsim[i] = ns
-        nund[i] = nu
+        _threshold_case(i, Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks, out, low, nsim, nund)
+    return out, low, nsim, nund
+
+
+@njit(cache=True)
+def threshold_serial(Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks):
+    """:func:`threshold_batch` on one thread: the same results, without numba's parallel machinery
+    (a third of its compile time, none of its start-up; what a one-thread job calls)."""
+    n = Pm.shape[0]
+    out, low, nsim, nund = np.empty(n), np.empty(n), np.zeros(n, dtype=np.int64), np.zeros(n, dtype=np.int64)
+    for i in range(n):
+        _threshold_case(i, Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks, out, low, nsim, nund)
     return out, low, nsim, nund
 
 
 @njit(cache=True, parallel=True)
 def outcome_batch(Pm, recs, rec_off, rec_len, vert, grid, peaks):
     """outcome_kernel on the full (case × amplitude) grid, in parallel over cases."""
-    n = Pm.shape[0]
-    m = grid.shape[0]
-    out = np.zeros((n, m), dtype=np.int8)
-    for i in prange(n):
-        rec = recs[rec_off[i]:rec_off[i] + rec_len[i]]
-        for j in range(m):
-            out[i, j] = outcome_kernel(Pm[i], rec, vert, grid[j], peaks[i])
+    out = np.zeros((Pm.shape[0], grid.shape[0]), dtype=np.int8)
+    for i in prange(Pm.shape[0]):
+        _outcome_case(i, Pm, recs, rec_off, rec_len, vert, grid, peaks, out)
+    return out
+
+
+@njit(cache=True)
+def outcome_serial(Pm, recs, rec_off, rec_len, vert, grid, peaks):
+    """:func:`outcome_batch` on one thread (as :func:`threshold_serial`)."""
+    out = np.zeros((Pm.shape[0], grid.shape[0]), dtype=np.int8)
+    for i in range(Pm.shape[0]):
+        _outcome_case(i, Pm, recs, rec_off, rec_len, vert, grid, peaks, out)
     return out
