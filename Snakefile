@@ -6,8 +6,9 @@
 #   snakemake --report report.html                  # the study as one HTML page: overview, tables, figures
 #   snakemake -j2 probability | fragility           # beyond the paper (config `beyond:`; fragility is in `all`)
 #
-# DAG: noise -> spectrum_chunk -> gather_{spectrum,sampling,delay} -> convergence, tables,
-#      figures; overturning_map and time_history feed their figures directly.
+# DAG: noise -> spectrum_{,sampling,delay} -> convergence, tables, figures (with realisations_per_job <
+#      realisations: noise -> spectrum_chunk -> gather_{spectrum,sampling,delay} -> ...); overturning_map
+#      and time_history feed their figures directly.
 from snakemake.utils import min_version, validate
 
 from rockstudy.studies import device_calibration as calibration
@@ -39,9 +40,6 @@ include: "workflow/rules/design.smk"
 
 localrules:
     all,
-    gather_spectrum,
-    gather_sampling,
-    gather_delay,
     convergence,
     table1,
     timing_table_sampling,

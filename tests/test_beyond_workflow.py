@@ -1,4 +1,5 @@
 """The optional `beyond:` section of the workflow: validated on load, targets in the DAG."""
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -69,3 +70,26 @@ def test_a_bad_beyond_section_stops_before_any_job(tmp_path, change, key):
     change(config["beyond"])
     res = dry_run(tmp_path, config, "fragility")
     assert res.returncode != 0 and key in res.stderr + res.stdout
+
+
+# Rules whose scripts run the compiled engine: each must wait for the one compilation (rule compile_engine)
+# instead of compiling the engine itself alongside it.
+SIMULATING_RULES = {"spectrum", "spectrum_sampling", "spectrum_delay", "spectrum_chunk", "overturning_map",
+                    "time_history", "probability_surface", "fragility_stripes", "reading_spectrum", "calibration_fs",
+                    "calibration_device", "calibration_refine_spectrum", "design_block", "design_device"}
+
+
+def test_every_simulating_job_waits_for_the_one_compilation(tmp_path):
+    config = tiny_with_beyond()
+    config["design"] = yaml.safe_load((ROOT / "config.yaml").read_text())["design"]
+    seen = set()
+    for per_job in (config["realisations"], 1):  # every spectrum whole; the noisy ones in chunks
+        config["realisations_per_job"] = per_job
+        res = dry_run(tmp_path, config, "all", "probability", "fragility", "reproduction", "calibration", "design")
+        assert res.returncode == 0, res.stderr + res.stdout
+        jobs = re.findall(r"^( *)rule (\w+):\n((?:\1    .*\n)+)", res.stdout, flags=re.MULTILINE)  # grouped: indented
+        seen |= {rule for _, rule, _ in jobs}
+        for _, rule, body in jobs:
+            if rule in SIMULATING_RULES:
+                assert "logs/compile_engine.done" in body, f"{rule} does not wait for compile_engine:\n{body}"
+    assert SIMULATING_RULES <= seen, SIMULATING_RULES - seen

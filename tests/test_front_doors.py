@@ -58,7 +58,7 @@ def test_cli_spectrum_with_defaults_is_the_study_spectrum_bit_for_bit(tmp_path, 
           "--max-amplitude-ratio", str(ag["stop"]), "--amplitude-step", str(ag["step"]),
           "--resolution", str(ag["resolution"]), "--output", str(tmp_path / "cli.nc")])
     capsys.readouterr()
-    # the workflow's path (workflow/scripts/spectrum_chunk.py) with config.yaml's values
+    # the workflow's path (workflow/scripts/spectrum.py) with config.yaml's values
     study = spectrum(parameters.scenario_from_dict(study_scenario("FS", "R005")),
                      parameters.frequency_ratios(fg), realisations=[0, 1], grid=parameters.amplitude_grid(ag))
     with xr.open_dataset(tmp_path / "cli.nc") as cli:

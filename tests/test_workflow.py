@@ -32,7 +32,48 @@ def tiny_config():
 def test_valid_tiny_config_dry_runs(tmp_path):
     res = run_with(tiny_config(), tmp_path)
     assert res.returncode == 0, res.stderr + res.stdout
-    assert "spectrum_chunk" in res.stdout
+    assert "rule spectrum:" in res.stdout
+
+
+def job_counts(stdout: str) -> dict:
+    """Jobs per rule in a dry run's "Job stats" table."""
+    table = stdout.split("Job stats:", 1)[1].split("\n\n", 1)[0]
+    return {m.group(1): int(m.group(2)) for m in re.finditer(r"^(\w+)\s+(\d+)$", table, flags=re.MULTILINE)}
+
+
+def test_default_study_writes_every_spectrum_in_its_simulation_job(tmp_path):
+    """realisations_per_job >= realisations (config.yaml): one job per spectrum, no chunk and no gather job."""
+    config = yaml.safe_load((ROOT / "config.yaml").read_text())
+    assert config["realisations_per_job"] >= config["realisations"]
+    res = run_with(config, tmp_path, "--config", "results_dir=out")
+    assert res.returncode == 0, res.stderr + res.stdout
+    jobs = job_counts(res.stdout)
+    n_levels, n_strategies = len(config["noise_levels"]), len(config["strategies"])
+    assert jobs["spectrum"] == n_levels * n_strategies
+    assert jobs["spectrum_sampling"] == len(config["sampling_sweep"]["strategies"]) * len(
+        config["sampling_sweep"]["sampling_times"])
+    assert jobs["spectrum_delay"] == len(config["delay_sweep"]["strategies"]) * len(config["delay_sweep"]["delays"])
+    assert not {rule for rule in jobs if rule.startswith("gather_") or rule == "spectrum_chunk"}, jobs
+    assert "spectra/chunks/" not in res.stdout
+
+
+def test_chunked_study_gathers_the_noisy_spectra(tmp_path):
+    """realisations_per_job < realisations: the noisy spectra in chunks, gathered; the noise-free one (one
+    realisation) still written by its job."""
+    res = run_with(tiny_config(), tmp_path, "--config", "results_dir=out", "realisations_per_job=1")
+    assert res.returncode == 0, res.stderr + res.stdout
+    jobs = job_counts(res.stdout)
+    config = tiny_config()
+    n_strategies, n_real = len(config["strategies"]), config["realisations"]
+    n_sampling = len(config["sampling_sweep"]["strategies"]) * len(config["sampling_sweep"]["sampling_times"])
+    n_delay = len(config["delay_sweep"]["strategies"]) * len(config["delay_sweep"]["delays"])
+    assert jobs["spectrum"] == n_strategies  # the noise-free level
+    assert jobs["gather_spectrum"] == n_strategies  # the one noisy level
+    assert (jobs["gather_sampling"], jobs["gather_delay"]) == (n_sampling, n_delay)
+    assert jobs["spectrum_chunk"] == n_real * (n_strategies + n_sampling + n_delay)
+    assert "spectrum_sampling" not in jobs and "spectrum_delay" not in jobs
+    assert re.search(r"rule gather_spectrum:\n\s+input: out/spectra/chunks/FS_R005_Ts0_d0_c0\.nc, "
+                     r"out/spectra/chunks/FS_R005_Ts0_d0_c1\.nc\n\s+output: out/spectra/FS_R005\.nc", res.stdout)
 
 
 @pytest.mark.parametrize("change, key", [
@@ -131,7 +172,7 @@ def test_tiny_study_files_follow_cf_and_histories_have_one_value_per_time(tiny_r
     kinds = {}
     for path in sorted(out.rglob("*.nc")):
         kinds.setdefault(path.parent, path)
-    assert len(kinds) >= 10, sorted(kinds)
+    assert len(kinds) >= 9, sorted(kinds)  # every spectrum written whole: no chunks/ folder
     findings = {str(path.relative_to(out)): high_priority_findings(path) for path in kinds.values()}
     assert all(not f for f in findings.values()), {k: f for k, f in findings.items() if f}
     import xarray as xr
@@ -161,7 +202,7 @@ def test_interrupted_j1_run_resumes_to_the_same_numbers_as_j2(tiny_run, tmp_path
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     deadline = time.monotonic() + 600
     while time.monotonic() < deadline and proc.poll() is None:
-        if len(list((out / "spectra" / "chunks").glob("*.nc"))) >= 2:
+        if len(list((out / "spectra").glob("*.nc"))) >= 2:
             break
         time.sleep(0.2)
     assert proc.poll() is None, "the run ended before it could be interrupted"
@@ -216,15 +257,15 @@ if __name__ == "__main__":
 def test_a_swapped_chunk_stops_the_gather_naming_the_file_and_attribute(tiny_run, tmp_path):
     """A CS01 chunk copied over an FS chunk is not gathered into a right-looking FS spectrum: the gather
     stops naming the file and control_strategy, and writes no spectrum."""
-    ref, _, first = tiny_run
-    assert first.returncode == 0, first.stderr[-3000:]
     out = tmp_path / "out"
-    for folder in ("noise", "spectra/chunks"):
-        shutil.copytree(ref / folder, out / folder)
-    swapped = out / "spectra" / "chunks" / "FS_R005_Ts0_d0_c0.nc"
-    shutil.copyfile(out / "spectra" / "chunks" / "CS01_R005_Ts0_d0_c0.nc", swapped)
-    res = snakemake("-j1", *TINY, "--config", f"results_dir={out}", "--", str(out / "spectra" / "FS_R005.nc"),
-                    workdir=tmp_path)
+    chunked = ("--config", f"results_dir={out}", "realisations_per_job=1", "--")
+    chunks = out / "spectra" / "chunks"
+    made = snakemake("-j2", *TINY, *chunked, *(str(chunks / f"{s}_R005_Ts0_d0_c{c}.nc") for s in ("FS", "CS01")
+                                              for c in (0, 1)), workdir=tmp_path)
+    assert made.returncode == 0, made.stderr[-3000:]
+    swapped = chunks / "FS_R005_Ts0_d0_c0.nc"
+    shutil.copyfile(chunks / "CS01_R005_Ts0_d0_c0.nc", swapped)
+    res = snakemake("-j1", *TINY, *chunked, str(out / "spectra" / "FS_R005.nc"), workdir=tmp_path)
     log = res.stdout + res.stderr
     assert res.returncode != 0
     assert f"{swapped}: control_strategy is 'CS01', expected 'FS'" in log, log[-3000:]

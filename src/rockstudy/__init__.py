@@ -2,8 +2,59 @@
 
 Reproduces "Use of overturning spectra in the performance evaluation of on-off
 control strategies for rocking objects" (see ``docs/model.md``).
+
+The names of the public API are imported on first use (``rockstudy.simulate`` or ``from rockstudy
+import simulate``), so that ``import rockstudy`` and the modules that only read and write datasets
+load neither numba nor the compiled engine.
 """
+import importlib
+import importlib.util
+import os
+import sys
+
 from rockstudy._version import __version__
+
+_PUBLIC = {
+    "Scenario": "rockstudy.analysis.scenario",
+    "AmplitudeGrid": "rockstudy.analysis.spectra",
+    "ThresholdResult": "rockstudy.analysis.spectra",
+    "frequency_grid": "rockstudy.analysis.spectra",
+    "spectrum": "rockstudy.analysis.spectra",
+    "threshold": "rockstudy.analysis.spectra",
+    "Outcome": "rockstudy.engine.outcome",
+    "simulate": "rockstudy.engine.simulate",
+    "SimulationResult": "rockstudy.engine.simulation_result",
+    "Anchorage": "rockstudy.model.anchorage",
+    "BLOCK_PRESETS": "rockstudy.model.block",
+    "GRAVITY": "rockstudy.model.block",
+    "Block": "rockstudy.model.block",
+    "STRATEGIES": "rockstudy.model.control",
+    "Control": "rockstudy.model.control",
+    "GroundMotion": "rockstudy.model.excitation",
+}
+"""Where each name of the public API is defined (imported by :func:`__getattr__` on first use)."""
+
+_SUBPACKAGES = ("analysis", "core", "engine", "model", "studies", "plotting", "report", "cli")
+
+__all__ = ["Block", "BLOCK_PRESETS", "GRAVITY", "Anchorage", "Control", "STRATEGIES", "GroundMotion", "Outcome",
+           "SimulationResult", "AmplitudeGrid", "Scenario", "frequency_grid", "simulate", "spectrum", "threshold",
+           "ThresholdResult",
+           "__version__"]
+
+
+def __getattr__(name):
+    """The public API and the subpackages, imported on first use (PEP 562)."""
+    if name in _PUBLIC:
+        value = getattr(importlib.import_module(_PUBLIC[name]), name)
+        globals()[name] = value  # the next lookup is an ordinary attribute
+        return value
+    if name in _SUBPACKAGES:
+        return importlib.import_module(f"{__name__}.{name}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__) | set(_SUBPACKAGES))
 
 
 def _numba_cache_dir() -> str:
@@ -25,34 +76,40 @@ def _numba_cache_dir() -> str:
     return str(root / "__pycache__" / f"numba-{digest.hexdigest()[:16]}")
 
 
-def _configure_numba_cache():
-    import os
-
-    import numba
-
+def _set_numba_cache_dir(numba) -> None:
     if not os.environ.get("NUMBA_CACHE_DIR"):
         numba.config.CACHE_DIR = _numba_cache_dir()
 
 
+class _OnNumbaImport:
+    """Import hook (a ``sys.meta_path`` finder) that points numba's cache at :func:`_numba_cache_dir`
+    as soon as numba is imported, before any module can decorate a compiled function, and then
+    leaves ``sys.meta_path``."""
+
+    def find_spec(self, name, path=None, target=None):
+        if name != "numba":
+            return None
+        sys.meta_path.remove(self)
+        spec = importlib.util.find_spec("numba")  # what the other finders give
+        if spec is None or spec.loader is None or not hasattr(spec.loader, "exec_module"):
+            return spec
+        exec_module = spec.loader.exec_module  # the loader is this import's own instance
+
+        def exec_then_configure(module):
+            exec_module(module)
+            _set_numba_cache_dir(module)
+
+        spec.loader.exec_module = exec_then_configure
+        return spec
+
+
+def _configure_numba_cache() -> None:
+    """numba reads its cache folder when a ``@njit(cache=True)`` function is decorated: set it now if
+    numba is already imported, else the moment it is (without importing numba here)."""
+    if "numba" in sys.modules:
+        _set_numba_cache_dir(sys.modules["numba"])
+    elif not any(isinstance(finder, _OnNumbaImport) for finder in sys.meta_path):
+        sys.meta_path.insert(0, _OnNumbaImport())
+
+
 _configure_numba_cache()
-
-from rockstudy.analysis.scenario import Scenario  # noqa: E402
-from rockstudy.analysis.spectra import (  # noqa: E402
-    AmplitudeGrid,
-    ThresholdResult,
-    frequency_grid,
-    spectrum,
-    threshold,
-)
-from rockstudy.engine.outcome import Outcome  # noqa: E402
-from rockstudy.engine.simulate import simulate  # noqa: E402
-from rockstudy.engine.simulation_result import SimulationResult  # noqa: E402
-from rockstudy.model.anchorage import Anchorage  # noqa: E402
-from rockstudy.model.block import BLOCK_PRESETS, GRAVITY, Block  # noqa: E402
-from rockstudy.model.control import STRATEGIES, Control  # noqa: E402
-from rockstudy.model.excitation import GroundMotion  # noqa: E402
-
-__all__ = ["Block", "BLOCK_PRESETS", "GRAVITY", "Anchorage", "Control", "STRATEGIES", "GroundMotion", "Outcome",
-           "SimulationResult", "AmplitudeGrid", "Scenario", "frequency_grid", "simulate", "spectrum", "threshold",
-           "ThresholdResult",
-           "__version__"]

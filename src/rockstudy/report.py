@@ -13,11 +13,14 @@ from __future__ import annotations
 
 import html
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from rockstudy._version import __version__
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 STYLE = """
 body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 1.2em; color: #1a1a1a;

@@ -233,3 +233,16 @@ def test_chunked_spectrum_equals_one_job():
     gathered = datasets.gather_spectra(parts)
     for name in ("threshold", "threshold_realisation", "energy_ratio", "n_simulations"):
         np.testing.assert_array_equal(gathered[name].values, whole[name].values)
+
+
+def test_a_whole_spectrum_written_by_its_job_is_its_one_chunk_gathered(tmp_path):
+    """A spectrum of one chunk is written by its simulation job (workflow rule spectrum), aggregated in
+    memory: the file is byte for byte the one writing the chunk, reading it and gathering it wrote."""
+    from rockstudy.analysis.spectra import spectrum
+    sc = Scenario(BLC06, control=Control("CS01"), noise_level=0.05, seed=11)
+    ds = spectrum(sc, [1.0, 2.5], realisations=[0, 1], grid=AmplitudeGrid(0.9, 3.0, 0.3, 0.05))
+    datasets.document_missing(ds)
+    io.write_netcdf(ds, tmp_path / "chunk.nc")
+    io.write_netcdf(datasets.gather_spectra([io.read_netcdf(tmp_path / "chunk.nc")]), tmp_path / "gathered.nc")
+    io.write_netcdf(datasets.gather_spectra([ds]), tmp_path / "whole.nc")
+    assert (tmp_path / "whole.nc").read_bytes() == (tmp_path / "gathered.nc").read_bytes()

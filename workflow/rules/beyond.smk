@@ -50,6 +50,7 @@ if BEYOND:
     rule probability_surface:
         input:
             noise=f"{OUT}/noise/{{level}}.nc",
+            compiled=ancient(COMPILED),
         output:
             f"{OUT}/probability/{{strategy}}_{{level}}.nc",
         log:
@@ -115,6 +116,7 @@ if BEYOND:
     rule fragility_stripes:
         input:
             records=f"{OUT}/records/sets/{{recordset}}.nc",
+            compiled=ancient(COMPILED),
         output:
             nc=f"{OUT}/fragility/{{recordset}}.nc",
             csv=f"{OUT}/tables/fragility_{{recordset}}.csv",

@@ -1,4 +1,6 @@
 # Names, paths and parameter dictionaries shared by the rules.
+import re
+
 OUT = config["results_dir"]
 LEVELS = config["noise_levels"]
 FREE = parameters.noise_free_level(LEVELS)
@@ -56,6 +58,18 @@ CHUNK_RUNTIME = 5 + int(0.15 * config["realisations_per_job"] * len(parameters.f
 
 def chunks(level):
     return parameters.realisation_chunks(config["realisations"], config["realisations_per_job"], LEVELS[level] > 0)
+
+
+# A spectrum whose realisations fit in one job (realisations_per_job >= realisations, and always the
+# noise-free level) is written whole by that job (rule spectrum); the others are simulated in chunks and
+# gathered (rules spectrum_chunk, gather_*). Which rules exist is decided here, from the config.
+WHOLE_LEVELS = [level for level in LEVELS if len(chunks(level)) == 1]
+CHUNKED_LEVELS = [level for level in LEVELS if level not in WHOLE_LEVELS]
+
+
+def one_of(names):
+    """A wildcard constraint matching exactly these names."""
+    return "|".join(re.escape(name) for name in names)
 
 
 # Input and parameter functions of the rules (Snakemake calls them with the job's wildcards).

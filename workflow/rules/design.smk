@@ -34,6 +34,8 @@ if DESIGN:
             DESIGN_FIGURES,
 
     rule design_block:
+        input:
+            compiled=ancient(COMPILED),
         output:
             f"{OUT}/design/blocks/R{{R}}_a{{alpha}}.nc",
         log:
@@ -57,6 +59,8 @@ if DESIGN:
             "../scripts/design_block.py"
 
     rule design_device:
+        input:
+            compiled=ancient(COMPILED),
         output:
             f"{OUT}/design/devices/k{{kappa}}_xi{{xi}}.nc",
         log:

@@ -3,6 +3,8 @@
 
 
 rule reading_spectrum:
+    input:
+        compiled=ancient(COMPILED),
     output:
         f"{OUT}/reproduction/readings/spectra/{{strategy}}_{{reading}}_{{level}}.nc",
     log:
@@ -115,6 +117,8 @@ rule reproduction:
 # --- the device calibration (a separate target: snakemake -j2 calibration) ------------------------
 
 rule calibration_fs:
+    input:
+        compiled=ancient(COMPILED),
     output:
         CAL_FS,
     log:
@@ -140,6 +144,7 @@ rule calibration_fs:
 rule calibration_device:
     input:
         fs=CAL_FS,
+        compiled=ancient(COMPILED),
     output:
         f"{OUT}/reproduction/calibration/coarse/device{{device}}.nc",
     log:
@@ -196,6 +201,7 @@ rule calibration_grid:
 rule calibration_refine_spectrum:
     input:
         grid=f"{OUT}/reproduction/calibration/grid.nc",
+        compiled=ancient(COMPILED),
     output:
         f"{OUT}/reproduction/calibration/refine/c{{rank}}_{{strategy}}_{{level}}.nc",
     log:

@@ -1,4 +1,5 @@
-# Simulations: noise realisations, overturning spectra in realisation chunks, maps, histories.
+# Simulations: noise realisations, overturning spectra (whole, or in realisation chunks gathered), maps,
+# histories.
 
 
 rule compile_engine:
@@ -46,22 +47,25 @@ rule noise:
         "../scripts/noise.py"
 
 
-rule spectrum_chunk:
+rule spectrum:
     input:
         noise=f"{OUT}/noise/{{level}}.nc",
         compiled=ancient(COMPILED),
     output:
-        f"{OUT}/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.nc",
+        f"{OUT}/spectra/{{strategy}}_{{level}}.nc",
     log:
-        f"{OUT}/logs/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.log",
+        f"{OUT}/logs/spectra/{{strategy}}_{{level}}.log",
     benchmark:
-        f"{OUT}/benchmarks/spectra/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.tsv"
+        f"{OUT}/benchmarks/spectra/{{strategy}}_{{level}}.tsv"
     group:
         "spectra"
+    wildcard_constraints:
+        level=one_of(WHOLE_LEVELS),
     params:
         expect=expect,
         scenario=get_scenario,
-        realisations=get_chunk_realisations,
+        realisations=get_realisations,
+        whole=True,  # the whole spectrum, as gathering its one chunk would write it
         frequency_grid=config["frequency_grid"],
         amplitude_grid=config["amplitude_grid"],
         library=LIBRARY,
@@ -72,39 +76,82 @@ rule spectrum_chunk:
         mem_mb=SIM_MEM_MB,
         runtime=CHUNK_RUNTIME,
     script:
-        "../scripts/spectrum_chunk.py"
+        "../scripts/spectrum.py"
 
 
-rule gather_spectrum:
-    input:
-        chunk_files,
-    output:
-        f"{OUT}/spectra/{{strategy}}_{{level}}.nc",
-    log:
-        f"{OUT}/logs/spectra/{{strategy}}_{{level}}.log",
-    params:
-        expect=expect,
-        bookkeeping=BOOKKEEPING,
-        realisations=get_realisations,
-    conda:
-        "../envs/rockstudy.yaml"
-    threads: 1
-    script:
-        "../scripts/gather_spectra.py"
-
-
-use rule gather_spectrum as gather_sampling with:
+use rule spectrum as spectrum_sampling with:
     output:
         f"{OUT}/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.nc",
     log:
         f"{OUT}/logs/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.log",
+    benchmark:
+        f"{OUT}/benchmarks/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.tsv"
 
 
-use rule gather_spectrum as gather_delay with:
+use rule spectrum as spectrum_delay with:
     output:
         f"{OUT}/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.nc",
     log:
         f"{OUT}/logs/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.log",
+    benchmark:
+        f"{OUT}/benchmarks/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.tsv"
+
+
+if CHUNKED_LEVELS:
+
+    localrules:
+        gather_spectrum,
+        gather_sampling,
+        gather_delay,
+
+    use rule spectrum as spectrum_chunk with:
+        output:
+            f"{OUT}/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.nc",
+        log:
+            f"{OUT}/logs/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.log",
+        benchmark:
+            f"{OUT}/benchmarks/spectra/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.tsv"
+        wildcard_constraints:
+            level=one_of(CHUNKED_LEVELS),
+        params:
+            expect=expect,
+            scenario=get_scenario,
+            realisations=get_chunk_realisations,
+            whole=False,
+            frequency_grid=config["frequency_grid"],
+            amplitude_grid=config["amplitude_grid"],
+            library=LIBRARY,
+
+    rule gather_spectrum:
+        input:
+            chunk_files,
+        output:
+            f"{OUT}/spectra/{{strategy}}_{{level}}.nc",
+        log:
+            f"{OUT}/logs/spectra/{{strategy}}_{{level}}.log",
+        wildcard_constraints:
+            level=one_of(CHUNKED_LEVELS),
+        params:
+            expect=expect,
+            bookkeeping=BOOKKEEPING,
+            realisations=get_realisations,
+        conda:
+            "../envs/rockstudy.yaml"
+        threads: 1
+        script:
+            "../scripts/gather_spectra.py"
+
+    use rule gather_spectrum as gather_sampling with:
+        output:
+            f"{OUT}/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.nc",
+        log:
+            f"{OUT}/logs/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.log",
+
+    use rule gather_spectrum as gather_delay with:
+        output:
+            f"{OUT}/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.nc",
+        log:
+            f"{OUT}/logs/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.log",
 
 
 rule convergence:

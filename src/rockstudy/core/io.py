@@ -17,13 +17,15 @@ import os
 import tempfile
 import threading
 from pathlib import Path
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
-import xarray as xr
 
 from rockstudy._version import __version__
 from rockstudy.core.constants import CF_CONVENTIONS, PAPER_REFERENCE
+
+if TYPE_CHECKING:  # xarray is imported where a dataset is read (writers get one)
+    import xarray as xr
 
 
 def netcdf_attr(value):
@@ -156,6 +158,8 @@ def read_netcdf(path) -> xr.Dataset:
     import stat
     if not stat.S_ISREG(os.stat(path).st_mode):
         raise ValueError(f"{path}: not a regular file (a folder, a FIFO or a device); give a netCDF file")
+    import xarray as xr
+
     with xr.open_dataset(path, engine="netcdf4") as ds:
         return ds.load()
 

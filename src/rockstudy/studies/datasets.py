@@ -5,16 +5,20 @@ reference, the meaning of every NaN).
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import xarray as xr
 
 from rockstudy._version import __version__
-from rockstudy.analysis.scenario import Scenario
-from rockstudy.analysis.spectra import convergence
-from rockstudy.core.constants import PAPER
+from rockstudy.core.constants import NOISE_DT, PAPER
 from rockstudy.core.io import check_dataset
-from rockstudy.model.excitation import excitation_duration
-from rockstudy.model.noise import NOISE_DT, baseline_samples, level_key, noisy_record
+
+if TYPE_CHECKING:
+    from rockstudy.analysis.scenario import Scenario
+
+# The functions that regenerate noise or run the engine import it where they are called: gathering and the
+# tables read datasets only, without loading the compiled model.
 
 MISSING_MEANINGS = {
     "threshold": "NaN: no overturning found up to the scan's top (grid_amplitude_stop) in any realisation",
@@ -50,6 +54,8 @@ def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_
     with ``SeedSequence(seed, spawn_key=(level_key, k))``; the first ``n_records`` unit records
     at ``reference_frequency_ratio`` are stored with the baseline for Fig. 4.
     """
+    from rockstudy.model.noise import baseline_samples, level_key, noisy_record
+
     sc, freqs, ks = scenario, np.asarray(frequency_ratios, float), [int(k) for k in realisations]
     level = sc.noise_level
 
@@ -129,6 +135,8 @@ def gather_spectra(parts) -> xr.Dataset:
 
 def convergence_dataset(ds: xr.Dataset) -> xr.Dataset:
     """Fig. 6a: the lowest threshold over the first N realisations, N = 1 … n."""
+    from rockstudy.analysis.spectra import convergence
+
     out = convergence(ds).to_dataset()
     out["threshold_realisation"] = ds["threshold_realisation"]
     out.attrs = {**ds.attrs, "title": f"Convergence of a_min,OVER with the number of noise realisations, "
@@ -144,6 +152,8 @@ def history_dataset(result, scenario: Scenario, motion, frequency_ratio: float, 
     after each impact on the ``impact`` dimension, and the ground motion Ẍ_g/(g·tanα) of
     ``motion`` sampled every ``dt`` [s] (on ``t_ground``); the layout of
     :meth:`SimulationResult.to_dataset` with the scenario's attributes."""
+    from rockstudy.model.excitation import excitation_duration
+
     ds = result.to_dataset(scenario.block, scenario.anchorage, motion, dt)
     ds.attrs = {"title": f"Time history, {scenario.control.strategy}, omega_p/p={frequency_ratio:g}, "
                          f"a_p/(g tan alpha)={amplitude_ratio:g}", "paper": PAPER, "rockstudy_version": __version__,

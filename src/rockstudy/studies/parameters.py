@@ -8,24 +8,35 @@ from __future__ import annotations
 
 from dataclasses import fields
 from types import SimpleNamespace
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
-from rockstudy.analysis.scenario import Scenario
-from rockstudy.analysis.spectra import AmplitudeGrid, frequency_grid
 from rockstudy.core import validation
-from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS, Block
-from rockstudy.model.control import Control
-from rockstudy.model.noise import reading_from_dict
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+    from rockstudy.analysis.scenario import Scenario
+    from rockstudy.analysis.spectra import AmplitudeGrid
+
+# The parsers of scenarios and grids import the simulation layers where they are called, so that a job that
+# only reads settings (tables, figures) does not load the compiled model and engine.
 
 BLOCK_FIELDS = tuple(f.name for f in fields(Block))
 """The keys of a block given by its dimensions."""
 
 __all__ = ["block_from_dict", "scenario_from_dict", "amplitude_grid", "frequency_ratios", "intensity_levels",
            "realisation_chunks", "noise_free_level", "a_max0_ratio", "grid_size_points",
-           "reading_from_dict"]
+           "reading_from_dict"]  # noqa: F822 (from rockstudy.model.noise, by __getattr__)
+
+
+def __getattr__(name):
+    if name == "reading_from_dict":  # re-exported from rockstudy.model.noise, on first use
+        from rockstudy.model.noise import reading_from_dict
+        return reading_from_dict
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def block_from_dict(spec: dict) -> Block:
@@ -66,6 +77,11 @@ def scenario_from_dict(spec: dict) -> Scenario:
     ``noise`` is the noise reading (``step``, ``rescale``, ``level_means``, ``band``, ``span``;
     :class:`rockstudy.model.noise.NoiseReading`); absent: the library's default reading
     (:data:`rockstudy.model.noise.DEFAULT_READING`)."""
+    from rockstudy.analysis.scenario import Scenario
+    from rockstudy.model.anchorage import Anchorage
+    from rockstudy.model.control import Control
+    from rockstudy.model.noise import reading_from_dict
+
     spec = dict(spec)
     block = block_from_dict(spec.pop("block"))
     anchorage, control = spec.pop("anchorage", {}), spec.pop("control", {})
@@ -83,6 +99,8 @@ def amplitude_grid(spec: dict, key: str = "amplitude_grid") -> AmplitudeGrid:
     refused (naming ``<key>.<field>``) beyond the limits of :mod:`rockstudy.core.validation`."""
     validation.check_amplitude_grid(spec["start"], spec["stop"], spec["step"], spec["resolution"],
                                     names=tuple(f"{key}.{field}" for field in ("start", "stop", "step", "resolution")))
+    from rockstudy.analysis.spectra import AmplitudeGrid
+
     return AmplitudeGrid(**spec)
 
 
@@ -90,6 +108,8 @@ def frequency_ratios(spec: dict, key: str = "frequency_grid") -> np.ndarray:
     """Frequency ratios ω_p/p from ``start``, ``stop``, ``step``, refused (naming ``<key>.<field>``)
     above :data:`rockstudy.core.validation.MAX_GRID_POINTS` points before the grid is built. [-]"""
     validation.check_grid(key, spec["start"], spec["stop"], spec["step"], high=validation.MAX_FREQUENCY_RATIO)
+    from rockstudy.analysis.spectra import frequency_grid
+
     return frequency_grid(**spec)
 
 
@@ -97,6 +117,8 @@ def intensity_levels(spec: dict, key: str = "beyond.fragility.intensity_levels")
     """Intensity levels (the fragility's stripes) from ``start``, ``stop``, ``step``, refused (naming
     ``<key>.<field>``) like :func:`frequency_ratios`. [-]"""
     validation.check_grid(key, spec["start"], spec["stop"], spec["step"], high=validation.MAX_AMPLITUDE_RATIO)
+    from rockstudy.analysis.spectra import frequency_grid
+
     return frequency_grid(**spec)
 
 

@@ -15,10 +15,6 @@ import math
 from pathlib import Path
 
 from rockstudy.core import validation
-from rockstudy.model.excitation import check_time_span, excitation_duration
-from rockstudy.model.noise import reading_from_dict
-from rockstudy.model.sensor import SENSOR_STEP, check_band
-from rockstudy.studies import beyond, device_calibration, noise_readings
 from rockstudy.studies.parameters import (
     amplitude_grid,
     block_from_dict,
@@ -115,6 +111,13 @@ def check_study(config: dict) -> None:
     ValueError
         (:class:`rockstudy.core.validation.InputError`) naming the key, the value and what is allowed.
     """
+    # the sections' checks and the model's limits, imported here: a job that only logs or fingerprints
+    # (every workflow script) does not load the compiled model
+    from rockstudy.model.excitation import check_time_span, excitation_duration
+    from rockstudy.model.noise import reading_from_dict
+    from rockstudy.model.sensor import SENSOR_STEP, check_band
+    from rockstudy.studies import beyond, device_calibration, noise_readings
+
     check_sizes(config)
     validation.check_results_dir("results_dir", config["results_dir"])
     bad = _non_finite(config)

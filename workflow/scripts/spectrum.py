@@ -1,4 +1,5 @@
-"""Overturning spectrum of one chunk of noise realisations (§5, Figs. 5-8)."""
+"""Overturning spectrum of one chunk of noise realisations (§5, Figs. 5-8); a spectrum whose realisations
+all fit in one job is written whole, as gathering its one chunk would write it."""
 import numba
 
 from rockstudy.analysis.spectra import spectrum
@@ -16,4 +17,6 @@ ds = spectrum(scenario, parameters.frequency_ratios(p.frequency_grid), realisati
               grid=parameters.amplitude_grid(p.amplitude_grid))
 datasets.document_missing(ds)
 ds.attrs["rockstudy_source_sha256"] = p.library
+if p.whole:
+    ds = datasets.gather_spectra([ds])
 io.write_netcdf(ds, snakemake.output[0])

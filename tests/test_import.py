@@ -1,0 +1,63 @@
+"""What importing rockstudy costs: the public API is imported on first use, jobs that simulate nothing
+load neither numba nor the compiled model, and numba's cache folder is still set before any compiled
+function is defined, whoever imports numba first."""
+import os
+import subprocess
+import sys
+
+import pytest
+
+import rockstudy
+
+
+def run(code: str, **env) -> str:
+    """``code`` in a fresh interpreter (this rockstudy on its path); its stdout."""
+    environ = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    environ["PYTHONPATH"] = os.pathsep.join([os.path.dirname(os.path.dirname(rockstudy.__file__)),
+                                             environ.get("PYTHONPATH", "")])
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env={**environ, **env},
+                         timeout=300)
+    assert res.returncode == 0, res.stderr
+    return res.stdout.strip()
+
+
+LOADED = "import sys; print(sorted(m for m in ('numba', 'xarray', 'matplotlib') if m in sys.modules))"
+
+
+def test_import_rockstudy_loads_neither_numba_nor_xarray():
+    assert run(f"import rockstudy; {LOADED}") == "[]"
+
+
+@pytest.mark.parametrize("imports", [
+    "from rockstudy import report; from rockstudy.core import io",  # the report's HTML tables
+    "from rockstudy.core import io; from rockstudy.studies import study, tables",  # Table 1, the timing tables
+    "from rockstudy.core import io; from rockstudy.studies import claims, study",  # the claims checklist
+    "from rockstudy.core import io; from rockstudy.studies import datasets, parameters, study",  # gathering
+    "from rockstudy import plotting; from rockstudy.core import io; from rockstudy.studies import study",  # figures
+])
+def test_modules_of_jobs_that_simulate_nothing_do_not_load_numba(imports):
+    assert "numba" not in run(f"{imports}; {LOADED}")
+
+
+@pytest.mark.parametrize("order", ["import rockstudy, numba", "import numba, rockstudy"])
+def test_numba_caches_in_the_source_trees_folder_whoever_imports_numba_first(order):
+    code = (f"{order}; from rockstudy.model import anchorage; "
+            "print(numba.config.CACHE_DIR == rockstudy._numba_cache_dir(), "
+            "anchorage.spring_right_intact._cache._cache_path.startswith(rockstudy._numba_cache_dir()))")
+    assert run(code) == "True True"
+
+
+def test_numba_cache_dir_in_the_environment_wins(tmp_path):
+    code = "import rockstudy, numba; print(numba.config.CACHE_DIR)"
+    assert run(code, NUMBA_CACHE_DIR=str(tmp_path)) == str(tmp_path)
+
+
+def test_the_public_api_is_all_there():
+    namespace = {}
+    exec("from rockstudy import *", namespace)
+    assert set(rockstudy.__all__) <= set(namespace)
+    assert set(rockstudy.__all__) <= set(dir(rockstudy))
+    from rockstudy.engine.simulate import simulate
+    assert rockstudy.simulate is simulate and rockstudy.plotting.__name__ == "rockstudy.plotting"
+    with pytest.raises(AttributeError, match="no_such_name"):
+        rockstudy.no_such_name  # noqa: B018
