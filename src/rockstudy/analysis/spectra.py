@@ -302,6 +302,7 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     # one thread (a workflow job, --threads 1): the serial batches, without numba's parallel machinery
     serial = numba.get_num_threads() == 1
     thresholds = kernel.threshold_serial if serial else kernel.threshold_batch
+    outcomes = kernel.outcome_serial if serial else kernel.outcome_batch
 
     def run(sl):
         return thresholds(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, grid.resolution, peaks[sl])
@@ -320,8 +321,7 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
                           n_undetermined=nund.reshape(shape))
     if with_map:
         def run_map(sl):
-            return (kernel.outcome_serial if serial else kernel.outcome_batch)(Pm[sl], recs, off[sl], lens[sl],
-                                                                              np.zeros(0), values, peaks[sl])
+            return outcomes(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, peaks[sl])
         out = np.concatenate(_run_chunked(run_map, n, label + " map", progress_chunks))
         ds["outcome"] = (("realisation", "frequency_ratio", "amplitude_ratio"), out.reshape(shape + (len(values),)),
                          {"long_name": "outcome of the simulation at each grid point",
