@@ -38,9 +38,7 @@ from rockstudy.engine._kernel import dopri, maps, taylor
 from rockstudy.engine._kernel.events import (
     event_poly,
     event_quartic,
-    locate,
     locate_poly,
-    locate_sensed,
     locate_sensed_poly,
     scan_exit,
 )
@@ -164,7 +162,8 @@ def _log_full(arr, n):
 def _grow_log(arr, n):
     """An event log twice as long (at least 16 slots) holding the first ``n`` values of ``arr``."""
     new = np.empty(max(16, 2 * arr.shape[0]))
-    new[:n] = arr[:n]
+    for i in range(n):  # element by element: a slice assignment compiles numba's shape-mismatch message
+        new[i] = arr[i]
     return new
 
 
@@ -178,7 +177,9 @@ def _write_log(arr, n, v):
 def _grow_hist(H, n):
     """A history array twice as long (at least 256 rows) holding the first ``n`` rows of ``H``."""
     new = np.empty((max(256, 2 * H.shape[0]), 5))
-    new[:n] = H[:n]
+    for i in range(n):  # element by element, as _grow_log
+        for j in range(5):
+            new[i, j] = H[i, j]
     return new
 
 
@@ -510,10 +511,11 @@ def _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec):
 @njit(cache=True, inline="always")
 def _locate_on(taylor_step, hi, Q, a_th, a_thd, c):
     """The first zero in (0, hi] of g = a_th·θ + a_thd·θ̇ + c on the step's polynomial: degree 6 after
-    a Taylor step, the quartic after a Dormand–Prince step (``taylor_step``)."""
+    a Taylor step, the quartic after a Dormand–Prince step (``taylor_step``), both located by
+    :func:`~rockstudy.engine._kernel.events.locate_poly` (one compiled locator; a quartic's g5 = g6 = 0)."""
     if taylor_step:
         return locate_poly(hi, *event_poly(Q, a_th, a_thd, c))
-    return locate(hi, *event_quartic(Q, a_th, a_thd, c))
+    return locate_poly(hi, *event_quartic(Q, a_th, a_thd, c), 0.0, 0.0)
 
 
 @njit(cache=True, inline="always")
@@ -521,7 +523,7 @@ def _locate_sensed_on(taylor_step, hi, Q, x_hint, t, hh, P, rec):
     """:func:`_locate_on` for the CS02 switch (θ terms none, the sensed Ẍg's sign ``x_hint``)."""
     if taylor_step:
         return locate_sensed_poly(hi, *event_poly(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P, rec)
-    return locate_sensed(hi, *event_quartic(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P, rec)
+    return locate_sensed_poly(hi, *event_quartic(Q, 0.0, 0.0, 0.0), 0.0, 0.0, x_hint, t, hh, P, rec)
 
 
 @njit(cache=True, inline="always")

@@ -44,29 +44,24 @@ def event_poly(Q, a_th, a_thd, c):
 
 
 @njit(cache=True, inline="always")
-def _poly_at(sig, g0, g1, g2, g3, g4, g5, g6, high):
-    """g at sig by Horner: degree 6 when ``high``, else the quartic g0 … g4 (g5, g6 unused)."""
-    v = g4
-    if high:
-        v = (g6 * sig + g5) * sig + g4
+def _poly_at(sig, g0, g1, g2, g3, g4, g5, g6):
+    """g at sig by Horner (degree 6; a quartic's g5 = g6 = 0 give the quartic's Horner values exactly)."""
+    v = (g6 * sig + g5) * sig + g4
     return (((v * sig + g3) * sig + g2) * sig + g1) * sig + g0
 
 
 @njit(cache=True, inline="always")
-def _poly_and_slope(sig, g0, g1, g2, g3, g4, g5, g6, high):
-    """g and dg/dsig at sig (two Horner chains side by side), of degree 6 or 4 as :func:`_poly_at`."""
-    v = g4
-    w = 4.0 * g4
-    if high:
-        v = (g6 * sig + g5) * sig + g4
-        w = (6.0 * g6 * sig + 5.0 * g5) * sig + 4.0 * g4
+def _poly_and_slope(sig, g0, g1, g2, g3, g4, g5, g6):
+    """g and dg/dsig at sig (two Horner chains side by side), of degree 6 as :func:`_poly_at`."""
+    v = (g6 * sig + g5) * sig + g4
+    w = (6.0 * g6 * sig + 5.0 * g5) * sig + 4.0 * g4
     f = (((v * sig + g3) * sig + g2) * sig + g1) * sig + g0
     d = ((w * sig + 3.0 * g3) * sig + 2.0 * g2) * sig + g1
     return f, d
 
 
 @njit(cache=True, inline="always")
-def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, high, a_x, t, hh, P, rec):
+def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
     """The Illinois iterations of :func:`locate_sensed` on a bracket (0, hi] with g(0) = flo > 0 >= g(hi) = fhi."""
     lo = 0.0
     last = 0
@@ -76,7 +71,7 @@ def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, high, a_x, t, hh, P, rec
         s = hi - fhi * (hi - lo) / (fhi - flo)
         if not (lo < s < hi):
             s = 0.5 * (lo + hi)
-        f = _poly_at(s, g0, g1, g2, g3, g4, g5, g6, high)
+        f = _poly_at(s, g0, g1, g2, g3, g4, g5, g6)
         if a_x != 0.0:
             f += a_x * sensed_acceleration(t + s * hh, P, rec)
         if f <= 0.0:
@@ -95,9 +90,9 @@ def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, high, a_x, t, hh, P, rec
 
 
 @njit(cache=True, inline="always")
-def _locate(hi, g0, g1, g2, g3, g4, g5, g6, high):
-    """The body of :func:`locate` and :func:`locate_poly` (degree 6 when ``high``)."""
-    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6, high)
+def _locate(hi, g0, g1, g2, g3, g4, g5, g6):
+    """The body of :func:`locate_poly`."""
+    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6)
     if fhi > 0.0:
         return -1.0
     if g0 <= 0.0:
@@ -107,7 +102,7 @@ def _locate(hi, g0, g1, g2, g3, g4, g5, g6, high):
     if not (lo < s < hi):
         s = 0.5 * hi
     for _ in range(200):
-        f, d = _poly_and_slope(s, g0, g1, g2, g3, g4, g5, g6, high)
+        f, d = _poly_and_slope(s, g0, g1, g2, g3, g4, g5, g6)
         if f <= 0.0:
             hi = s
         else:
@@ -134,39 +129,41 @@ def locate(hi, g0, g1, g2, g3, g4):
     ``LOCATE_TOLERANCE`` the next point is taken half the tolerance across, which closes the
     bracket. Returns hi once hi - lo <= ``LOCATE_TOLERANCE`` (about four evaluations of g and its
     slope, against about thirteen of g by the Illinois method), or -1 when g(hi) > 0 (no crossing
-    before ``hi``). The returned point always has g <= 0.
+    before ``hi``). The returned point always has g <= 0. The same compiled code as
+    :func:`locate_poly`, with g5 = g6 = 0 (the same values as the quartic's own Horner chain).
     """
-    return _locate(hi, g0, g1, g2, g3, g4, 0.0, 0.0, False)
+    return locate_poly(hi, g0, g1, g2, g3, g4, 0.0, 0.0)
 
 
 @njit(cache=True)
 def locate_poly(hi, g0, g1, g2, g3, g4, g5, g6):
     """:func:`locate` on a polynomial of degree 6 (a Taylor step's, :func:`event_poly`)."""
-    return _locate(hi, g0, g1, g2, g3, g4, g5, g6, True)
+    return _locate(hi, g0, g1, g2, g3, g4, g5, g6)
 
 
 @njit(cache=True, inline="always")
-def _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, high, a_x, t, hh, P, rec):
-    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6, high) + a_x * sensed_acceleration(t + hi * hh, P, rec)
+def _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
+    fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6) + a_x * sensed_acceleration(t + hi * hh, P, rec)
     if fhi > 0.0:
         return -1.0
     flo = g0 + a_x * sensed_acceleration(t, P, rec)
     if flo <= 0.0:
         return hi
-    return _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, high, a_x, t, hh, P, rec)
+    return _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec)
 
 
 @njit(cache=True, **NO_REFCOUNT)
 def locate_sensed(hi, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
     """:func:`locate` for g = quartic + a_x·Ẍg(t + sig·hh) as the controller senses it (the CS02 switch),
-    by the Illinois method: the sensed Ẍg is piecewise linear, so g has no usable slope at its knots."""
-    return _locate_sensed(hi, g0, g1, g2, g3, g4, 0.0, 0.0, False, a_x, t, hh, P, rec)
+    by the Illinois method: the sensed Ẍg is piecewise linear, so g has no usable slope at its knots.
+    :func:`locate_sensed_poly` with g5 = g6 = 0, as :func:`locate`."""
+    return locate_sensed_poly(hi, g0, g1, g2, g3, g4, 0.0, 0.0, a_x, t, hh, P, rec)
 
 
 @njit(cache=True, **NO_REFCOUNT)
 def locate_sensed_poly(hi, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
     """:func:`locate_sensed` on a polynomial of degree 6 (a Taylor step's)."""
-    return _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, True, a_x, t, hh, P, rec)
+    return _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec)
 
 
 @njit(cache=True, inline=inline_into("scan_exit"))
