@@ -551,11 +551,11 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, 
     best = 2.0
     negligible = False
     have_q = taylor_step
-    # impact: side·θ crosses to <= 0
+    # impact: side·θ crosses to <= 0 (located below, after the apex)
+    impact = False
     if side * n0 <= 0.0:
         if side * y0 > 0.0:
-            have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-            best = _locate_on(taylor_step, 1.0, Q, side, 0.0, 0.0)
+            impact = True
         elif hh > NEGLIGIBLE_STEP:
             return -1.0, False, max_abs
         else:
@@ -563,10 +563,11 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, 
             best = 1.0
     # an apex inside the step: the largest rotation may lie between the step ends, and a
     # rotation threshold may be crossed and re-crossed within the step (grazing)
+    apex = not negligible and side * y1 > 0.0 and side * n1 <= 0.0
     peak = side * n0
     sig_peak = 1.0
     sa_ = -1.0
-    if not negligible and side * y1 > 0.0 and side * n1 <= 0.0:
+    if apex:
         have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
         sa_ = _locate_on(taylor_step, 1.0, Q, 0.0, side, 0.0)
         if sa_ >= 0.0:
@@ -576,6 +577,12 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, 
                 sig_peak = sa_
             if abs(a) > max_abs:
                 max_abs = abs(a)
+    # the CS01 switch at this apex (θ̇ = 0 while moving away from the ground) is an event before any
+    # impact in the step, which θ reaches only after its apex: then the impact need not be located
+    apex_switch = use_thd_event and hint == side and apex
+    if impact and not (apex_switch and sa_ >= 0.0 and sig_peak == sa_):
+        have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
+        best = _locate_on(taylor_step, 1.0, Q, side, 0.0, 0.0)
     if not negligible and peak - th_over >= 0.0 and side * y0 - th_over < 0.0:
         have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
         s = _locate_on(taylor_step, min(best, sig_peak), Q, -side, 0.0, th_over)
@@ -591,7 +598,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, 
                 if s >= 0.0:
                     best = s
     if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
-        if hint == side and side * y1 > 0.0 and side * n1 <= 0.0:
+        if apex_switch:
             # the apex located above is the first zero of the same function on (0, 1], so also the
             # one on (0, min(best, 1)] when it lies there; beyond it, there is none there
             s = sa_ if sa_ <= min(best, 1.0) else -1.0
