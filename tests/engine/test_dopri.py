@@ -170,3 +170,18 @@ def test_locate_poly_finds_the_root_of_a_taylor_steps_polynomial():
         for s in (locate_poly(1.0, *g), locate_sensed_poly(1.0, *g, 0.0, 0.0, 0.01, _problem()[0], NONE)):
             assert _horner(g, s) <= 0.0 and root - 1e-15 <= s <= root + LOCATE_TOLERANCE + 1e-15, (root, s)
         assert locate_poly(0.9 * root, *g) == -1.0
+
+
+@pytest.mark.parametrize("root, curvature", [(0.3, -0.8), (0.3, 2.0), (1e-4, 50.0), (0.97, 0.5), (0.5, 0.0)])
+def test_quadratic_start_is_the_root_of_the_parabola(root, curvature):
+    """The Newton search's start: on a parabola g = (root - sig)·(1 + curvature·sig), positive at 0
+    and non-positive at hi = 1, the start is the closed-form first root itself, and locate returns
+    it within LOCATE_TOLERANCE from the right."""
+    from rockstudy.core.constants import LOCATE_TOLERANCE
+    from rockstudy.engine._kernel.events import _quadratic_start, locate
+
+    g = (root, curvature * root - 1.0, -curvature, 0.0, 0.0)
+    assert _horner(g, 1.0) <= 0.0 < g[0]
+    assert _quadratic_start(1.0, g[0], g[1], _horner(g, 1.0)) == pytest.approx(root, rel=1e-14, abs=1e-17)
+    s = locate(1.0, *g)
+    assert _horner(g, s) <= 0.0 and root - 1e-15 <= s <= root + LOCATE_TOLERANCE + 1e-15
