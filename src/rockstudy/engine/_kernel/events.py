@@ -149,8 +149,9 @@ def locate(hi, g0, g1, g2, g3, g4):
     ``LOCATE_TOLERANCE`` the next point is taken half the tolerance across, which closes the
     bracket. Returns hi once hi - lo <= ``LOCATE_TOLERANCE`` (about four evaluations of g and its
     slope on the events of noisy rocking runs, against six from the secant's point and about
-    thirteen of g by the Illinois method), or -1 when g(hi) > 0 (no crossing before ``hi``). The returned point always has g <= 0. The same compiled code as
-    :func:`locate_poly`, with g5 = g6 = 0 (the same values as the quartic's own Horner chain).
+    thirteen of g by the Illinois method), or -1 when g(hi) > 0 (no crossing before ``hi``). The
+    returned point always has g <= 0. The same compiled code as :func:`locate_poly`, with
+    g5 = g6 = 0 (the same values as the quartic's own Horner chain).
     """
     return locate_poly(hi, g0, g1, g2, g3, g4, 0.0, 0.0)
 
