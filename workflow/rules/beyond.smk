@@ -55,8 +55,6 @@ if BEYOND:
             f"{OUT}/probability/{{strategy}}_{{level}}.nc",
         log:
             f"{OUT}/logs/probability/{{strategy}}_{{level}}.log",
-        benchmark:
-            f"{OUT}/benchmarks/probability/{{strategy}}_{{level}}.tsv"
         params:
             expect=expect,
             scenario=get_scenario,
@@ -125,8 +123,6 @@ if BEYOND:
             thresholds_md=f"{OUT}/tables/record_thresholds_{{recordset}}.md",
         log:
             f"{OUT}/logs/fragility/{{recordset}}.log",
-        benchmark:
-            f"{OUT}/benchmarks/fragility/{{recordset}}.tsv"
         params:
             scenario=scenario("FS", FREE),
             strategies=FRAG["strategies"],

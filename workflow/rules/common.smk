@@ -45,7 +45,7 @@ def scenario(strategy, level, ts=0.0, delay=0.0):
     }
 
 
-# Resources measured with the default config on one core (results/benchmarks/): a spectrum chunk
+# Resources measured with the default config on one core (the last line of each job's log): a spectrum chunk
 # takes about 0.05 s per (realisation x frequency) at 5 % noise and peaks at 250 MB, like
 # every simulation job (numba + xarray); maps take seconds. Requests carry a margin of 2-3x.
 SIM_MEM_MB = 600

@@ -40,8 +40,6 @@ if DESIGN:
             f"{OUT}/design/blocks/R{{R}}_a{{alpha}}.nc",
         log:
             f"{OUT}/logs/design/blocks/R{{R}}_a{{alpha}}.log",
-        benchmark:
-            f"{OUT}/benchmarks/design/blocks/R{{R}}_a{{alpha}}.tsv"
         params:
             design=DESIGN,
             anchorage=config["anchorage"],
@@ -65,8 +63,6 @@ if DESIGN:
             f"{OUT}/design/devices/k{{kappa}}_xi{{xi}}.nc",
         log:
             f"{OUT}/logs/design/devices/k{{kappa}}_xi{{xi}}.log",
-        benchmark:
-            f"{OUT}/benchmarks/design/devices/k{{kappa}}_xi{{xi}}.tsv"
         params:
             design=DESIGN,
             block=config["block"],

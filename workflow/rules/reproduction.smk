@@ -9,8 +9,6 @@ rule reading_spectrum:
         f"{OUT}/reproduction/readings/spectra/{{strategy}}_{{reading}}_{{level}}.nc",
     log:
         f"{OUT}/logs/reproduction/readings/{{strategy}}_{{reading}}_{{level}}.log",
-    benchmark:
-        f"{OUT}/benchmarks/reproduction/readings/{{strategy}}_{{reading}}_{{level}}.tsv"
     params:
         scenario=get_reading_scenario,
         realisations=REPRO["realisations"],
@@ -123,8 +121,6 @@ rule calibration_fs:
         CAL_FS,
     log:
         f"{OUT}/logs/reproduction/calibration/fs.log",
-    benchmark:
-        f"{OUT}/benchmarks/reproduction/calibration/fs.tsv"
     params:
         scenarios=[scenario("FS", level) for level in LEVELS],
         realisations=CAL["coarse_realisations"],
@@ -149,8 +145,6 @@ rule calibration_device:
         f"{OUT}/reproduction/calibration/coarse/device{{device}}.nc",
     log:
         f"{OUT}/logs/reproduction/calibration/device{{device}}.log",
-    benchmark:
-        f"{OUT}/benchmarks/reproduction/calibration/device{{device}}.tsv"
     wildcard_constraints:
         device="[0-9]+",
     params:
@@ -206,8 +200,6 @@ rule calibration_refine_spectrum:
         f"{OUT}/reproduction/calibration/refine/c{{rank}}_{{strategy}}_{{level}}.nc",
     log:
         f"{OUT}/logs/reproduction/calibration/refine_c{{rank}}_{{strategy}}_{{level}}.log",
-    benchmark:
-        f"{OUT}/benchmarks/reproduction/calibration/refine_c{{rank}}_{{strategy}}_{{level}}.tsv"
     wildcard_constraints:
         rank="[0-9]+",
     params:

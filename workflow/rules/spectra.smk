@@ -25,8 +25,6 @@ rule noise:
         f"{OUT}/noise/{{level}}.nc",
     log:
         f"{OUT}/logs/noise/{{level}}.log",
-    benchmark:
-        f"{OUT}/benchmarks/noise/{{level}}.tsv"
     group:
         "small"
     params:
@@ -55,8 +53,6 @@ rule spectrum:
         f"{OUT}/spectra/{{strategy}}_{{level}}.nc",
     log:
         f"{OUT}/logs/spectra/{{strategy}}_{{level}}.log",
-    benchmark:
-        f"{OUT}/benchmarks/spectra/{{strategy}}_{{level}}.tsv"
     group:
         "spectra"
     wildcard_constraints:
@@ -84,8 +80,6 @@ use rule spectrum as spectrum_sampling with:
         f"{OUT}/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.nc",
     log:
         f"{OUT}/logs/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.log",
-    benchmark:
-        f"{OUT}/benchmarks/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.tsv"
 
 
 use rule spectrum as spectrum_delay with:
@@ -93,8 +87,6 @@ use rule spectrum as spectrum_delay with:
         f"{OUT}/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.nc",
     log:
         f"{OUT}/logs/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.log",
-    benchmark:
-        f"{OUT}/benchmarks/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.tsv"
 
 
 if CHUNKED_LEVELS:
@@ -109,8 +101,6 @@ if CHUNKED_LEVELS:
             f"{OUT}/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.nc",
         log:
             f"{OUT}/logs/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.log",
-        benchmark:
-            f"{OUT}/benchmarks/spectra/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.tsv"
         wildcard_constraints:
             level=one_of(CHUNKED_LEVELS),
         params:
@@ -179,8 +169,6 @@ rule overturning_map:
         f"{OUT}/maps/{{strategy}}.nc",
     log:
         f"{OUT}/logs/maps/{{strategy}}.log",
-    benchmark:
-        f"{OUT}/benchmarks/maps/{{strategy}}.tsv"
     params:
         scenario=get_scenario,
         frequency_grid=config["frequency_grid"],
@@ -203,8 +191,6 @@ rule time_history:
         f"{OUT}/histories/{{strategy}}_{{level}}_k{{k}}_w{{frequency}}_a{{amplitude}}.nc",
     log:
         f"{OUT}/logs/histories/{{strategy}}_{{level}}_k{{k}}_w{{frequency}}_a{{amplitude}}.log",
-    benchmark:
-        f"{OUT}/benchmarks/histories/{{strategy}}_{{level}}_k{{k}}_w{{frequency}}_a{{amplitude}}.tsv"
     group:
         "small"
     params:

@@ -9,10 +9,18 @@ ratios a_p/(g·tanα), frequencies ratios ω_p/p; a_max,0 is given in units of g
 """
 from __future__ import annotations
 
+import atexit
 import hashlib
 import logging
 import math
+import os
+import time
 from pathlib import Path
+
+try:
+    import resource
+except ImportError:  # not on Windows: the resources line then gives the run time only
+    resource = None
 
 from rockstudy.core import validation
 from rockstudy.studies.parameters import (
@@ -64,13 +72,48 @@ def source_fingerprint(*parts: str) -> str:
 
 
 def log_to(path) -> logging.Logger:
-    """Send the "rockstudy" logger (progress, ETA) to ``path``."""
+    """Send the "rockstudy" logger (progress, ETA) to ``path``; when the job's process ends, its last
+    line gives the job's resources (:func:`resources`: run time, CPU time, peak memory)."""
     handler = logging.FileHandler(path, mode="w")
     handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s"))
     logger = logging.getLogger("rockstudy")
     logger.addHandler(handler)
     logger.setLevel(logging.INFO)
+    atexit.register(_log_resources, logger)
     return logger
+
+
+def resources() -> dict:
+    """What this process has used so far, from the operating system's own accounts (nothing sampled):
+    ``wall_s`` since it started, ``cpu_s`` (user + system; ``user_s``, ``system_s``) and ``max_rss_mb``,
+    its peak resident memory. [s, MB]"""
+    if resource is None:
+        return {"wall_s": _process_age(), "cpu_s": time.process_time(), "user_s": math.nan, "system_s": math.nan,
+                "max_rss_mb": math.nan}
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return {"wall_s": _process_age(), "cpu_s": usage.ru_utime + usage.ru_stime, "user_s": usage.ru_utime,
+            "system_s": usage.ru_stime, "max_rss_mb": usage.ru_maxrss / 1024.0}  # ru_maxrss: kB on Linux
+
+
+_STARTED = time.monotonic()
+
+
+def _process_age() -> float:
+    """Seconds since this process started (Linux: from /proc; elsewhere since rockstudy was imported)."""
+    try:
+        with open("/proc/self/stat") as f:
+            start_ticks = int(f.read().rsplit(")", 1)[1].split()[19])  # field 22, starttime
+        with open("/proc/uptime") as f:
+            uptime = float(f.read().split()[0])
+        return max(0.0, uptime - start_ticks / os.sysconf("SC_CLK_TCK"))
+    except (OSError, ValueError, IndexError):
+        return time.monotonic() - _STARTED
+
+
+def _log_resources(logger: logging.Logger) -> None:
+    r = resources()
+    logger.info("resources: %.1f s run time, %.1f s CPU (user %.1f, system %.1f), peak memory %.0f MB",
+                r["wall_s"], r["cpu_s"], r["user_s"], r["system_s"], r["max_rss_mb"])
 
 
 def _non_finite(value, key=""):
