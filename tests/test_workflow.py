@@ -50,9 +50,14 @@ def test_default_study_writes_every_spectrum_in_its_simulation_job(tmp_path):
     jobs = job_counts(res.stdout)
     n_levels, n_strategies = len(config["noise_levels"]), len(config["strategies"])
     assert jobs["spectrum"] == n_levels * n_strategies
-    assert jobs["spectrum_sampling"] == len(config["sampling_sweep"]["strategies"]) * len(
-        config["sampling_sweep"]["sampling_times"])
-    assert jobs["spectrum_delay"] == len(config["delay_sweep"]["strategies"]) * len(config["delay_sweep"]["delays"])
+    # a strategy's timing sweep is one job, writing a spectrum per sampling time (per delay)
+    assert jobs["spectrum_sampling"] == len(config["sampling_sweep"]["strategies"])
+    assert jobs["spectrum_delay"] == len(config["delay_sweep"]["strategies"])
+    sweep = re.search(r"rule spectrum_sampling:\n\s+input: [^\n]*\n\s+output: ([^\n]*)\n", res.stdout)
+    assert sweep and sorted(sweep.group(1).split(", ")) == sorted(
+        f"out/timing/sampling/{sweep_strategy}_{config['sampling_sweep']['noise_level']}_Ts{ts:g}.nc"
+        for sweep_strategy in [sweep.group(1).split("/")[-1].split("_")[0]]
+        for ts in config["sampling_sweep"]["sampling_times"])
     assert not {rule for rule in jobs if rule.startswith("gather_") or rule == "spectrum_chunk"}, jobs
     assert "spectra/chunks/" not in res.stdout
 

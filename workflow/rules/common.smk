@@ -79,6 +79,16 @@ def get_scenario(wildcards):
                     getattr(wildcards, "delay", 0.0))
 
 
+def get_sampling_scenarios(wildcards):
+    """The scenarios of a strategy's sampling sweep, one per configured sampling time (rule spectrum_sampling)."""
+    return [scenario(wildcards.strategy, wildcards.level, ts) for ts in SAMPLING["sampling_times"]]
+
+
+def get_delay_scenarios(wildcards):
+    """The scenarios of a strategy's delay sweep at the job's sampling time, one per configured delay."""
+    return [scenario(wildcards.strategy, wildcards.level, wildcards.ts, d) for d in DELAY["delays"]]
+
+
 def get_noise_scenario(wildcards):
     """The scenario whose noise records a level's noise file holds (the records do not depend on the strategy)."""
     return scenario("FS", wildcards.level)

@@ -75,18 +75,43 @@ rule spectrum:
         "../scripts/spectrum.py"
 
 
+# The timing sweeps (Figs. 7-8): one job writes a strategy's whole sweep, a spectrum per sampling time
+# (per delay), one after the other in one process (each job's start-up, about 2 s of imports and
+# compiled-code loading, is paid once per sweep instead of once per spectrum).
 use rule spectrum as spectrum_sampling with:
     output:
-        f"{OUT}/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.nc",
+        [f"{OUT}/timing/sampling/{{strategy}}_{{level}}_Ts{ts:g}.nc" for ts in SAMPLING["sampling_times"]],
     log:
-        f"{OUT}/logs/timing/sampling/{{strategy}}_{{level}}_Ts{{ts}}.log",
+        f"{OUT}/logs/timing/sampling/{{strategy}}_{{level}}.log",
+    params:
+        expect=expect,
+        scenario=get_sampling_scenarios,
+        realisations=get_realisations,
+        whole=True,
+        frequency_grid=config["frequency_grid"],
+        amplitude_grid=config["amplitude_grid"],
+        library=LIBRARY,
+    resources:
+        mem_mb=SIM_MEM_MB,
+        runtime=CHUNK_RUNTIME * len(SAMPLING["sampling_times"]),
 
 
 use rule spectrum as spectrum_delay with:
     output:
-        f"{OUT}/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.nc",
+        [f"{OUT}/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{d:g}.nc" for d in DELAY["delays"]],
     log:
-        f"{OUT}/logs/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}.log",
+        f"{OUT}/logs/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}.log",
+    params:
+        expect=expect,
+        scenario=get_delay_scenarios,
+        realisations=get_realisations,
+        whole=True,
+        frequency_grid=config["frequency_grid"],
+        amplitude_grid=config["amplitude_grid"],
+        library=LIBRARY,
+    resources:
+        mem_mb=SIM_MEM_MB,
+        runtime=CHUNK_RUNTIME * len(DELAY["delays"]),
 
 
 if CHUNKED_LEVELS:
