@@ -79,6 +79,7 @@ def log_to(path) -> logging.Logger:
     logger = logging.getLogger("rockstudy")
     logger.addHandler(handler)
     logger.setLevel(logging.INFO)
+    atexit.unregister(_log_resources)  # one resources line, however often a job calls log_to
     atexit.register(_log_resources, logger)
     return logger
 

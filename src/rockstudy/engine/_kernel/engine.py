@@ -37,7 +37,6 @@ from rockstudy.core.constants import (
 from rockstudy.engine._kernel import dopri, maps, taylor
 from rockstudy.engine._kernel.events import (
     event_poly,
-    event_quartic,
     locate_poly,
     locate_sensed_poly,
     scan_exit,
@@ -509,21 +508,17 @@ def _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint, h, P, rec):
 
 
 @njit(cache=True, inline="always")
-def _locate_on(taylor_step, hi, Q, a_th, a_thd, c):
-    """The first zero in (0, hi] of g = a_th·θ + a_thd·θ̇ + c on the step's polynomial: degree 6 after
-    a Taylor step, the quartic after a Dormand–Prince step (``taylor_step``), both located by
-    :func:`~rockstudy.engine._kernel.events.locate_poly` (one compiled locator; a quartic's g5 = g6 = 0)."""
-    if taylor_step:
-        return locate_poly(hi, *event_poly(Q, a_th, a_thd, c))
-    return locate_poly(hi, *event_quartic(Q, a_th, a_thd, c), 0.0, 0.0)
+def _locate_on(hi, Q, a_th, a_thd, c):
+    """The first zero in (0, hi] of g = a_th·θ + a_thd·θ̇ + c on the step's polynomial in ``Q``: degree 6
+    after a Taylor step, the quartic after a Dormand–Prince step (whose columns 5 and 6 are 0, so g5 = g6
+    = 0 and the Horner values are the quartic's own), by one compiled locator for both."""
+    return locate_poly(hi, *event_poly(Q, a_th, a_thd, c))
 
 
 @njit(cache=True, inline="always")
-def _locate_sensed_on(taylor_step, hi, Q, x_hint, t, hh, P, rec):
+def _locate_sensed_on(hi, Q, x_hint, t, hh, P, rec):
     """:func:`_locate_on` for the CS02 switch (θ terms none, the sensed Ẍg's sign ``x_hint``)."""
-    if taylor_step:
-        return locate_sensed_poly(hi, *event_poly(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P, rec)
-    return locate_sensed_poly(hi, *event_quartic(Q, 0.0, 0.0, 0.0), 0.0, 0.0, x_hint, t, hh, P, rec)
+    return locate_sensed_poly(hi, *event_poly(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P, rec)
 
 
 @njit(cache=True, inline="always")
@@ -569,7 +564,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, 
     sa_ = -1.0
     if apex:
         have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-        sa_ = _locate_on(taylor_step, 1.0, Q, 0.0, side, 0.0)
+        sa_ = _locate_on(1.0, Q, 0.0, side, 0.0)
         if sa_ >= 0.0:
             a, b = dopri.dense_at(sa_, Q)
             if side * a > peak:
@@ -582,10 +577,10 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, 
     apex_switch = use_thd_event and hint == side and apex
     if impact and not (apex_switch and sa_ >= 0.0 and sig_peak == sa_):
         have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-        best = _locate_on(taylor_step, 1.0, Q, side, 0.0, 0.0)
+        best = _locate_on(1.0, Q, side, 0.0, 0.0)
     if not negligible and peak - th_over >= 0.0 and side * y0 - th_over < 0.0:
         have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-        s = _locate_on(taylor_step, min(best, sig_peak), Q, -side, 0.0, th_over)
+        s = _locate_on(min(best, sig_peak), Q, -side, 0.0, th_over)
         if s >= 0.0:
             best = s
     if track_fracture:
@@ -594,7 +589,7 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, 
             intact = spring if k == 0 else damper
             if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and peak - thu >= 0.0:
                 have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-                s = _locate_on(taylor_step, min(best, sig_peak), Q, -side, 0.0, thu)
+                s = _locate_on(min(best, sig_peak), Q, -side, 0.0, thu)
                 if s >= 0.0:
                     best = s
     if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
@@ -604,13 +599,13 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, 
             s = sa_ if sa_ <= min(best, 1.0) else -1.0
         else:
             have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-            s = _locate_on(taylor_step, min(best, 1.0), Q, 0.0, hint, 0.0)
+            s = _locate_on(min(best, 1.0), Q, 0.0, hint, 0.0)
         if s >= 0.0:
             best = s
     if not negligible and use_xg_event and x_hint != 0.0:
         if x_hint * sensed_acceleration(t + hh, P, rec) <= 0.0:
             have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-            s = _locate_sensed_on(taylor_step, min(best, 1.0), Q, x_hint, t, hh, P, rec)
+            s = _locate_sensed_on(min(best, 1.0), Q, x_hint, t, hh, P, rec)
             if s >= 0.0:
                 best = s
     return best, negligible, max_abs
