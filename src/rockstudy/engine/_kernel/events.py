@@ -62,7 +62,7 @@ def _poly_and_slope(sig, g0, g1, g2, g3, g4, g5, g6):
 
 @njit(cache=True, inline="always")
 def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
-    """The Illinois iterations of :func:`locate_sensed` on a bracket (0, hi] with g(0) = flo > 0 >= g(hi) = fhi."""
+    """The Illinois iterations of :func:`locate_sensed_poly` on a bracket (0, hi] with g(0) = flo > 0 >= g(hi) = fhi."""
     lo = 0.0
     last = 0
     for _ in range(200):
@@ -92,7 +92,7 @@ def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
 @njit(cache=True, inline="always")
 def _quadratic_start(hi, g0, g1, fhi):
     """The first root in (0, hi] of the parabola through g(0) = g0 > 0 with slope g1 there and
-    g(hi) = fhi <= 0: where :func:`_locate`'s Newton search starts (-1 when there is none).
+    g(hi) = fhi <= 0: where :func:`locate_poly`'s Newton search starts (-1 when there is none).
 
     g on a step is close to such a parabola (θ under a nearly constant θ̈, θ̇ nearly linear), so
     Newton starts orders of magnitude nearer the root than from the secant's point, which lies on
@@ -108,9 +108,20 @@ def _quadratic_start(hi, g0, g1, fhi):
     return 2.0 * g0 / den  # the root nearest 0, in the form without cancellation
 
 
-@njit(cache=True, inline="always")
-def _locate(hi, g0, g1, g2, g3, g4, g5, g6):
-    """The body of :func:`locate_poly`."""
+@njit(cache=True)
+def locate_poly(hi, g0, g1, g2, g3, g4, g5, g6):
+    """The sig in (0, hi] where g = g0 + g1·sig + … + g6·sig^6 (positive at 0; :func:`event_poly`: a
+    Taylor step's polynomial, or a Dormand–Prince step's quartic with g5 = g6 = 0, whose Horner values
+    are then the quartic's own) reaches <= 0; the callers cut ``hi`` so that g crosses once.
+
+    Newton's method kept inside the bracket [lo, hi] with g(lo) > 0 >= g(hi), started at the root of
+    the parabola through g(0), g'(0) and g(hi) (:func:`_quadratic_start`): a Newton point outside
+    the bracket is replaced by its midpoint, and once Newton's correction falls below a quarter of
+    ``LOCATE_TOLERANCE`` the next point is taken half the tolerance across, which closes the
+    bracket. Returns hi once hi - lo <= ``LOCATE_TOLERANCE`` (about four evaluations of g and its
+    slope on the events of noisy rocking runs, against about thirteen of g by the Illinois method),
+    or -1 when g(hi) > 0 (no crossing before ``hi``). The returned point always has g <= 0.
+    """
     fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6)
     if fhi > 0.0:
         return -1.0
@@ -140,30 +151,15 @@ def _locate(hi, g0, g1, g2, g3, g4, g5, g6):
 
 @njit(cache=True)
 def locate(hi, g0, g1, g2, g3, g4):
-    """The sig in (0, hi] where the quartic g = g0 + g1·sig + … + g4·sig^4 (positive at 0;
-    :func:`event_quartic`) reaches <= 0; the callers cut ``hi`` so that g crosses once.
-
-    Newton's method kept inside the bracket [lo, hi] with g(lo) > 0 >= g(hi), started at the root of
-    the parabola through g(0), g'(0) and g(hi) (:func:`_quadratic_start`): a Newton point outside
-    the bracket is replaced by its midpoint, and once Newton's correction falls below a quarter of
-    ``LOCATE_TOLERANCE`` the next point is taken half the tolerance across, which closes the
-    bracket. Returns hi once hi - lo <= ``LOCATE_TOLERANCE`` (about four evaluations of g and its
-    slope on the events of noisy rocking runs, against six from the secant's point and about
-    thirteen of g by the Illinois method), or -1 when g(hi) > 0 (no crossing before ``hi``). The
-    returned point always has g <= 0. The same compiled code as :func:`locate_poly`, with
-    g5 = g6 = 0 (the same values as the quartic's own Horner chain).
-    """
+    """:func:`locate_poly` on the quartic g = g0 + g1·sig + … + g4·sig^4 (:func:`event_quartic`)."""
     return locate_poly(hi, g0, g1, g2, g3, g4, 0.0, 0.0)
 
 
-@njit(cache=True)
-def locate_poly(hi, g0, g1, g2, g3, g4, g5, g6):
-    """:func:`locate` on a polynomial of degree 6 (a Taylor step's, :func:`event_poly`)."""
-    return _locate(hi, g0, g1, g2, g3, g4, g5, g6)
-
-
-@njit(cache=True, inline="always")
-def _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
+@njit(cache=True, **NO_REFCOUNT)
+def locate_sensed_poly(hi, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
+    """:func:`locate_poly` for g = polynomial + a_x·Ẍg(t + sig·hh) as the controller senses it (the CS02
+    switch), by the Illinois method: the sensed Ẍg is piecewise linear, so g has no usable slope at its
+    knots."""
     fhi = _poly_at(hi, g0, g1, g2, g3, g4, g5, g6) + a_x * sensed_acceleration(t + hi * hh, P, rec)
     if fhi > 0.0:
         return -1.0
@@ -175,16 +171,8 @@ def _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
 
 @njit(cache=True, **NO_REFCOUNT)
 def locate_sensed(hi, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
-    """:func:`locate` for g = quartic + a_x·Ẍg(t + sig·hh) as the controller senses it (the CS02 switch),
-    by the Illinois method: the sensed Ẍg is piecewise linear, so g has no usable slope at its knots.
-    :func:`locate_sensed_poly` with g5 = g6 = 0, as :func:`locate`."""
+    """:func:`locate_sensed_poly` on a quartic (g5 = g6 = 0), as :func:`locate`."""
     return locate_sensed_poly(hi, g0, g1, g2, g3, g4, 0.0, 0.0, a_x, t, hh, P, rec)
-
-
-@njit(cache=True, **NO_REFCOUNT)
-def locate_sensed_poly(hi, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
-    """:func:`locate_sensed` on a polynomial of degree 6 (a Taylor step's)."""
-    return _locate_sensed(hi, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec)
 
 
 @njit(cache=True, inline=inline_into("scan_exit"))
