@@ -45,6 +45,16 @@ rule noise:
         "../scripts/noise.py"
 
 
+# What every job that scans the study's grids is given besides its own params (the spectra, whole, swept
+# or in chunks, and the maps): the grids and the source fingerprint. A rule derived by `use rule ... with:
+# params:` states its params in full, since that replaces the whole block.
+SCAN_PARAMS = dict(
+    frequency_grid=config["frequency_grid"],
+    amplitude_grid=config["amplitude_grid"],
+    library=LIBRARY,
+)
+
+
 rule spectrum:
     input:
         noise=f"{OUT}/noise/{{level}}.nc",
@@ -62,9 +72,7 @@ rule spectrum:
         scenario=get_scenario,
         realisations=get_realisations,
         whole=True,  # the whole spectrum, as gathering its one chunk would write it
-        frequency_grid=config["frequency_grid"],
-        amplitude_grid=config["amplitude_grid"],
-        library=LIBRARY,
+        **SCAN_PARAMS,
     conda:
         "../envs/rockstudy.yaml"
     threads: 1
@@ -88,9 +96,7 @@ use rule spectrum as spectrum_sampling with:
         scenario=get_sampling_scenarios,
         realisations=get_realisations,
         whole=True,
-        frequency_grid=config["frequency_grid"],
-        amplitude_grid=config["amplitude_grid"],
-        library=LIBRARY,
+        **SCAN_PARAMS,
     resources:
         mem_mb=SIM_MEM_MB,
         runtime=CHUNK_RUNTIME * len(SAMPLING["sampling_times"]),
@@ -106,9 +112,7 @@ use rule spectrum as spectrum_delay with:
         scenario=get_delay_scenarios,
         realisations=get_realisations,
         whole=True,
-        frequency_grid=config["frequency_grid"],
-        amplitude_grid=config["amplitude_grid"],
-        library=LIBRARY,
+        **SCAN_PARAMS,
     resources:
         mem_mb=SIM_MEM_MB,
         runtime=CHUNK_RUNTIME * len(DELAY["delays"]),
@@ -133,9 +137,7 @@ if CHUNKED_LEVELS:
             scenario=get_scenario,
             realisations=get_chunk_realisations,
             whole=False,
-            frequency_grid=config["frequency_grid"],
-            amplitude_grid=config["amplitude_grid"],
-            library=LIBRARY,
+            **SCAN_PARAMS,
 
     rule gather_spectrum:
         input:
@@ -196,9 +198,7 @@ rule overturning_map:
         f"{OUT}/logs/maps/{{strategy}}.log",
     params:
         scenario=get_scenario,
-        frequency_grid=config["frequency_grid"],
-        amplitude_grid=config["amplitude_grid"],
-        library=LIBRARY,
+        **SCAN_PARAMS,
     conda:
         "../envs/rockstudy.yaml"
     threads: 1
