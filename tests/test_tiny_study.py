@@ -1,0 +1,119 @@
+"""The tiny study (.test/config.yaml) run end to end with -j2, once for the module: its files, their CF
+conventions, and the same numbers from an interrupted -j1 run resumed."""
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from workflow_runs import ROOT, TEST_CONFIG, TINY, snakemake
+
+pytestmark = [pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake is not installed"),
+              pytest.mark.long_chain]  # started first (conftest.py)
+
+
+@pytest.fixture(scope="module")
+def tiny_run(tmp_path_factory):
+    """The tiny study run once with -j2: (results folder, snakemake's work dir, the run)."""
+    work = tmp_path_factory.mktemp("tiny")
+    out = work / "out"
+    res = snakemake("-j2", *TINY, "--config", f"results_dir={out}", workdir=work)
+    return out, work, res
+
+
+@pytest.mark.slow
+def test_tiny_study_end_to_end(tiny_run):
+    out, tmp_path, res = tiny_run
+    assert res.returncode == 0, res.stderr[-5000:]
+    import xarray as xr
+
+    figures = sorted(p.name for p in (out / "figures").glob("*.png"))
+    assert len(figures) == 8 and all((out / "figures" / f.replace(".png", ".pdf")).exists() for f in figures)
+    for name in ("table1", "timing_sampling", "timing_delay"):
+        assert all((out / "tables" / f"{name}.{ext}").stat().st_size > 0 for ext in ("nc", "csv", "md", "html"))
+    for page in ("reproduction/claims.html", "reproduction/table1_vs_paper.html", "report/overview.html"):
+        assert "<table" in (out / page).read_text(encoding="utf-8")  # the report's pages (rockstudy.report)
+    with xr.open_dataset(out / "spectra" / "CS01_R005.nc") as ds:
+        assert ds.sizes["realisation"] == 2 and ds["frequency_ratio"].attrs["units"] == "1"
+        assert ds.attrs["rockstudy_version"] and len(ds.attrs["rockstudy_source_sha256"]) == 64
+        assert float(ds["noise_level"]) == 0.05 and "threshold" in ds
+    with xr.open_dataset(out / "tables" / "table1.nc") as t:
+        assert set(t["reference"].values) == {"no_noise", "fs_same_noise"} and t["j_os"].attrs["units"] == "percent"
+    assert list((out / "logs").rglob("*.log"))
+    # nothing to do on a second run: outputs are up to date
+    again = snakemake("-n", "--configfile", str(TEST_CONFIG), "--replace-workflow-config",
+                      "--config", f"results_dir={out}", workdir=tmp_path)
+    assert "Nothing to be done" in again.stdout + again.stderr, again.stdout[-3000:]
+
+
+@pytest.mark.slow
+def test_tiny_study_files_follow_cf_and_histories_have_one_value_per_time(tiny_run):
+    """One netCDF file of each kind the tiny study writes (one per folder) passes the CF-1.11
+    checker without a high-priority finding; every history's time is strictly increasing."""
+    from compliance import high_priority_findings
+
+    out, _, res = tiny_run
+    assert res.returncode == 0, res.stderr[-5000:]
+    kinds = {}
+    for path in sorted(out.rglob("*.nc")):
+        kinds.setdefault(path.parent, path)
+    assert len(kinds) >= 9, sorted(kinds)  # every spectrum written whole: no chunks/ folder
+    findings = {str(path.relative_to(out)): high_priority_findings(path) for path in kinds.values()}
+    assert all(not f for f in findings.values()), {k: f for k, f in findings.items() if f}
+    import xarray as xr
+
+    histories = sorted((out / "histories").glob("*.nc"))
+    assert histories
+    for path in histories:
+        with xr.open_dataset(path) as ds:
+            assert np.all(np.diff(ds["t"].values) > 0), path.name
+            assert ds["theta"].sel(t=2.0, method="nearest").size == 1
+
+
+@pytest.mark.slow
+def test_interrupted_j1_run_resumes_to_the_same_numbers_as_j2(tiny_run, tmp_path):
+    """Ctrl-C in the middle of a -j1 run, then the same command again: it finishes without redoing (or
+    touching) the jobs finished before (only the one job in flight at Ctrl-C may run again), and every
+    netCDF file equals the -j2 run's (job order and -j do not change the numbers). The run asks for the
+    netCDF files only: figures and pages are not numbers."""
+    import signal
+    import time
+
+    import xarray as xr
+
+    ref, _, first = tiny_run
+    assert first.returncode == 0, first.stderr[-3000:]
+    out = tmp_path / "out"
+    ref_files = sorted(p.relative_to(ref) for p in ref.rglob("*.nc"))
+    targets = [str(out / rel) for rel in ref_files]
+    cmd = ["snakemake", "--snakefile", str(ROOT / "Snakefile"), "--directory", str(tmp_path), "-j1", *TINY,
+           "--config", f"results_dir={out}", "--", *targets]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    deadline = time.monotonic() + 600
+    while time.monotonic() < deadline and proc.poll() is None:
+        if len(list((out / "spectra").glob("*.nc"))) >= 2:
+            break
+        time.sleep(0.2)
+    assert proc.poll() is None, "the run ended before it could be interrupted"
+    proc.send_signal(signal.SIGINT)
+    assert proc.wait(timeout=120) != 0
+    done_before = {p: p.stat().st_mtime_ns for p in out.rglob("*.nc")}
+    assert 2 <= len(done_before) < len(ref_files)
+    res = snakemake("-j1", *TINY, "--config", f"results_dir={out}", "--", *targets, workdir=tmp_path)
+    assert res.returncode == 0, res.stderr[-5000:]
+    log = res.stdout + res.stderr
+    written = set(re.findall(r"^\s+output: (.*)$", log, flags=re.MULTILINE))
+    written = {Path(name) for line in written for name in line.split(", ")}
+    redone = written & set(done_before)
+    assert written and len(redone) <= 1, sorted(redone)  # -j1: at most one job was in flight
+    assert all(p.stat().st_mtime_ns == t for p, t in done_before.items() if p not in redone)
+
+    assert sorted(p.relative_to(out) for p in out.rglob("*.nc")) == ref_files
+    for rel in ref_files:
+        with xr.open_dataset(ref / rel) as a, xr.open_dataset(out / rel) as b:
+            a.attrs.pop("compute_time_s", None)
+            b.attrs.pop("compute_time_s", None)
+            xr.testing.assert_identical(a, b)
