@@ -36,6 +36,7 @@ from __future__ import annotations
 import logging
 import math
 import time
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -332,8 +333,8 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
     xarray.Dataset
         ``overturned`` and ``max_rotation_ratio`` (strategy, record, intensity); ``fraction``
         (strategy, intensity); ``fragility_median``, ``fragility_dispersion``, their standard errors and 95 %
-        intervals, ``fit_status``; ``median_ratio`` θ/θ_FS with its bootstrap 95 % interval and
-        ``median_shift_percent`` 100·(θ/θ_FS − 1), per strategy.
+        intervals, ``fit_status``; ``median_ratio`` θ/θ_FS with its bootstrap 95 % interval (NaN when no
+        draw has a finite ratio) and ``median_shift_percent`` 100·(θ/θ_FS − 1), per strategy.
     """
     _check_fragility_inputs(controls, n_boot)
     levels = np.asarray(levels, dtype=float)
@@ -383,7 +384,9 @@ def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records
     rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(BOOTSTRAP_KEY,)))
     boot = bootstrap_median_ratios(levels, overturned, reference, n_boot, rng) if n_boot else np.full((0, len(fits)),
                                                                                                        np.nan)
-    with np.errstate(invalid="ignore"):
+    with np.errstate(invalid="ignore"), warnings.catch_warnings():
+        # a strategy none of whose draws has a finite ratio gets a NaN interval (fragility_dataset)
+        warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
         ci = np.nanpercentile(boot, [2.5, 97.5], axis=0) if n_boot else np.full((2, len(fits)), np.nan)
     intervals = np.array([f.median_interval() if f.status == "ok" else (math.nan, math.nan) for f in fits])
     ratio = medians / medians[reference]
