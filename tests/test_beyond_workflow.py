@@ -1,32 +1,23 @@
 """The optional `beyond:` section of the workflow: validated on load, targets in the DAG."""
 import re
 import shutil
-import subprocess
-from pathlib import Path
 
 import pytest
 import yaml
 
-ROOT = Path(__file__).resolve().parents[1]
+from workflow_runs import ROOT, TEST_CONFIG, dry_run
+
 pytestmark = pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake is not installed")
 
 
-def dry_run(tmp_path, config, *targets):
-    path = tmp_path / "config.yaml"
-    path.write_text(yaml.safe_dump(config))
-    cmd = ["snakemake", "--snakefile", str(ROOT / "Snakefile"), "--directory", str(tmp_path), "-n",
-           "--configfile", str(path), "--replace-workflow-config", *targets]
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=600)
-
-
 def tiny_with_beyond():
-    config = yaml.safe_load((ROOT / ".test" / "config.yaml").read_text())
+    config = yaml.safe_load(TEST_CONFIG.read_text())
     config["beyond"] = yaml.safe_load((ROOT / "config.yaml").read_text())["beyond"]
     return config
 
 
 def test_targets_are_in_the_dag(tmp_path):
-    res = dry_run(tmp_path, tiny_with_beyond(), "probability", "fragility")
+    res = dry_run(tiny_with_beyond(), tmp_path, "probability", "fragility")
     assert res.returncode == 0, res.stderr + res.stdout
     for rule in ("record_set", "fragility_stripes", "fragility_summary", "figure_record_thresholds",
                  "probability_surface", "figure_probability"):
@@ -39,7 +30,7 @@ def test_targets_are_in_the_dag(tmp_path):
 def test_the_synthetic_suite_and_a_selection_of_suite_records(tmp_path):
     config = tiny_with_beyond()
     config["beyond"]["fragility"]["records"] = ["synthetic", "p695-near-field-pulse:1a", "p695-far-field:3b"]
-    res = dry_run(tmp_path, config, "fragility")
+    res = dry_run(config, tmp_path, "fragility")
     assert res.returncode == 0, res.stderr + res.stdout
     assert "synthetic_suite" in res.stdout and "fragility/synthetic.nc" in res.stdout
     assert "fragility/selection.nc" in res.stdout
@@ -50,7 +41,7 @@ def test_user_record_files_replace_the_synthetic_suite(tmp_path):
     record = tmp_path / "quake.csv"
     record.write_text("time [s], acceleration [g]\n0, 0\n0.01, 0.1\n")
     config["beyond"]["fragility"]["records"] = [{"path": str(record)}]
-    res = dry_run(tmp_path, config, "fragility")
+    res = dry_run(config, tmp_path, "fragility")
     assert res.returncode == 0, res.stderr + res.stdout
     assert "fragility_stripes" in res.stdout and "synthetic_suite" not in res.stdout
 
@@ -68,7 +59,7 @@ def test_user_record_files_replace_the_synthetic_suite(tmp_path):
 def test_a_bad_beyond_section_stops_before_any_job(tmp_path, change, key):
     config = tiny_with_beyond()
     change(config["beyond"])
-    res = dry_run(tmp_path, config, "fragility")
+    res = dry_run(config, tmp_path, "fragility")
     assert res.returncode != 0 and key in res.stderr + res.stdout
 
 
@@ -85,7 +76,7 @@ def test_every_simulating_job_waits_for_the_one_compilation(tmp_path):
     seen = set()
     for per_job in (config["realisations"], 1):  # every spectrum whole; the noisy ones in chunks
         config["realisations_per_job"] = per_job
-        res = dry_run(tmp_path, config, "all", "probability", "fragility", "reproduction", "calibration", "design")
+        res = dry_run(config, tmp_path, "all", "probability", "fragility", "reproduction", "calibration", "design")
         assert res.returncode == 0, res.stderr + res.stdout
         jobs = re.findall(r"^( *)rule (\w+):\n((?:\1    .*\n)+)", res.stdout, flags=re.MULTILINE)  # grouped: indented
         seen |= {rule for _, rule, _ in jobs}

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from workflow_runs import ROOT, TEST_CONFIG, TINY, snakemake
+from workflow_runs import TEST_CONFIG, TINY, command, snakemake
 
 pytestmark = [pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake is not installed"),
               pytest.mark.long_chain]  # started first (conftest.py)
@@ -88,9 +88,8 @@ def test_interrupted_j1_run_resumes_to_the_same_numbers_as_j2(tiny_run, tmp_path
     out = tmp_path / "out"
     ref_files = sorted(p.relative_to(ref) for p in ref.rglob("*.nc"))
     targets = [str(out / rel) for rel in ref_files]
-    cmd = ["snakemake", "--snakefile", str(ROOT / "Snakefile"), "--directory", str(tmp_path), "-j1", *TINY,
-           "--config", f"results_dir={out}", "--", *targets]
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+    proc = subprocess.Popen(command("-j1", *TINY, "--config", f"results_dir={out}", "--", *targets, workdir=tmp_path),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     deadline = time.monotonic() + 600
     while time.monotonic() < deadline and proc.poll() is None:

@@ -6,15 +6,9 @@ import shutil
 import pytest
 import yaml
 
-from workflow_runs import ROOT, TEST_CONFIG, TINY, snakemake
+from workflow_runs import ROOT, TEST_CONFIG, TINY, dry_run, snakemake
 
 pytestmark = pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake is not installed")
-
-
-def run_with(config: dict, tmp_path, *args):
-    path = tmp_path / "config.yaml"
-    path.write_text(yaml.safe_dump(config))
-    return snakemake("-n", "--configfile", str(path), "--replace-workflow-config", *args, workdir=tmp_path)
 
 
 def tiny_config():
@@ -22,7 +16,7 @@ def tiny_config():
 
 
 def test_valid_tiny_config_dry_runs(tmp_path):
-    res = run_with(tiny_config(), tmp_path)
+    res = dry_run(tiny_config(), tmp_path)
     assert res.returncode == 0, res.stderr + res.stdout
     assert "rule spectrum:" in res.stdout
 
@@ -37,7 +31,7 @@ def test_default_study_writes_every_spectrum_in_its_simulation_job(tmp_path):
     """realisations_per_job >= realisations (config.yaml): one job per spectrum, no chunk and no gather job."""
     config = yaml.safe_load((ROOT / "config.yaml").read_text())
     assert config["realisations_per_job"] >= config["realisations"]
-    res = run_with(config, tmp_path, "--config", "results_dir=out")
+    res = dry_run(config, tmp_path, "--config", "results_dir=out")
     assert res.returncode == 0, res.stderr + res.stdout
     jobs = job_counts(res.stdout)
     n_levels, n_strategies = len(config["noise_levels"]), len(config["strategies"])
@@ -59,7 +53,7 @@ def test_default_study_writes_every_spectrum_in_its_simulation_job(tmp_path):
 def test_chunked_study_gathers_the_noisy_spectra(tmp_path):
     """realisations_per_job < realisations: the noisy spectra in chunks, gathered; the noise-free one (one
     realisation) still written by its job."""
-    res = run_with(tiny_config(), tmp_path, "--config", "results_dir=out", "realisations_per_job=1")
+    res = dry_run(tiny_config(), tmp_path, "--config", "results_dir=out", "realisations_per_job=1")
     assert res.returncode == 0, res.stderr + res.stdout
     jobs = job_counts(res.stdout)
     config = tiny_config()
@@ -90,7 +84,7 @@ def test_chunked_study_gathers_the_noisy_spectra(tmp_path):
 def test_invalid_config_stops_before_any_job_naming_the_key(tmp_path, change, key):
     config = tiny_config()
     change(config)
-    res = run_with(config, tmp_path)
+    res = dry_run(config, tmp_path)
     assert res.returncode != 0
     assert key in res.stderr + res.stdout
     assert "Job stats" not in res.stdout and not (tmp_path / "results").exists()
@@ -115,7 +109,7 @@ def reading_jobs(stdout: str) -> set:
 def test_readings_study_reuses_the_study_spectra_of_its_own_reading(tmp_path, change, computed):
     config = tiny_config()
     change(config)
-    res = run_with(config, tmp_path, "reproduction", "--config", "results_dir=out")
+    res = dry_run(config, tmp_path, "reproduction", "--config", "results_dir=out")
     assert res.returncode == 0, res.stderr + res.stdout
     assert reading_jobs(res.stdout) == computed
     reused = {"step2p5ms", "rescale_none"} - computed
