@@ -53,3 +53,45 @@ def test_nothing_overturns_on_the_grid():
 def test_overturning_at_the_first_grid_point_uses_the_uplift_floor():
     thr, lo, _ = run_scan(lambda a: a >= 0.85, lower=0.8)
     assert 0.8 <= lo < 0.85 <= thr and thr - lo <= 0.01
+
+
+# ---- the two steppers in one scan ------------------------------------------------------------
+def test_taylor_steps_clear_the_grid_and_dormand_prince_decides_the_threshold(blc06):
+    """A run of the default study that grazes overturning (FS, 10 % noise, realisation 24,
+    ω_p/p = 3.55): the Taylor step overturns the block at 5.1 where Dormand–Prince does not. The
+    scan hands over at the first grid point the Taylor step overturns at, so the threshold, its
+    bracket and every outcome from there on are Dormand–Prince's, and every run is counted."""
+    from rockstudy.analysis.scenario import Scenario
+    from rockstudy.analysis.spectra import AmplitudeGrid
+    from rockstudy.engine._kernel.scan import is_overturned, outcome_kernel, takes_taylor_steps, threshold_kernel
+    from rockstudy.engine.outcome import NO_UPLIFT
+    from rockstudy.model.control import Control
+
+    case = Scenario(blc06, control=Control("FS"), noise_level=0.10).kernel_case(3.55, 24)
+    rec, vert, peak = kn.writable(case.samples), kn.writable(case.vertical), float(case.peak)
+    taylor = case.parameters
+    dopri = taylor.copy()
+    dopri[kn.I_TAYLOR] = 0.0
+    assert takes_taylor_steps(taylor, vert) and not takes_taylor_steps(dopri, vert)
+    grid = AmplitudeGrid().values()
+    lower = float(kn.uplift_floor(vert, peak))
+
+    def outcomes(P):
+        return lambda a: is_overturned(outcome_kernel(P, rec, vert, a, peak))
+
+    handed = threshold_kernel(taylor, rec, vert, grid, 0.01, peak)
+    throughout = threshold_kernel(dopri, rec, vert, grid, 0.01, peak)
+    taylor_alone = run_scan(outcomes(taylor), lower=lower, grid=grid)
+    dopri_alone = run_scan(outcomes(dopri), lower=lower, grid=grid)
+    assert handed[:2] == throughout[:2] == pytest.approx(dopri_alone[:2], abs=0)
+    assert abs(taylor_alone[0] - handed[0]) > 0.1          # the case does test the hand-over
+    assert outcomes(dopri)(handed[0]) and not outcomes(dopri)(handed[1])
+    # runs: the Taylor step's upward scan to its first overturning grid point, then Dormand–Prince's
+    # scan from that grid point; points the record cannot uplift the block at are not simulated
+    def simulated(tried):
+        return sum(outcome_kernel(dopri, rec, vert, a, peak) != NO_UPLIFT for a in tried)
+
+    first = next(a for a in grid if outcomes(taylor)(a))
+    upward = [a for a in grid if a <= first]
+    from_first = [a for a in dopri_alone[2] if a >= first or a not in grid]
+    assert handed[2] == simulated(upward + from_first) and throughout[2] == simulated(dopri_alone[2])

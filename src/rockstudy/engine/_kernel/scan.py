@@ -1,6 +1,13 @@
 """The threshold scan, written once: an upward scan of the amplitude grid, then a bisection between
 the last safe and the first overturning grid point down to the resolution.
 
+With Taylor steps (``P[I_TAYLOR]``, the default) :func:`threshold_kernel` runs the upward scan with
+them only up to the first grid point they overturn at; from that grid point on (that point, any
+above it, the bisection) every outcome is a Dormand–Prince run. The outcomes that decide the
+threshold are thus those of the stepper every earlier result used, while the cheaper Taylor steps
+clear the safe grid points below; a run that grazes overturning, which the integration's error
+decides, is decided the same way as before.
+
 :func:`scan_amplitude` / :func:`scan_update` are the scan as a small state machine on a 4-slot
 array, so that the compiled :func:`threshold_kernel` and the reference engine's Python loop
 (:func:`rockstudy.analysis.spectra.threshold`) drive the very same decisions.
@@ -13,8 +20,9 @@ import numpy as np
 from numba import njit, prange
 
 from rockstudy.engine._kernel.engine import simulate_kernel
-from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, ST_ELIMIT, ST_OVER
+from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, I_KIND, I_TAYLOR, ST_ELIMIT, ST_OVER
 from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, SAFE, UNDETERMINED
+from rockstudy.model.excitation import RECORD
 
 # ---- the scan's state: [phase, j, lo, hi] ------------------------------------------------
 S_PHASE, S_J, S_LO, S_HI = 0, 1, 2, 3
@@ -107,25 +115,48 @@ def outcome_kernel(P, rec, vert, amplitude_ratio, unit_peak):
 
 
 @njit(cache=True)
+def _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, upward_only, counts):
+    """Advance ``state`` with the outcomes of runs of ``P`` until the scan is done, or with
+    ``upward_only`` until its upward part stops (at the first grid point that overturns, or the
+    last); ``counts`` += (simulations, undetermined runs)."""
+    done = state[S_PHASE] == DONE
+    while not done and not (upward_only and state[S_PHASE] != SCANNING):
+        o = outcome_kernel(P, rec, vert, scan_amplitude(state, grid), unit_peak)
+        if o != NO_UPLIFT:
+            counts[0] += 1
+        if o == UNDETERMINED:
+            counts[1] += 1
+        done = scan_update(state, grid, resolution, lower, is_overturned(o))
+
+
+@njit(cache=True)
+def takes_taylor_steps(P, vert):
+    """True when runs of ``P`` take Taylor steps (a record, no vertical record, ``P[I_TAYLOR]``)."""
+    return P[I_TAYLOR] != 0.0 and int(P[I_KIND]) == RECORD and vert.shape[0] == 0
+
+
+@njit(cache=True)
 def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
     """Lowest overturning amplitude ratio on ``grid`` refined to ``resolution``.
 
     Returns (threshold, lower_safe, n_simulations, n_undetermined); threshold = NaN when nothing
     on the grid overturns. An undetermined run (event cap) counts as not overturned and is counted.
+    When the runs take Taylor steps, the scan is theirs only below the first grid point they
+    overturn at (the last grid point if none): from there on, including the bisection, every
+    outcome is a Dormand–Prince run (module docstring).
     """
-    n_sim = 0
-    n_und = 0
+    counts = np.zeros(2, dtype=np.int64)
     lower = uplift_floor(vert, unit_peak)
     state = scan_start()
-    done = False
-    while not done:
-        o = outcome_kernel(P, rec, vert, scan_amplitude(state, grid), unit_peak)
-        if o != NO_UPLIFT:
-            n_sim += 1
-        if o == UNDETERMINED:
-            n_und += 1
-        done = scan_update(state, grid, resolution, lower, is_overturned(o))
-    return state[S_HI], state[S_LO], n_sim, n_und
+    if takes_taylor_steps(P, vert):
+        _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, True, counts)
+        j = state[S_J]
+        state = scan_start()
+        state[S_J] = j
+        P = P.copy()
+        P[I_TAYLOR] = 0.0
+    _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, False, counts)
+    return state[S_HI], state[S_LO], counts[0], counts[1]
 
 
 @njit(cache=True, inline="always")
