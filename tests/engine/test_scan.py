@@ -56,14 +56,21 @@ def test_overturning_at_the_first_grid_point_uses_the_uplift_floor():
 
 
 # ---- the two steppers in one scan ------------------------------------------------------------
-def test_taylor_steps_clear_the_grid_and_dormand_prince_decides_the_threshold(blc06):
+def test_a_taylor_scan_handed_over_to_dormand_prince_is_decided_by_dormand_prince(blc06):
     """A run of the default study that grazes overturning (FS, 10 % noise, realisation 24,
-    ω_p/p = 3.55): the Taylor step overturns the block at 5.1 where Dormand–Prince does not. The
-    scan hands over at the first grid point the Taylor step overturns at, so the threshold, its
-    bracket and every outcome from there on are Dormand–Prince's, and every run is counted."""
+    ω_p/p = 3.55): the Taylor step overturns the block at 5.1 where Dormand–Prince does not.
+    Handed over at the first grid point the Taylor step overturns at, the threshold, its bracket and
+    every outcome from there on are Dormand–Prince's, and every run is counted; without the
+    hand-over (the study's scan) the threshold is the Taylor step's own."""
     from rockstudy.analysis.scenario import Scenario
     from rockstudy.analysis.spectra import AmplitudeGrid
-    from rockstudy.engine._kernel.scan import is_overturned, outcome_kernel, takes_taylor_steps, threshold_kernel
+    from rockstudy.engine._kernel.scan import (
+        is_overturned,
+        outcome_kernel,
+        takes_taylor_steps,
+        threshold_kernel,
+        threshold_scan,
+    )
     from rockstudy.engine.outcome import NO_UPLIFT
     from rockstudy.model.control import Control
 
@@ -79,13 +86,15 @@ def test_taylor_steps_clear_the_grid_and_dormand_prince_decides_the_threshold(bl
     def outcomes(P):
         return lambda a: is_overturned(outcome_kernel(P, rec, vert, a, peak))
 
-    handed = threshold_kernel(taylor, rec, vert, grid, 0.01, peak)
+    handed = threshold_scan(taylor, rec, vert, grid, 0.01, peak, 0)
     throughout = threshold_kernel(dopri, rec, vert, grid, 0.01, peak)
     taylor_alone = run_scan(outcomes(taylor), lower=lower, grid=grid)
     dopri_alone = run_scan(outcomes(dopri), lower=lower, grid=grid)
     assert handed[:2] == throughout[:2] == pytest.approx(dopri_alone[:2], abs=0)
+    assert threshold_kernel(taylor, rec, vert, grid, 0.01, peak)[:2] == pytest.approx(taylor_alone[:2], abs=0)
     assert abs(taylor_alone[0] - handed[0]) > 0.1          # the case does test the hand-over
     assert outcomes(dopri)(handed[0]) and not outcomes(dopri)(handed[1])
+
     # runs: the Taylor step's upward scan to its first overturning grid point, then Dormand–Prince's
     # scan from that grid point; points the record cannot uplift the block at are not simulated
     def simulated(tried):

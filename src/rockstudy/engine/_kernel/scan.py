@@ -1,12 +1,10 @@
 """The threshold scan, written once: an upward scan of the amplitude grid, then a bisection between
 the last safe and the first overturning grid point down to the resolution.
 
-With Taylor steps (``P[I_TAYLOR]``, the default) :func:`threshold_kernel` runs the upward scan with
-them only up to the first grid point they overturn at; from that grid point on (that point, any
-above it, the bisection) every outcome is a Dormand–Prince run. The outcomes that decide the
-threshold are thus those of the stepper every earlier result used, while the cheaper Taylor steps
-clear the safe grid points below; a run that grazes overturning, which the integration's error
-decides, is decided the same way as before.
+:func:`threshold_scan` can also hand a scan of Taylor-step runs over to Dormand–Prince runs near
+the threshold, so that the outcomes deciding it are those of the stepper results before the Taylor
+step came from; the study does not (:func:`threshold_kernel`), for its cost (docs/model.md, "The
+stepper that decides a threshold").
 
 :func:`scan_amplitude` / :func:`scan_update` are the scan as a small state machine on a 4-slot
 array, so that the compiled :func:`threshold_kernel` and the reference engine's Python loop
@@ -136,27 +134,37 @@ def takes_taylor_steps(P, vert):
 
 
 @njit(cache=True)
-def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
-    """Lowest overturning amplitude ratio on ``grid`` refined to ``resolution``.
+def threshold_scan(P, rec, vert, grid, resolution, unit_peak, handover):
+    """:func:`threshold_kernel`, with the choice of stepper near the threshold.
 
-    Returns (threshold, lower_safe, n_simulations, n_undetermined); threshold = NaN when nothing
-    on the grid overturns. An undetermined run (event cap) counts as not overturned and is counted.
-    When the runs take Taylor steps, the scan is theirs only below the first grid point they
-    overturn at (the last grid point if none): from there on, including the bisection, every
-    outcome is a Dormand–Prince run (module docstring).
+    ``handover`` < 0: every run takes the stepper of ``P`` (the study's scan). ``handover`` = k >= 0,
+    when the runs of ``P`` take Taylor steps: they scan upward only to the first grid point they
+    overturn at (the last grid point if none); from k grid points below it Dormand–Prince runs scan
+    on, so that point, any above it and every bisection point are Dormand–Prince outcomes. Every run
+    is counted, the Taylor runs the hand-over repeats included.
     """
     counts = np.zeros(2, dtype=np.int64)
     lower = uplift_floor(vert, unit_peak)
     state = scan_start()
-    if takes_taylor_steps(P, vert):
+    if handover >= 0 and takes_taylor_steps(P, vert):
         _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, True, counts)
-        j = state[S_J]
+        j = max(int(state[S_J]) - handover, 0)
         state = scan_start()
         state[S_J] = j
         P = P.copy()
         P[I_TAYLOR] = 0.0
     _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, False, counts)
     return state[S_HI], state[S_LO], counts[0], counts[1]
+
+
+@njit(cache=True)
+def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
+    """Lowest overturning amplitude ratio on ``grid`` refined to ``resolution``.
+
+    Returns (threshold, lower_safe, n_simulations, n_undetermined); threshold = NaN when nothing
+    on the grid overturns. An undetermined run (event cap) counts as not overturned and is counted.
+    """
+    return threshold_scan(P, rec, vert, grid, resolution, unit_peak, -1)
 
 
 @njit(cache=True, inline="always")

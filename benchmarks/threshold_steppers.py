@@ -1,0 +1,106 @@
+"""Which stepper decides a threshold, and what each choice costs: one noisy spectrum scanned four ways
+on one core, each threshold compared with the scan of Dormand–Prince runs throughout.
+
+    python benchmarks/threshold_steppers.py [--strategy CS01] [--noise-level 0.05] [--realisations 40]
+                                            [--rounds 3] [--config config.yaml]
+
+The four scans (``rockstudy.engine._kernel.scan.threshold_scan``):
+
+- ``taylor``: Taylor steps between the record's knots in every run (the study's scan);
+- ``handover 0``: Taylor steps up to the first grid point they overturn the block at, then
+  Dormand–Prince runs from that point on (that point again, any above it, the bisection);
+- ``handover 3``: the same, Dormand–Prince from three grid points below that point;
+- ``dopri``: Dormand–Prince runs throughout (the engine before the Taylor step, bit for bit).
+
+Prints, per scan, how many of the spectrum's thresholds differ from ``dopri``'s and by more than one
+amplitude step, and the scan's CPU time (the compiled scans only, case building excluded), the
+rounds interleaved, medians and their ratios to ``taylor`` and ``dopri``. The machine is shared:
+compare the ratios, not the times.
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import sys
+import time
+from pathlib import Path
+
+import numba
+import numpy as np
+import yaml
+from numba import njit
+
+from rockstudy.analysis.spectra import AmplitudeGrid, _cases
+from rockstudy.engine import _kernel as kernel
+from rockstudy.engine._kernel.scan import threshold_scan
+from rockstudy.studies.parameters import scenario_from_dict
+
+SCENARIO_KEYS = ("block", "anchorage", "control", "noise", "seed", "excitation", "overturn_criterion", "free_time")
+SCANS = {"taylor": (1.0, -1), "handover 0": (1.0, 0), "handover 3": (1.0, 3), "dopri": (0.0, -1)}
+
+
+@njit(cache=True)
+def scan_all(Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks, handover):
+    """threshold_scan over every case (rows of Pm), one thread; thresholds and simulations."""
+    n = Pm.shape[0]
+    out, nsim = np.empty(n), np.zeros(n, dtype=np.int64)
+    for i in range(n):
+        rec = recs[rec_off[i]:rec_off[i] + rec_len[i]]
+        out[i], _, nsim[i], _ = threshold_scan(Pm[i], rec, vert, grid, resolution, peaks[i], handover)
+    return out, nsim
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--config", type=Path, default=Path("config.yaml"))
+    ap.add_argument("--strategy", default="CS01")
+    ap.add_argument("--noise-level", type=float, default=0.05)
+    ap.add_argument("--realisations", type=int, default=40)
+    ap.add_argument("--rounds", type=int, default=3)
+    args = ap.parse_args(argv)
+    numba.set_num_threads(1)
+    config = yaml.safe_load(args.config.read_text(encoding="utf-8"))
+    base = scenario_from_dict({k: config[k] for k in SCENARIO_KEYS if k in config})
+    scenario = dataclasses.replace(base, control=dataclasses.replace(base.control, strategy=args.strategy),
+                                   noise_level=args.noise_level)
+    fg, ag = config["frequency_grid"], config["amplitude_grid"]
+    freqs = np.round(np.arange(fg["start"], fg["stop"] + fg["step"] / 2, fg["step"]), 10)
+    grid = AmplitudeGrid(ag["start"], ag["stop"], ag["step"], ag["resolution"])
+    Pm, recs, off, lens, peaks, _, _ = _cases(scenario, freqs, range(args.realisations))
+    values, vert = grid.values(), np.zeros(0)
+    print(f"{args.strategy} at noise level {args.noise_level:g}: {args.realisations} realisations x "
+          f"{len(freqs)} frequencies = {len(Pm)} thresholds; {args.rounds} rounds, interleaved")
+
+    def run(name):
+        P = Pm.copy()
+        P[:, kernel.I_TAYLOR] = SCANS[name][0]
+        start = time.process_time()
+        thr, nsim = scan_all(P, recs, off, lens, vert, values, float(grid.resolution), peaks, SCANS[name][1])
+        return time.process_time() - start, thr, int(nsim.sum())
+
+    for name in SCANS:  # compile (or load from the cache) outside the timed rounds
+        P = Pm[:1].copy()
+        P[:, kernel.I_TAYLOR] = SCANS[name][0]
+        scan_all(P, recs, off[:1], lens[:1], vert, values, float(grid.resolution), peaks[:1], SCANS[name][1])
+    times = {name: [] for name in SCANS}
+    results = {}
+    for r in range(args.rounds):
+        for name in SCANS:
+            seconds, thr, nsim = run(name)
+            times[name].append(seconds)
+            results[name] = (thr, nsim)
+        print(f"  round {r + 1}: " + ", ".join(f"{n} {times[n][-1]:.2f} s" for n in SCANS), flush=True)
+    ref = np.nan_to_num(results["dopri"][0], nan=1e9)
+    med = {name: float(np.median(times[name])) for name in SCANS}
+    step = float(grid.resolution)
+    for name in SCANS:
+        d = np.abs(np.nan_to_num(results[name][0], nan=1e9) - ref)
+        print(f"{name:>11}: {int((d > 0).sum())} of {len(d)} thresholds differ from dopri's, "
+              f"{int((d > step * (1 + 1e-9)).sum())} by more than one step; {results[name][1]} simulations; "
+              f"median {med[name]:.2f} s CPU = {med[name] / med['taylor']:.2f}x taylor, "
+              f"{med[name] / med['dopri']:.2f}x dopri")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
