@@ -2,9 +2,9 @@
 the last safe and the first overturning grid point down to the resolution.
 
 :func:`threshold_scan` can also hand a scan of Taylor-step runs over to Dormand–Prince runs near
-the threshold, so that the outcomes deciding it are those of the stepper results before the Taylor
-step came from; the study does not (:func:`threshold_kernel`), for its cost (docs/model.md, "The
-stepper that decides a threshold").
+the threshold, so that the outcomes that decide it are Dormand–Prince runs, as in the engine before
+the Taylor step. The study's scan, :func:`threshold_kernel`, does not hand over: it costs more than
+the study's speed allows (docs/model.md, "The stepper that decides a threshold").
 
 :func:`scan_amplitude` / :func:`scan_update` are the scan as a small state machine on a 4-slot
 array, so that the compiled :func:`threshold_kernel` and the reference engine's Python loop
