@@ -33,7 +33,6 @@ import yaml
 
 from rockstudy.analysis.spectra import AmplitudeGrid
 from rockstudy.engine import _kernel as kernel
-from rockstudy.engine.outcome import OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT
 from rockstudy.studies.parameters import scenario_from_dict
 
 FOLDERS = ("spectra", "timing/sampling", "timing/delay")
@@ -62,21 +61,14 @@ def moved(before: Path, after: Path, step: float):
 
 
 def threshold(scenario, ds: xr.Dataset, realisation: int, frequency_ratio: float, integration: dict) -> float:
-    """The scan of the study (its grid from the file) for one realisation, with other integration
-    settings, every run with the one stepper named there (``threshold_kernel`` would hand a Taylor
-    scan over to Dormand–Prince; here the steppers are to be checked against each other)."""
+    """The scan of the study (its grid from the file) for one realisation, with other integration settings."""
     grid = AmplitudeGrid(ds.attrs["grid_amplitude_start"], ds.attrs["grid_amplitude_stop"],
                          ds.attrs["grid_amplitude_step"], ds.attrs["grid_amplitude_resolution"])
     case = scenario.kernel_case(frequency_ratio, realisation, integration=integration)
-    rec, vert, peak = kernel.writable(case.samples), kernel.writable(case.vertical), float(case.peak)
-    values = grid.values()
-    lower = kernel.uplift_floor(vert, peak)
-    state, done = kernel.scan_start(), False
-    while not done:
-        code = kernel.outcome_kernel(case.parameters, rec, vert, kernel.scan_amplitude(state, values), peak)
-        done = kernel.scan_update(state, values, float(grid.resolution), lower,
-                                  code in (OVERTURNED_WITHOUT_IMPACT, OVERTURNED_AFTER_IMPACT))
-    return float(state[kernel.S_HI])
+    thr, _, _, _ = kernel.threshold_kernel(case.parameters, kernel.writable(case.samples),
+                                           kernel.writable(case.vertical), grid.values(), float(grid.resolution),
+                                           float(case.peak))
+    return float(thr)
 
 
 def _same(a: float, b: float) -> bool:
