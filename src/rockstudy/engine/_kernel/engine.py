@@ -238,6 +238,13 @@ def _turn(S, turn):
 
 # ---- setup --------------------------------------------------------------------------------
 @njit(cache=True)
+def takes_taylor_steps(P, nvert):
+    """True when runs of ``P`` take Taylor steps between record knots: ``P[I_TAYLOR]``, a record,
+    no vertical record (``nvert`` samples of it)."""
+    return P[I_TAYLOR] != 0.0 and int(P[I_KIND]) == RECORD and nvert == 0
+
+
+@njit(cache=True)
 def setup(P, vert, want_history, want_log):
     """The run's constants ``C`` (``C_*`` slots): the device the strategy uses, the time limits and
     the flags that select the events and the early stop."""
@@ -271,7 +278,7 @@ def setup(P, vert, want_history, want_log):
     C[C_BOUND_SWITCHING] = _flag(sampled and kmax != kmin)
     C[C_QUIET_KNOTS] = _flag(int(P[I_KIND]) == RECORD and not sampled and nvert == 0 and not want_history)
     # Taylor steps between record knots: Ẍg linear on every step, no vertical motion (docs/model.md)
-    C[C_TAYLOR] = _flag(P[I_TAYLOR] != 0.0 and int(P[I_KIND]) == RECORD and nvert == 0)
+    C[C_TAYLOR] = _flag(takes_taylor_steps(P, nvert))
     return C
 
 

@@ -17,10 +17,9 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from rockstudy.engine._kernel.engine import simulate_kernel
-from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, I_KIND, I_TAYLOR, ST_ELIMIT, ST_OVER
+from rockstudy.engine._kernel.engine import simulate_kernel, takes_taylor_steps
+from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, I_TAYLOR, ST_ELIMIT, ST_OVER
 from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, SAFE, UNDETERMINED
-from rockstudy.model.excitation import RECORD
 
 # ---- the scan's state: [phase, j, lo, hi] ------------------------------------------------
 S_PHASE, S_J, S_LO, S_HI = 0, 1, 2, 3
@@ -128,12 +127,6 @@ def _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, upward_on
 
 
 @njit(cache=True)
-def takes_taylor_steps(P, vert):
-    """True when runs of ``P`` take Taylor steps (a record, no vertical record, ``P[I_TAYLOR]``)."""
-    return P[I_TAYLOR] != 0.0 and int(P[I_KIND]) == RECORD and vert.shape[0] == 0
-
-
-@njit(cache=True)
 def threshold_scan(P, rec, vert, grid, resolution, unit_peak, handover):
     """:func:`threshold_kernel`, with the choice of stepper near the threshold.
 
@@ -146,7 +139,7 @@ def threshold_scan(P, rec, vert, grid, resolution, unit_peak, handover):
     counts = np.zeros(2, dtype=np.int64)
     lower = uplift_floor(vert, unit_peak)
     state = scan_start()
-    if handover >= 0 and takes_taylor_steps(P, vert):
+    if handover >= 0 and takes_taylor_steps(P, vert.shape[0]):
         _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, True, counts)
         j = max(int(state[S_J]) - handover, 0)
         state = scan_start()
