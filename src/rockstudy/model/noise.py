@@ -259,9 +259,15 @@ def baseline_samples(kind: str, omega: float, dt: float = NOISE_DT) -> tuple[np.
 
 
 def energy(values, dt: float) -> float:
-    """Discrete energy Σ x_i²·dt of a sampled signal. [unit² s]"""
+    """Discrete energy Σ x_i²·dt of a sampled signal. [unit² s]
+
+    Summed by numpy's pairwise summation, whose order is fixed by the array's length alone, not
+    by a BLAS dot product, whose order depends on how many threads the BLAS library runs and on the
+    processor it picked its kernel for: the energy rescales every noisy record, so a record's
+    samples are then the same bits in the study's jobs, the CLI and a user's script on any machine.
+    """
     values = np.asarray(values, dtype=float)
-    return float(np.dot(values, values) * dt)
+    return float(np.sum(np.square(values)) * dt)
 
 
 def scaled_white_noise(size: int, dt: float, target_energy: float, rng: np.random.Generator,
