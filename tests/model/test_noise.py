@@ -127,10 +127,14 @@ def test_noisy_records_are_the_same_bits_whatever_the_blas_threads():
     import subprocess
     import sys
 
+    import rockstudy
+
+    source = os.path.dirname(os.path.dirname(rockstudy.__file__))  # this rockstudy, installed or not
     digests = set()
     for threads in ("1", "4"):
         env = {**os.environ, "OPENBLAS_NUM_THREADS": threads, "OMP_NUM_THREADS": threads,
-               "MKL_NUM_THREADS": threads}
+               "MKL_NUM_THREADS": threads,
+               "PYTHONPATH": os.pathsep.join([source, os.environ.get("PYTHONPATH", "")])}
         res = subprocess.run([sys.executable, "-c", _RECORD_HASH], capture_output=True, text=True, env=env,
                              timeout=300)
         assert res.returncode == 0, res.stderr
