@@ -1,25 +1,10 @@
 """What importing rockstudy costs: the public API is imported on first use, jobs that simulate nothing
 load neither numba nor the compiled model, and numba's cache folder is still set before any compiled
 function is defined, whoever imports numba first."""
-import os
-import subprocess
-import sys
-
 import pytest
 
 import rockstudy
-
-
-def run(code: str, **env) -> str:
-    """``code`` in a fresh interpreter (this rockstudy on its path); its stdout."""
-    environ = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
-    environ["PYTHONPATH"] = os.pathsep.join([os.path.dirname(os.path.dirname(rockstudy.__file__)),
-                                             environ.get("PYTHONPATH", "")])
-    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env={**environ, **env},
-                         timeout=300)
-    assert res.returncode == 0, res.stderr
-    return res.stdout.strip()
-
+from fresh_python import run
 
 LOADED = "import sys; print(sorted(m for m in ('numba', 'xarray', 'matplotlib') if m in sys.modules))"
 

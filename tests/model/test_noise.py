@@ -4,6 +4,7 @@ import math
 import numpy as np
 import pytest
 
+from fresh_python import run
 from rockstudy.model.excitation import GroundMotion, excitation_duration, modulated
 from rockstudy.model.noise import (
     NOISE_DT,
@@ -123,22 +124,7 @@ print(h.hexdigest())
 def test_noisy_records_are_the_same_bits_whatever_the_blas_threads():
     # the study's jobs run one BLAS thread (Snakemake sets OPENBLAS_NUM_THREADS to the job's
     # threads), the CLI and a user's script as many as the machine has cores
-    import os
-    import subprocess
-    import sys
-
-    import rockstudy
-
-    source = os.path.dirname(os.path.dirname(rockstudy.__file__))  # this rockstudy, installed or not
-    digests = set()
-    for threads in ("1", "4"):
-        env = {**os.environ, "OPENBLAS_NUM_THREADS": threads, "OMP_NUM_THREADS": threads,
-               "MKL_NUM_THREADS": threads,
-               "PYTHONPATH": os.pathsep.join([source, os.environ.get("PYTHONPATH", "")])}
-        res = subprocess.run([sys.executable, "-c", _RECORD_HASH], capture_output=True, text=True, env=env,
-                             timeout=300)
-        assert res.returncode == 0, res.stderr
-        digests.add(res.stdout.strip())
+    digests = {run(_RECORD_HASH, OPENBLAS_NUM_THREADS=n, OMP_NUM_THREADS=n, MKL_NUM_THREADS=n) for n in ("1", "4")}
     assert len(digests) == 1
 
 
@@ -251,15 +237,15 @@ from rockstudy.model.noise import DEFAULT_READING, NoiseReading, reading_from_di
 
 def _old_contaminate(baseline, dt, level, rng, match):
     """rockstudy's contaminate() before the readings existed, verbatim in its arithmetic except for
-    the energies, which are summed as :func:`energy` sums them (pairwise; they were BLAS dot products,
-    whose bits depend on the BLAS threads)."""
+    the energies, which are :func:`energy`'s (pairwise sums; they were BLAS dot products, whose bits
+    depend on the BLAS threads)."""
     b = np.array(baseline, dtype=float)
-    e_b = float(np.sum(np.square(b)) * dt)
+    e_b = energy(b, dt)
     w = rng.standard_normal(b.size)
-    noise = w * math.sqrt(level * e_b / float(np.sum(np.square(w)) * dt))
+    noise = w * math.sqrt(level * e_b / energy(w, dt))
     summed = b + noise
     if match == "energy":
-        return summed * math.sqrt(e_b / float(np.sum(np.square(summed)) * dt))
+        return summed * math.sqrt(e_b / energy(summed, dt))
     return summed * (float(np.max(np.abs(b))) / float(np.max(np.abs(summed))))
 
 
