@@ -65,17 +65,16 @@ def main(argv=None) -> int:
     print(f"{args.strategy} at noise level {args.noise_level:g}: {args.realisations} realisations x "
           f"{len(freqs)} frequencies = {len(Pm)} thresholds; {args.rounds} rounds, interleaved")
 
-    def run(name):
-        P = Pm.copy()
+    def run(name, cases=slice(None)):
+        P = Pm[cases].copy()
         P[:, kernel.I_TAYLOR] = SCANS[name][0]
         start = time.process_time()
-        thr, nsim = scan_all(P, recs, off, lens, vert, values, float(grid.resolution), peaks, SCANS[name][1])
+        thr, nsim = scan_all(P, recs, off[cases], lens[cases], vert, values, float(grid.resolution), peaks[cases],
+                             SCANS[name][1])
         return time.process_time() - start, thr, int(nsim.sum())
 
     for name in SCANS:  # compile (or load from the cache) outside the timed rounds
-        P = Pm[:1].copy()
-        P[:, kernel.I_TAYLOR] = SCANS[name][0]
-        scan_all(P, recs, off[:1], lens[:1], vert, values, float(grid.resolution), peaks[:1], SCANS[name][1])
+        run(name, slice(0, 1))
     times = {name: [] for name in SCANS}
     results = {}
     for r in range(args.rounds):
