@@ -114,3 +114,12 @@ def test_citation_matches_the_package():
     assert cff["license"] == "MIT"
     assert " ".join(cff["references"][0]["title"].split()) == PAPER
     assert "MIT License" in (ROOT / "LICENSE").read_text(encoding="utf-8")
+
+
+def test_the_version_is_written_once():
+    """pyproject.toml reads the version from rockstudy._version, the one place it is written."""
+    tomllib = pytest.importorskip("tomllib")
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    assert "version" not in project["project"] and "version" in project["project"]["dynamic"]
+    assert project["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "rockstudy._version.__version__"}
+    assert f'__version__ = "{rockstudy.__version__}"' in (ROOT / "src/rockstudy/_version.py").read_text()

@@ -1,8 +1,5 @@
-"""The installed package's version (a leaf module: everything that stamps a version imports it here)."""
-from importlib.metadata import PackageNotFoundError
-from importlib.metadata import version as _version
+"""The package's version, written here only (a leaf module: everything that stamps a version imports it
+here; ``pyproject.toml`` reads it for the package metadata, and ``CITATION.cff`` states it, checked by
+``tests/test_docs.py``)."""
 
-try:
-    __version__ = _version("rockstudy")
-except PackageNotFoundError:  # running from a source tree without install
-    __version__ = "0.0.0+unknown"
+__version__ = "0.2.0"

@@ -148,7 +148,7 @@ class Scenario:
     def kernel_case(self, frequency_ratio: float, realisation: int = 0, *, energy_bound: bool = True,
                     integration: dict | None = None) -> KernelCase:
         """The case at a frequency ratio and realisation packed for the fast engine's amplitude scans
-        (``energy_bound``: end runs that provably cannot overturn any more, docs/model.md;
+        (``energy_bound``: end runs that provably cannot overturn any more, docs/engine.md;
         ``integration``: other ``rtol``, ``atol`` or ``stepper`` for
         :func:`~rockstudy.engine.simulate.pack_parameters`, as convergence checks use)."""
         motion, rec = self.motion(frequency_ratio, 1.0, realisation)

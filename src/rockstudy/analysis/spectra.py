@@ -175,7 +175,7 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
     """Minimum overturning amplitude ratio a_p/(g·tanα) at one frequency ratio.
 
     ``energy_bound`` (fast engine) ends each run once it provably cannot overturn any more
-    (docs/model.md); it never changes an outcome, only the time spent (False: integrate every run
+    (docs/engine.md, "Early stops"); it never changes an outcome, only the time spent (False: integrate every run
     to rest or the time limit, as before).
 
     Returns a :class:`ThresholdResult`: ``amplitude_ratio`` (None when nothing on the grid

@@ -59,7 +59,7 @@ MAX_STEP_FRACTION = 0.05
 
 ENERGY_MARGIN = 1e-6
 """[-] Safety margin of the energy bound that ends a run which can no longer overturn
-(docs/model.md, "Early stop below the overturning energy"): the bound must hold by at least this,
+(docs/engine.md, "Early stops"): the bound must hold by at least this,
 far above the integrator's energy drift at FAST_RTOL."""
 
 
