@@ -30,6 +30,7 @@ from pydantic import (
     StringConstraints,
     TypeAdapter,
     ValidationError,
+    create_model,
     model_validator,
 )
 
@@ -352,8 +353,38 @@ class Study(Section):
     design: Design = None
 
 
+def _declared(info):
+    """The declared type of a model field, with its constraints."""
+    return Annotated[(info.annotation, *info.metadata)] if info.metadata else info.annotation
+
+
+PartialStudy = create_model(
+    "PartialStudy", __base__=Section, __doc__="A study config in which any top-level key may be left out (the CLI's "
+    "--config): what is given is checked as declared in Study.",
+    **{name: (_declared(info), None) for name, info in Study.model_fields.items()})
+
 _MODEL_NAMES = {cls.__name__ for cls in (*Section.__subclasses__(), Noise)}
 """The sections' class names, which pydantic puts into the location of an error inside a union."""
+
+NonNegativeSeconds = _number("s", ge=0, le=v.MAX_TIME_SPAN)
+Length = _number("m", ge=MIN_BLOCK_SIZE, le=MAX_BLOCK_SIZE)
+
+OPTIONS = {
+    "--frequency-ratio": Ratio, "--amplitude-ratio": AmplitudeRatio,
+    "--noise-level": _number("-", ge=0, lt=1),
+    "--realisation": Annotated[int, Field(ge=0, le=v.MAX_INTEGER)], "--realisations": Count, "--seed": Seed,
+    "--sampling-time": NonNegativeSeconds, "--delay": NonNegativeSeconds,
+    "--free-time": _number("s", ge=0, le=v.MAX_FREE_TIME),
+    "--kappa-max": Kappa, "--kappa-min": Kappa, "--damping-ratio": Damping,
+    "--width": Length, "--height": Length, "--depth": Length, "--density": _number("kg/m^3", gt=0, le=MAX_DENSITY),
+    "--restitution": _number("-", ge=0, le=1),
+    "--noise-step": _number("s", gt=0, le=v.MAX_NOISE_STEP), "--noise-band": _number("Hz", gt=0, le=1e6),
+    "--noise-span": NonNegativeSeconds, "--sensor-band": _number("Hz", gt=0, le=1e6),
+    "--record-scale": _number("-", gt=0, le=1e6), "--record-dt": Seconds,
+    "--a-max0": _number("g", gt=0, le=MAX_A_MAX0_G),
+}
+"""The command line's numeric options, each declared like the config key it stands for (``--kappa-max`` is
+``anchorage.kappa_max``); the CLI checks them with :func:`check_option`."""
 
 REPLACED_BY_OVERLAY = ("block", "noise_levels", "reproduction.readings", "beyond.fragility.records")
 """Config keys whose value an overlay replaces whole instead of merging into: sections with alternatives
@@ -505,8 +536,7 @@ def field_type(path: str, model=Study):
     section = _model_at(model, parts[:-1]) if len(parts) > 1 else model
     if section is None or parts[-1] not in section.model_fields:
         raise KeyError(f"{path} is not a declared config key")
-    info = section.model_fields[parts[-1]]
-    return Annotated[(info.annotation, *info.metadata)]
+    return _declared(section.model_fields[parts[-1]])
 
 
 _ADAPTERS: dict = {}
@@ -524,6 +554,19 @@ def check_value(path: str, value, name: str | None = None):
     except ValidationError as exc:
         err = exc.errors(include_url=False)[0]
         raise InputError(f"{name or path} = {_short(value)} is not allowed: {err['msg']}") from None
+
+
+def check_option(name: str, value):
+    """A command-line option's value against :data:`OPTIONS` (None: not given, allowed). Returns the value."""
+    if value is None:
+        return None
+    if name not in _ADAPTERS:
+        _ADAPTERS[name] = TypeAdapter(OPTIONS[name], config=ConfigDict(strict=True, allow_inf_nan=False))
+    try:
+        return _ADAPTERS[name].validate_python(value)
+    except ValidationError as exc:
+        err = exc.errors(include_url=False)[0]
+        raise InputError(f"{name} = {_short(value)} is not allowed: {err['msg']}") from None
 
 
 # ----------------------------------------------------------------------------------------------- schema
