@@ -20,6 +20,11 @@ from rockstudy.studies import parameters, study
 
 min_version("9.0")
 
+try:  # the --configfile files as written (bounded, aliases expanded): an overlay replaces the sections it gives
+    OVERLAYS = [declarations.load_yaml(path) for path in workflow.overwrite_configfiles]
+except ValueError as exc:
+    sys.exit(f"config error: {exc}")
+
 
 configfile: "config.yaml"
 
@@ -31,8 +36,8 @@ report: "workflow/report/workflow.rst"
 # overlay (--configfile) replaces the sections it gives (a block by its dimensions replaces the preset), and
 # a bad key ends the run with one short message naming it (exit 1, no traceback).
 try:
-    for path in workflow.overwrite_configfiles:
-        declarations.replace_sections(config, declarations.load_yaml(path))
+    for overlay in OVERLAYS:
+        declarations.replace_sections(config, overlay)
     study.check_study(config)
 except ValueError as exc:
     sys.exit(f"config error: {exc}")

@@ -50,8 +50,9 @@ def verdict(cls: str, ok: bool, detail: str) -> None:
 
 
 def readable(message: str, *names: str) -> bool:
-    """At most three lines, and naming one of ``names``."""
-    return len(message.strip().splitlines()) <= 3 and any(name in message for name in names)
+    """At most three lines (of reasonable length), and naming one of ``names``."""
+    return (len(message.strip().splitlines()) <= 3 and len(message) < 2000
+            and any(name in message for name in names))
 
 
 # --------------------------------------------------------------------------------------- the study config
@@ -329,6 +330,18 @@ def test_record_files(tmp_path, label):
             f"{label}: {'read' if message is None else message[:200]} ({took:.2f} s)")
 
 
+@pytest.mark.parametrize("bad", [float("nan"), float("inf")])
+def test_a_non_finite_sample_names_the_record(bad):
+    from rockstudy.model.records import Record
+
+    try:
+        Record(name="p695-far-field:3b", dt=0.01, acceleration=[0.0, 0.1, bad, 0.2])
+        message = None
+    except ValueError as exc:
+        message = str(exc)
+    verdict("records", message is not None and readable(message, "p695-far-field:3b"), f"NaN sample: {message}")
+
+
 # ------------------------------------------------------------------------------------------ the command line
 
 OPTION_CASES = [(option, value) for option in ("--kappa-max", "--damping-ratio", "--noise-level", "--seed",
@@ -405,8 +418,9 @@ def test_cli_closed_pipe_ends_quietly():
     p.stdout.readline()
     p.stdout.close()
     err = p.stderr.read().decode()
-    p.wait(timeout=60)
-    verdict("manners", "Traceback" not in err and "BrokenPipe" not in err, f"records | head -1: {err[-300:]}")
+    status = p.wait(timeout=60)
+    verdict("manners", "Traceback" not in err and "BrokenPipe" not in err and status == 141,
+            f"records | head -1: status {status}, {err[-300:]}")
 
 
 @pytest.mark.parametrize("flag", ["--help", "--version"])
