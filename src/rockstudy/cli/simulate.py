@@ -58,14 +58,11 @@ def _cmd_simulate(args, parser):
         return _cmd_simulate_record(args, parser)
     if args.record_unit is not None or args.record_scale != 1.0 or args.record_dt is not None:
         parser.error("--record-unit, --record-scale and --record-dt need --record FILE")
-    try:
-        _check_common(args)
-        declarations.check_option("--amplitude-ratio", args.amplitude_ratio)
-        scenario = _scenario(args, parser)
-        _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
-        _check_outputs(args, parser)
-    except validation.InputError as exc:
-        parser.error(str(exc))
+    _check_common(args)
+    declarations.check_option("--amplitude-ratio", args.amplitude_ratio)
+    scenario = _scenario(args, parser)
+    _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
+    _check_outputs(args, parser)
     motion, rec = scenario.motion(args.frequency_ratio, args.amplitude_ratio, args.realisation)
     out = {}
     try:
@@ -99,34 +96,28 @@ def _cmd_simulate(args, parser):
 def _cmd_simulate_record(args, parser):
     """``simulate --record FILE``: one run under a recorded (or synthetic) ground motion."""
     _check_record_options(args, parser)
-    try:
-        _check_common(args, single_frequency=False)
-        declarations.check_option("--record-scale", args.record_scale)
-        _check_outputs(args, parser)
-    except validation.InputError as exc:
-        parser.error(str(exc))
+    _check_common(args, single_frequency=False)
+    declarations.check_option("--record-scale", args.record_scale)
+    _check_outputs(args, parser)
     info, record = _read_record(args, parser)
     scenario = _scenario(args, parser, sensor_step=record.dt)
     motion = record.motion(args.record_scale)
     pga_ratio = motion.peak() / scenario.block.uplift_acceleration
-    try:
-        top = validation.MAX_AMPLITUDE_RATIO * args.record_scale / pga_ratio if pga_ratio > 0 else None
-        validation.check_positive("--record-scale", args.record_scale, high=top,
-                                  why=f"the scaled record's PGA/(g tan alpha) is {pga_ratio:.4g}, at most "
-                                      f"{validation.MAX_AMPLITUDE_RATIO:g} is allowed")
-        validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_TIME_SPAN - record.duration,
-                                     why=f"the record lasts {record.duration:.4g} s and a simulation at most "
-                                         f"{validation.MAX_TIME_SPAN:g} s")
-        if args.output or args.plot:  # the stored history samples the ground motion at min(DT, 2.5 ms)
-            samples = (record.duration + args.free_time) / min(record.dt, 0.0025)
-            if samples > validation.MAX_HISTORY_SAMPLES:
-                validation.fail("--record", args.record,
-                                f"its DT = {record.dt:g} s over {record.duration:.4g} s plus --free-time "
-                                f"{args.free_time:g} s gives a history of {samples:.3g} samples, the limit is "
-                                f"{validation.MAX_HISTORY_SAMPLES:.0e} (resample the record, lower --free-time, or "
-                                "run without --output/--plot)")
-    except validation.InputError as exc:
-        parser.error(str(exc))
+    top = validation.MAX_AMPLITUDE_RATIO * args.record_scale / pga_ratio if pga_ratio > 0 else None
+    validation.check_positive("--record-scale", args.record_scale, high=top,
+                              why=f"the scaled record's PGA/(g tan alpha) is {pga_ratio:.4g}, at most "
+                                  f"{validation.MAX_AMPLITUDE_RATIO:g} is allowed")
+    validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_TIME_SPAN - record.duration,
+                                 why=f"the record lasts {record.duration:.4g} s and a simulation at most "
+                                     f"{validation.MAX_TIME_SPAN:g} s")
+    if args.output or args.plot:  # the stored history samples the ground motion at min(DT, 2.5 ms)
+        samples = (record.duration + args.free_time) / min(record.dt, 0.0025)
+        if samples > validation.MAX_HISTORY_SAMPLES:
+            validation.fail("--record", args.record,
+                            f"its DT = {record.dt:g} s over {record.duration:.4g} s plus --free-time "
+                            f"{args.free_time:g} s gives a history of {samples:.3g} samples, the limit is "
+                            f"{validation.MAX_HISTORY_SAMPLES:.0e} (resample the record, lower --free-time, or "
+                            "run without --output/--plot)")
     try:
         res = scenario.simulate_motion(motion, engine=args.engine, record_history=bool(args.output or args.plot))
     except RuntimeError as exc:  # the reference engine's piece cap: an undetermined result, no file written
@@ -170,19 +161,13 @@ def _cmd_threshold_record(args, parser):
     from rockstudy.analysis.record_scan import RecordRun, record_threshold
     from rockstudy.model.records import STANDARD_GRAVITY
     _check_record_options(args, parser)
-    try:
-        _check_common(args, single_frequency=False)
-        grid, _ = _grid(args, parser)
-    except validation.InputError as exc:
-        parser.error(str(exc))
+    _check_common(args, single_frequency=False)
+    grid, _ = _grid(args, parser)
     info, record = _read_record(args, parser)
     scenario = _scenario(args, parser, sensor_step=record.dt)
-    try:
-        validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_TIME_SPAN - record.duration,
-                                     why=f"the record lasts {record.duration:.4g} s and a simulation at most "
-                                         f"{validation.MAX_TIME_SPAN:g} s")
-    except validation.InputError as exc:
-        parser.error(str(exc))
+    validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_TIME_SPAN - record.duration,
+                                 why=f"the record lasts {record.duration:.4g} s and a simulation at most "
+                                     f"{validation.MAX_TIME_SPAN:g} s")
     run = RecordRun(scenario.block, scenario.anchorage, scenario.control, record,
                     overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
     res = record_threshold(run, grid.values(), grid.resolution)
@@ -208,13 +193,10 @@ def _cmd_threshold(args, parser):
     if args.record_unit is not None:
         parser.error("--record-unit needs --record FILE")
     from rockstudy.analysis.spectra import threshold
-    try:
-        _check_common(args)
-        scenario = _scenario(args, parser)
-        grid, _ = _grid(args, parser)
-        _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
-    except validation.InputError as exc:
-        parser.error(str(exc))
+    _check_common(args)
+    scenario = _scenario(args, parser)
+    grid, _ = _grid(args, parser)
+    _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
     res = threshold(scenario, args.frequency_ratio, realisation=args.realisation, grid=grid,
                     engine=args.engine).as_dict()
     uplift = 1.0 / scenario.unit_peak(args.frequency_ratio, args.realisation)

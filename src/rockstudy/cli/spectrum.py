@@ -63,27 +63,24 @@ def _cmd_spectrum(args, parser):
     from rockstudy.studies.datasets import document_missing
     if args.engine != "fast":
         parser.error("argument --engine: spectra run on the fast engine only")
-    try:
-        _check_common(args, single_frequency=False)
-        declarations.check_option("--realisations", args.realisations)
-        validation.check_int_range("--threads", args.threads, 1, numba.config.NUMBA_NUM_THREADS,
-                                   why="the CPUs numba can use on this machine")
-        scenario = _scenario(args, parser)
-        grid, sims_per_case = _grid(args, parser)
-        n_freq = validation.check_grid("frequency grid", args.frequency_start, args.frequency_stop, args.frequency_step,
-                                       high=validation.MAX_FREQUENCY_RATIO,
-                                       names=("--frequency-start", "--frequency-stop", "--frequency-step"))
-        freqs = frequency_grid(args.frequency_start, args.frequency_stop, args.frequency_step)
-        _check_time_span(scenario, [args.frequency_start, float(freqs[-1])],
-                         "--frequency-start" if args.frequency_start < 1 else "--frequency-stop")
-        n_real = 1 if scenario.noise_level == 0 else args.realisations
-        record_bytes = scenario.record_bytes(freqs, n_real)  # at the reading's step and span
-        validation.check_workload("--realisations" if n_real > 1 else "--frequency-step",
-                                  args.realisations if n_real > 1 else args.frequency_step,
-                                  n_real * n_freq, sims_per_case * (2 if args.map else 1), record_bytes)
-        _check_outputs(args, parser)
-    except validation.InputError as exc:
-        parser.error(str(exc))
+    _check_common(args, single_frequency=False)
+    declarations.check_option("--realisations", args.realisations)
+    validation.check_int_range("--threads", args.threads, 1, numba.config.NUMBA_NUM_THREADS,
+                               why="the CPUs numba can use on this machine")
+    scenario = _scenario(args, parser)
+    grid, sims_per_case = _grid(args, parser)
+    n_freq = validation.check_grid("frequency grid", args.frequency_start, args.frequency_stop, args.frequency_step,
+                                   high=validation.MAX_FREQUENCY_RATIO,
+                                   names=("--frequency-start", "--frequency-stop", "--frequency-step"))
+    freqs = frequency_grid(args.frequency_start, args.frequency_stop, args.frequency_step)
+    _check_time_span(scenario, [args.frequency_start, float(freqs[-1])],
+                     "--frequency-start" if args.frequency_start < 1 else "--frequency-stop")
+    n_real = 1 if scenario.noise_level == 0 else args.realisations
+    record_bytes = scenario.record_bytes(freqs, n_real)  # at the reading's step and span
+    validation.check_workload("--realisations" if n_real > 1 else "--frequency-step",
+                              args.realisations if n_real > 1 else args.frequency_step,
+                              n_real * n_freq, sims_per_case * (2 if args.map else 1), record_bytes)
+    _check_outputs(args, parser)
     numba.set_num_threads(args.threads)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s", stream=sys.stderr)
     n_cases, n_sims = n_real * n_freq, n_real * n_freq * sims_per_case
@@ -105,23 +102,15 @@ def _cmd_jos(args, parser):
 
     from rockstudy.core.io import read_netcdf
     from rockstudy.studies.tables import check_spectrum_file, jos_of, spectrum_mismatches
-    try:
-        declarations.check_option("--a-max0", args.a_max0)
-    except validation.InputError as exc:
-        parser.error(str(exc))
+    declarations.check_option("--a-max0", args.a_max0)
     datasets = {}
     for name, path in (("--reference", args.reference), ("--system", args.system)):
+        validation.check_input_file(name, path, validation.MAX_DATASET_BYTES)
         try:
-            validation.check_input_file(name, path, validation.MAX_DATASET_BYTES)
             datasets[name] = read_netcdf(path)
-        except validation.InputError as exc:
-            parser.error(str(exc))
         except (OSError, ValueError, RuntimeError) as exc:
             parser.error(f"argument {name}: cannot read {path!r} as a netCDF file: {exc}")
-        try:
-            check_spectrum_file(datasets[name], f"argument {name}: {path!r}")
-        except validation.InputError as exc:
-            parser.error(str(exc))
+        check_spectrum_file(datasets[name], f"argument {name}: {path!r}")
     ref, sys_ = datasets["--reference"], datasets["--system"]
     if ref.sizes["frequency_ratio"] != sys_.sizes["frequency_ratio"] or not np.allclose(
             ref.frequency_ratio.values, sys_.frequency_ratio.values):
