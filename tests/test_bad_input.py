@@ -457,3 +457,55 @@ def test_a_full_disk_keeps_the_spectrum(tmp_path, capsys, monkeypatch):
         Path(path).unlink()
     ok = status == 2 and "full" in err and "kept" in err and bool(kept)
     verdict("faults", ok, f"full disk: status {status}, {err.strip()[:300]}")
+
+
+# ----------------------------------------------------------------------------------------- the public API
+
+def api_calls():
+    """(label, parameter name, call taking the bad value): the constructors and grids of rockstudy.__all__
+    and the record reader, one numeric parameter at a time, the others valid."""
+    import rockstudy as rs
+    from rockstudy.model.noise import NoiseReading
+
+    blc06 = rs.BLOCK_PRESETS["BLC06"]
+    calls = [(f"Block.{k}", k, lambda x, k=k: rs.Block(**{"width": 0.4, "height": 1.6, "depth": 0.47, k: x}))
+             for k in ("width", "height", "depth", "density", "gravity", "restitution")]
+    calls += [(f"Anchorage.{k}", k, lambda x, k=k: rs.Anchorage(**{k: x}))
+              for k in ("kappa_max", "kappa_min", "damping_ratio", "spring_ultimate_rotation")]
+    calls += [(f"Control.{k}", k, lambda x, k=k: rs.Control("CS01", **{k: x}))
+              for k in ("sampling_time", "delay", "sensor_band")]
+    calls += [(f"NoiseReading.{k}", k, lambda x, k=k: NoiseReading(**{k: x})) for k in ("step", "band", "span")]
+    calls += [(f"AmplitudeGrid.{k}", k, lambda x, k=k: rs.AmplitudeGrid(**{k: x}))
+              for k in ("start", "stop", "step", "resolution")]
+    calls += [(f"frequency_grid.{k}", k, lambda x, k=k: rs.frequency_grid(**{k: x})) for k in ("start", "stop", "step")]
+    calls += [(f"Scenario.{k}", k, lambda x, k=k: rs.Scenario(blc06, **{k: x}))
+              for k in ("noise_level", "seed", "free_time")]
+    calls += [(f"GroundMotion.{k}", k, lambda x, k=k: rs.GroundMotion(**{"kind": "one-sine", "amplitude": 1.0,
+                                                                         "omega": 10.0, "duration": 1.0, k: x}))
+              for k in ("amplitude", "omega", "duration")]
+    return calls
+
+
+API_CALLS = api_calls()
+API_VALUES = [True, float("nan"), float("inf"), float("-inf"), 0, -1.0, 1e300, 1e-300]
+
+
+@PROPERTY
+@given(call=st.sampled_from(API_CALLS), value=st.sampled_from(API_VALUES))
+def test_public_api_by_class(call, value):
+    label, param, fn = call
+    cls = "types" if isinstance(value, bool) else "ranges"
+    t0 = time.perf_counter()
+    try:
+        result = run_with_alarm(lambda: fn(value), 5)
+        message = result if isinstance(result, str) and result.startswith("TIMEOUT") else None
+    except (ValueError, TypeError) as exc:
+        message = str(exc)
+    except Exception as exc:  # anything else is a traceback a person would see
+        message = f"{type(exc).__name__}: {exc}\n" * 4
+    took = time.perf_counter() - t0
+    if message is None:  # accepted: only a finite number, not a bool
+        ok = not isinstance(value, bool) and math.isfinite(value) and took < SECONDS
+    else:
+        ok = readable(message, param) and took < SECONDS
+    verdict(cls, ok, f"{label} = {value!r}: {'accepted' if message is None else message[:200]} ({took:.2f} s)")

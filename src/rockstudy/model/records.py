@@ -41,7 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from rockstudy.core.io import write_text
-from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, check_input_file
+from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, check_input_file, is_number
 from rockstudy.model.excitation import GroundMotion
 
 STANDARD_GRAVITY = 9.80665
@@ -116,7 +116,7 @@ class Record:
     unit: str = "m/s^2"
 
     def __post_init__(self):
-        if not (isinstance(self.dt, (int, float)) and math.isfinite(self.dt) and self.dt > 0):
+        if not (is_number(self.dt) and math.isfinite(self.dt) and self.dt > 0):
             raise ValueError(f"Record.dt must be a positive number [s], got {self.dt!r}")
         acc = np.array(self.acceleration, dtype=float)
         if acc.ndim != 1 or acc.size < 2:
@@ -158,7 +158,7 @@ class Record:
             ``kind="record"`` with ``amplitude=scale``, ``record`` in m/s^2 and a nominal
             ``omega = 2π/duration`` (not used for records).
         """
-        if not (isinstance(scale, (int, float)) and math.isfinite(scale)):
+        if not (is_number(scale) and math.isfinite(scale)):
             raise ValueError(f"scale must be a finite number, got {scale!r}")
         return GroundMotion(kind="record", amplitude=float(scale), omega=2.0 * math.pi / self.duration,
                             duration=self.duration, record_dt=self.dt, record=self.acceleration)
