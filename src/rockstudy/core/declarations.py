@@ -400,7 +400,10 @@ bomb expands to billions, which any walk over it would take hours to visit."""
 def replace_sections(config: dict, overlay: dict) -> dict:
     """Give ``config`` (already deep-merged with ``overlay``, as Snakemake merges a ``--configfile``) the
     overlay's own value of every key of :data:`REPLACED_BY_OVERLAY` it sets: an overlay's ``block:`` with
-    dimensions replaces the preset instead of being merged into it. Returns ``config`` (changed in place)."""
+    dimensions replaces the preset instead of being merged into it. Returns ``config`` (changed in place).
+    A YTE template (``__use_yte__: true``) is left to Snakemake's merge: its text is not the values it makes."""
+    if overlay.get("__use_yte__"):
+        return config
     for path in REPLACED_BY_OVERLAY:
         *parents, key = path.split(".")
         src, dst = overlay, config
