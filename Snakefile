@@ -9,13 +9,21 @@
 # DAG: noise -> spectrum_{,sampling,delay} -> convergence, tables, figures (with realisations_per_job <
 #      realisations: noise -> spectrum_chunk -> gather_{spectrum,sampling,delay} -> ...); overturning_map
 #      and time_history feed their figures directly.
+import sys
+
 from snakemake.utils import min_version, validate
 
+from rockstudy.core import declarations
 from rockstudy.studies import device_calibration as calibration
 from rockstudy import report as report_pages
 from rockstudy.studies import parameters, study
 
 min_version("9.0")
+
+try:  # the --configfile files as written (bounded, aliases expanded): an overlay replaces the sections it gives
+    OVERLAYS = [declarations.load_yaml(path) for path in workflow.overwrite_configfiles]
+except ValueError as exc:
+    sys.exit(f"config error: {exc}")
 
 
 configfile: "config.yaml"
@@ -24,9 +32,16 @@ configfile: "config.yaml"
 report: "workflow/report/workflow.rst"
 
 
-study.check_sizes(config)  # before the schema, whose uniqueItems is quadratic in a list's length
-validate(config, "workflow/schemas/config.schema.yaml")
-study.check_study(config)
+# The config, checked against its declaration (rockstudy.core.declarations) before anything walks it: an
+# overlay (--configfile) replaces the sections it gives (a block by its dimensions replaces the preset), and
+# a bad key ends the run with one short message naming it (exit 1, no traceback).
+try:
+    for overlay in OVERLAYS:
+        declarations.replace_sections(config, overlay)
+    study.check_study(config)
+except ValueError as exc:
+    sys.exit(f"config error: {exc}")
+validate(config, "workflow/schemas/config.schema.yaml")  # the schema generated from the same declaration
 
 
 include: "workflow/rules/common.smk"

@@ -143,7 +143,7 @@ def config_error(config):
     (lambda c: c.update(realisations=100_000, realisations_per_job=100_000), "realisations_per_job"),
     (lambda c: c["sampling_sweep"].update(sampling_times=[1e-7]), "sampling_sweep.sampling_times[0]"),
     (lambda c: c.update(noise_reference_frequency_ratio=1e-12), "noise_reference_frequency_ratio"),
-    (lambda c: c.update(block={"width": 1e12, "height": 4e12, "depth": 1.0}), "lasts"),
+    (lambda c: c.update(block={"width": 1e12, "height": 4e12, "depth": 1.0}), "block.width"),
 ])
 def test_config_check_names_the_key(change, key):
     config = copy.deepcopy(TINY)

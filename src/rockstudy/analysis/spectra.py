@@ -50,7 +50,7 @@ class AmplitudeGrid:
     def __post_init__(self):
         for name in ("start", "stop", "step", "resolution"):
             v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            if not (validation.is_number(v) and math.isfinite(v) and v > 0):
                 raise ValueError(f"AmplitudeGrid.{name} must be a positive number, got {v!r}")
         if self.stop <= self.start:
             raise ValueError(f"AmplitudeGrid.stop ({self.stop}) must exceed start ({self.start})")
@@ -69,8 +69,9 @@ DEFAULT_FREQUENCY_GRID = {"start": 0.25, "stop": 5.0, "step": 0.1}
 def frequency_grid(start: float = DEFAULT_FREQUENCY_GRID["start"], stop: float = DEFAULT_FREQUENCY_GRID["stop"],
                    step: float = DEFAULT_FREQUENCY_GRID["step"]) -> np.ndarray:
     """Frequency ratios ω_p/p from ``start`` to ``stop`` (inclusive) in ``step``. [-]"""
-    if not (start > 0 and stop >= start and step > 0):
-        raise ValueError(f"frequency grid needs 0 < start <= stop and step > 0, got {start}, {stop}, {step}")
+    # finite numbers (not bools), 0 < start <= stop <= the largest ratio, at most MAX_GRID_POINTS points: the
+    # size is bounded before the grid is made
+    validation.check_grid("frequency_grid", start, stop, step, high=validation.MAX_FREQUENCY_RATIO)
     n = int(math.floor((stop - start) / step + 1e-9))
     return np.round(start + step * np.arange(n + 1), 10)
 

@@ -128,6 +128,11 @@ def fail(name: str, value, allowed: str, unit: str = ""):
     raise InputError(f"{name} = {_fmt(value)}{_unit(unit)} is not allowed: {allowed}")
 
 
+def is_number(value) -> bool:
+    """A real number that is not a ``bool`` (``True`` is not a length): the type every numeric input has."""
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
 def check_number(name: str, value, unit: str = "") -> float:
     """A finite real number (not a bool, not NaN or inf)."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
@@ -197,7 +202,7 @@ def check_grid(prefix: str, start, stop, step, unit: str = "", *, high: float, m
     n = grid_size(start, stop, step)
     if n > max_points:
         fail(n_step, step, f"{n_start}..{n_stop} = {_fmt(start)}..{_fmt(stop)} in steps of {_fmt(step)} gives "
-                           f"{n} points, the limit is {max_points} (use a step >= "
+                           f"{n if n < 10**15 else f'{float(n):.3g}'} points, the limit is {max_points} (use a step >= "
                            f"{_fmt((stop - start) / (max_points - 1))})", unit)
     return n
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from rockstudy.core.validation import field_names
+from rockstudy.core.validation import field_names, is_number
 from rockstudy.model.block import Block
 
 
@@ -53,13 +53,13 @@ class Anchorage:
         name = field_names("Anchorage", names)
         values = {"kappa_max": kappa_max, "kappa_min": kappa_min, "damping_ratio": damping_ratio}
         for key, value in values.items():
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
+            if not (is_number(value) and math.isfinite(value) and value >= 0):
                 raise ValueError(f"{name(key)} must be a finite number >= 0, got {value!r}")
         if kappa_min > kappa_max:
             raise ValueError(f"{name('kappa_min')} ({kappa_min}) must not exceed {name('kappa_max')} ({kappa_max})")
         for key, value in (("spring_ultimate_rotation", spring_ultimate_rotation),
                            ("damper_ultimate_rotation", damper_ultimate_rotation)):
-            if value is not None and not (isinstance(value, (int, float)) and 0 < value <= math.pi / 2):
+            if value is not None and not (is_number(value) and 0 < value <= math.pi / 2):
                 raise ValueError(f"{name(key)} must lie in (0, pi/2] rad or be None (= alpha), got {value!r}")
 
     def theta_spring(self, block: Block) -> float:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from rockstudy.core.validation import check_block
+from rockstudy.core.validation import check_block, is_number
 
 GRAVITY = 9.81
 """Acceleration of gravity used throughout. [m/s^2]"""
@@ -54,10 +54,10 @@ class Block:
     def __post_init__(self):
         for name in ("width", "height", "depth", "density", "gravity"):
             value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+            if not (is_number(value) and math.isfinite(value) and value > 0):
                 raise ValueError(f"Block.{name} must be a positive finite number, got {value!r}")
         if self.restitution is not None and not (
-                isinstance(self.restitution, (int, float)) and 0.0 <= self.restitution <= 1.0):
+                is_number(self.restitution) and 0.0 <= self.restitution <= 1.0):
             raise ValueError(
                 f"Block.restitution must lie in [0, 1] (or be None for Eq. 14), got {self.restitution!r}"
             )

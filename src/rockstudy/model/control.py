@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from rockstudy.core.validation import check_positive, field_names
+from rockstudy.core.validation import check_positive, field_names, is_number
 
 STRATEGIES = ("FS", "PASSIVE", "CS01", "CS02")
 STRATEGY_CODE = {name: i for i, name in enumerate(STRATEGIES)}
@@ -71,7 +71,7 @@ class Control:
         if strategy not in STRATEGIES:
             raise ValueError(f"{name('strategy')} must be one of {', '.join(STRATEGIES)}, got {strategy!r}")
         for key, value in (("sampling_time", sampling_time), ("delay", delay)):
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
+            if not (is_number(value) and math.isfinite(value) and value >= 0):
                 raise ValueError(f"{name(key)} must be a finite number >= 0 [s], got {value!r}")
         if sampling_time == 0 and delay > 0:
             raise ValueError(

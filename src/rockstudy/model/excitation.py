@@ -215,8 +215,11 @@ class GroundMotion:
             return analytic(self.kind, t, self.amplitude, self.omega)
         if self.kind == "rectangular":
             return np.where((t >= 0) & (t < self.duration), self.amplitude, 0.0)
+        # as the engines read a record: linear between samples, the last sample held up to the duration (a
+        # record that ends before it), zero outside [0, duration]
         grid = np.arange(len(self.record)) * self.record_dt
-        return self.amplitude * np.interp(t, grid, self.record, left=0.0, right=0.0)
+        values = np.interp(t, grid, self.record, left=0.0, right=self.record[-1])
+        return self.amplitude * np.where((t >= 0) & (t <= self.duration), values, 0.0)
 
     def vertical_acceleration(self, t):
         """Vertical ground acceleration Ÿ_g(t) (zero when not given). [m/s^2]"""

@@ -41,7 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from rockstudy.core.io import write_text
-from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, check_input_file
+from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, check_input_file, is_number
 from rockstudy.model.excitation import GroundMotion
 
 STANDARD_GRAVITY = 9.80665
@@ -71,7 +71,8 @@ class RecordFormatError(ValueError):
         where = f"{path}" if line is None else f"{path}, line {line}"
         text = f"{where}: expected {expected}"
         if found is not None:
-            text += f", found {found!r}"
+            shown = found if len(found) <= 80 else f"{found[:77]}..."
+            text += f", found {shown!r}"
         super().__init__(text)
         self.path, self.line, self.expected, self.found = str(path), line, expected, found
 
@@ -115,13 +116,15 @@ class Record:
     unit: str = "m/s^2"
 
     def __post_init__(self):
-        if not (isinstance(self.dt, (int, float)) and math.isfinite(self.dt) and self.dt > 0):
+        if not (is_number(self.dt) and math.isfinite(self.dt) and self.dt > 0):
             raise ValueError(f"Record.dt must be a positive number [s], got {self.dt!r}")
         acc = np.array(self.acceleration, dtype=float)
         if acc.ndim != 1 or acc.size < 2:
             raise ValueError(f"Record.acceleration must be a 1-D array of at least 2 samples, got shape {acc.shape}")
         if not np.all(np.isfinite(acc)):
-            raise ValueError("Record.acceleration must be finite (found NaN or inf)")
+            i = int(np.flatnonzero(~np.isfinite(acc))[0])
+            raise ValueError(f"record {self.name!r}: the accelerations must be finite; sample {i} (t = {i * self.dt:g} "
+                             f"s) is {acc[i]}" + (f" ({self.source})" if self.source else ""))
         acc.setflags(write=False)
         object.__setattr__(self, "acceleration", acc)
         object.__setattr__(self, "dt", float(self.dt))
@@ -155,7 +158,7 @@ class Record:
             ``kind="record"`` with ``amplitude=scale``, ``record`` in m/s^2 and a nominal
             ``omega = 2π/duration`` (not used for records).
         """
-        if not (isinstance(scale, (int, float)) and math.isfinite(scale)):
+        if not (is_number(scale) and math.isfinite(scale)):
             raise ValueError(f"scale must be a finite number, got {scale!r}")
         return GroundMotion(kind="record", amplitude=float(scale), omega=2.0 * math.pi / self.duration,
                             duration=self.duration, record_dt=self.dt, record=self.acceleration)
@@ -214,7 +217,7 @@ def read_at2(path) -> Record:
         a non-finite value, or more or fewer values than NPTS.
     """
     path = Path(path)
-    lines = path.read_text(errors="replace").splitlines()
+    lines = [text.rstrip("\r\n") for _, text in _lines(path)]
     if len(lines) < 4:
         raise RecordFormatError(path, len(lines) + 1, "4 header lines (title, event, units, 'NPTS= n, DT= dt SEC')",
                                 "end of file")
@@ -250,18 +253,51 @@ def read_at2(path) -> Record:
     return Record(name=name, dt=dt, acceleration=np.asarray(values) * STANDARD_GRAVITY, source=str(path), unit="g")
 
 
-def _data_lines(lines):
+MAX_LINE_CHARS = 2**16
+"""Longest line of a record file: a record is a few numbers per line (one line of a 255 MB file would be
+split into millions of fields, and quoted whole in an error)."""
+
+
+def _lines(path):
+    """``(line number, text)`` of a text file, read one bounded line at a time (never the whole file, never
+    more than :data:`MAX_LINE_CHARS` characters of one line)."""
+    with open(path, encoding="utf-8", errors="replace") as fh:
+        number = 0
+        while True:
+            text = fh.readline(MAX_LINE_CHARS + 1)
+            if not text:
+                return
+            number += 1
+            if len(text) > MAX_LINE_CHARS:
+                raise RecordFormatError(path, number, f"lines of at most {MAX_LINE_CHARS} characters (a few "
+                                        "numbers per line)", text[:40])
+            yield number, text
+
+
+def _line_text(path, wanted: int) -> str:
+    """The text of line ``wanted`` of a record file (for an error message)."""
+    for number, text in _lines(path):
+        if number == wanted:
+            return text.strip()
+    return ""
+
+
+def _data_lines(path):
     """The lines of a text record that hold data or a header: ``(line number, text, fields)``,
     blank lines and ``#`` comments left out."""
-    for number, text in enumerate(lines, start=1):
+    for number, text in _lines(path):
         stripped = text.strip()
         if stripped and not stripped.startswith("#"):
             yield number, stripped, [f for f in _SEPARATORS.split(stripped) if f]
 
 
 def _stated_unit(path, unit: str | None, header_unit: str | None, header_example: str) -> str:
-    """The acceleration unit: the caller's, else the header's; neither is an error naming both ways."""
+    """The acceleration unit: the caller's, else the header's; neither, or both naming different units, is an
+    error naming both ways."""
     if unit is not None:
+        if header_unit and unit_factor(header_unit) != unit_factor(unit):
+            raise RecordFormatError(path, None, f"the unit {unit!r} (unit= / --record-unit) to agree with the header "
+                                    f"line's [{header_unit}]; correct one of them")
         return unit
     if not header_unit:
         raise RecordFormatError(path, None, "a stated acceleration unit: pass unit= (--record-unit) or name "
@@ -294,51 +330,56 @@ def read_two_column(path, unit: str | None = None) -> Record:
     ValueError
         If ``unit`` is not one of :data:`UNITS`.
     """
+    from array import array
+
     path = Path(path)
-    lines = path.read_text(errors="replace").splitlines()
-    header, header_unit, rows, row_lines, time_factor = None, None, [], [], 1.0
+    header, header_unit, time_factor = None, None, 1.0
+    times, values, row_lines = array("d"), array("d"), array("q")
     expected = "two numbers: time [s] and acceleration"
-    for number, stripped, fields in _data_lines(lines):
+    last = 0
+    for number, stripped, fields in _data_lines(path):
+        last = number
         try:
             row = [_float(f) for f in fields]
         except ValueError:
-            if not rows and header is None:  # one header line, before the data
-                header, header_unit = number, _header_unit(stripped)
+            if not times and header is None:  # one header line, before the data
+                header, header_unit = number, _header_unit(path, number, stripped, columns=2)
                 time_factor = _header_time_factor(path, number, stripped)
                 continue
             raise RecordFormatError(path, number, expected, stripped) from None
         if len(row) != 2:
             raise RecordFormatError(path, number, expected, stripped)
-        if len(rows) >= MAX_RECORD_SAMPLES:
+        if len(times) >= MAX_RECORD_SAMPLES:
             raise RecordFormatError(path, number, f"at most {MAX_RECORD_SAMPLES} rows (the engine steps to every "
                                     "sample)", stripped)
         if not all(math.isfinite(v) for v in row):
             raise RecordFormatError(path, number, "finite time and acceleration", stripped)
-        rows.append(row)
+        times.append(row[0])
+        values.append(row[1])
         row_lines.append(number)
-    if len(rows) < 2:
-        raise RecordFormatError(path, len(lines) + 1, "at least 2 rows of time and acceleration",
-                                f"end of file after {len(rows)}")
+    if len(times) < 2:
+        raise RecordFormatError(path, last + 1, "at least 2 rows of time and acceleration",
+                                f"end of file after {len(times)}")
     unit = _stated_unit(path, unit, header_unit, "time [s], acceleration [g]")
     factor = unit_factor(unit)
-    data = np.asarray(rows)
-    data[:, 0] *= time_factor  # the header's time unit, to seconds
-    steps = np.diff(data[:, 0])
+    t = np.frombuffer(times, dtype=float) * time_factor  # the header's time unit, to seconds
+    steps = np.diff(t)
     nonincreasing = np.flatnonzero(steps <= 0)
     if nonincreasing.size:
         i = int(nonincreasing[0]) + 1
         raise RecordFormatError(path, row_lines[i], "a time greater than the previous one",
-                                lines[row_lines[i] - 1].strip())
+                                _line_text(path, row_lines[i]))
     typical = float(np.median(steps))
     bad = np.flatnonzero(np.abs(steps - typical) > UNIFORM_STEP_TOLERANCE * typical)
     if bad.size:
         i = int(bad[0]) + 1
-        raise RecordFormatError(path, row_lines[i], f"time {data[i - 1, 0] + typical:.6g} s (a uniform step of "
-                                f"{typical:.6g} s; resample the record)", lines[row_lines[i] - 1].strip())
+        raise RecordFormatError(path, row_lines[i], f"time {t[i - 1] + typical:.6g} s (a uniform step of "
+                                f"{typical:.6g} s; resample the record)", _line_text(path, row_lines[i]))
     # the step from a least-squares line through all times: printed times carry rounding
-    index = np.arange(len(data))
-    dt = float(np.polyfit(index, data[:, 0], 1)[0])
-    return Record(name=path.stem, dt=dt, acceleration=data[:, 1] * factor, source=str(path), unit=unit)
+    index = np.arange(len(t))
+    dt = float(np.polyfit(index, t, 1)[0])
+    return Record(name=path.stem, dt=dt, acceleration=np.frombuffer(values, dtype=float) * factor,
+                  source=str(path), unit=unit)
 
 
 def read_one_column(path, dt: float, unit: str | None = None) -> Record:
@@ -370,34 +411,43 @@ def read_one_column(path, dt: float, unit: str | None = None) -> Record:
     """
     if isinstance(dt, bool) or not isinstance(dt, (int, float)) or not (math.isfinite(dt) and dt > 0):
         raise ValueError(f"dt must be a positive number of seconds, got {dt!r}")
+    from array import array
+
     path = Path(path)
-    lines = path.read_text(errors="replace").splitlines()
-    header_unit, values, rows = None, [], []
-    seen_header = False
-    for number, stripped, fields in _data_lines(lines):
+    header_unit, values = None, array("d")
+    widths, firsts = set(), array("d")  # numbers per line, and each line's first number
+    seen_header, last = False, 0
+    for number, stripped, fields in _data_lines(path):
+        last = number
         try:
             row = [_float(f) for f in fields]
         except ValueError:
             if not values and not seen_header:
-                seen_header, header_unit = True, _header_unit(stripped)
+                seen_header, header_unit = True, _header_unit(path, number, stripped, columns=1)
                 continue
             raise RecordFormatError(path, number, "accelerations (numbers only)", stripped) from None
         if not all(math.isfinite(x) for x in row):
             raise RecordFormatError(path, number, "finite accelerations", stripped)
+        if len(values) + len(row) > MAX_RECORD_SAMPLES:
+            raise RecordFormatError(path, number, f"at most {MAX_RECORD_SAMPLES} accelerations (the engine steps to "
+                                    "every sample)", stripped)
         values.extend(row)
-        rows.append(row)
+        widths.add(len(row))
+        firsts.append(row[0])
     if len(values) < 2:
-        raise RecordFormatError(path, len(lines) + 1, "at least 2 accelerations", f"end of file after {len(values)}")
-    if len(rows) > 2 and all(len(r) == 2 for r in rows):
-        first = np.diff([r[0] for r in rows])
-        if np.all(first > 0) and np.allclose(first, np.median(first), rtol=UNIFORM_STEP_TOLERANCE):
-            raise RecordFormatError(path, None, "one column of accelerations: every row holds two numbers and the "
-                                    "first increases by a uniform step, as a time column does; read it as two "
-                                    "columns (without dt / --record-dt)")
+        raise RecordFormatError(path, last + 1, "at least 2 accelerations", f"end of file after {len(values)}")
+    if len(firsts) > 2 and widths == {2}:
+        raise RecordFormatError(path, None, "one column of accelerations: every row holds two numbers, as a time "
+                                "column and an acceleration column do; read it as two columns (without dt / "
+                                "--record-dt), or write one acceleration per line")
+    if len(firsts) > 2 and len(widths) == 1 and np.all(np.diff(np.frombuffer(firsts, dtype=float)) > 0):
+        raise RecordFormatError(path, None, f"one column of accelerations: every row holds {widths.pop()} numbers "
+                                "and the first always increases, as a time column does; write one acceleration "
+                                "per line")
     unit = _stated_unit(path, unit, header_unit, "acceleration [g]")
     factor = unit_factor(unit)
-    return Record(name=path.stem, dt=float(dt), acceleration=np.asarray(values) * factor, source=str(path),
-                  unit=unit)
+    return Record(name=path.stem, dt=float(dt), acceleration=np.frombuffer(values, dtype=float) * factor,
+                  source=str(path), unit=unit)
 
 
 TIME_UNITS = {"s": 1.0, "sec": 1.0, "second": 1.0, "seconds": 1.0, "ms": 1e-3, "min": 60.0}
@@ -417,16 +467,26 @@ def _header_time_factor(path, number: int, text: str) -> float:
     return TIME_UNITS[unit]
 
 
-def _header_unit(text: str) -> str | None:
-    """The bracketed unit of the last column named in a header line, if it is a known unit."""
+def _header_unit(path, number: int, text: str, columns: int) -> str | None:
+    """The acceleration unit a header line brackets, if any; refused when it brackets more units than the
+    file has ``columns`` (``time [s]; acceleration [m/s^2]; max abs [g]``) or two acceleration units, since the
+    file could then be read more than one way."""
     found = _UNIT_IN_HEADER.findall(text)
-    for candidate in reversed(found):
+    if len(found) > columns:
+        more = ("; it names a time column too: read it as two columns (without dt / --record-dt)" if columns == 1
+                else "")
+        raise RecordFormatError(path, number, f"a header naming at most {columns} column unit(s), as the data has "
+                                f"{columns} column(s){more}", text)
+    known = []
+    for candidate in found:
         try:
             unit_factor(candidate)
         except ValueError:
             continue
-        return candidate
-    return None
+        known.append(candidate)
+    if len({unit_factor(u) for u in known}) > 1:
+        raise RecordFormatError(path, number, "one acceleration unit in the header", text)
+    return known[-1] if known else None
 
 
 def read_record(path, unit: str | None = None, dt: float | None = None) -> Record:

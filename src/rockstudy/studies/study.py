@@ -117,28 +117,18 @@ def _log_resources(logger: logging.Logger) -> None:
                 r["wall_s"], r["cpu_s"], r["user_s"], r["system_s"], r["max_rss_mb"])
 
 
-def _non_finite(value, key=""):
-    """(key path, value) of every NaN or inf number in a nested config."""
-    if isinstance(value, dict):
-        return [k for name, item in value.items() for k in _non_finite(item, f"{key}.{name}" if key else str(name))]
-    if isinstance(value, (list, tuple)):
-        return [k for i, item in enumerate(value) for k in _non_finite(item, f"{key}[{i}]")]
-    if isinstance(value, float) and not math.isfinite(value):
-        return [(key, value)]
-    return []
-
-
 def check_sizes(config: dict) -> None:
-    """No list or mapping of the config has more than :data:`~rockstudy.core.validation.MAX_LIST_ITEMS`
-    entries (a record suite :data:`~rockstudy.core.validation.MAX_SUITE_RECORDS`): run before the JSON
-    schema, whose ``uniqueItems`` takes quadratic time on a long list.
+    """No list or mapping of the config is longer than declared (:mod:`rockstudy.core.declarations`), and the
+    config has at most :data:`~rockstudy.core.declarations.MAX_NODES` values (YAML aliases expanded).
 
     Raises
     ------
     ValueError
         (:class:`rockstudy.core.validation.InputError`) naming the key path.
     """
-    validation.check_sizes(config, limits={"beyond.fragility.records": validation.MAX_SUITE_RECORDS})
+    from rockstudy.core import declarations
+
+    declarations.count_nodes(config)
 
 
 def check_study(config: dict) -> None:
@@ -157,18 +147,14 @@ def check_study(config: dict) -> None:
     """
     # the sections' checks and the model's limits, imported here: a job that only logs or fingerprints
     # (every workflow script) does not load the compiled model
+    from rockstudy.core import declarations
     from rockstudy.model.excitation import check_time_span, excitation_duration
     from rockstudy.model.noise import reading_from_dict
     from rockstudy.model.sensor import SENSOR_STEP, check_band
     from rockstudy.studies import beyond, device_calibration, noise_readings
 
-    check_sizes(config)
+    declarations.check_config(config)  # every key's type, unit, range and size, as declared
     validation.check_results_dir("results_dir", config["results_dir"])
-    bad = _non_finite(config)
-    if bad:
-        key, value = bad[0]
-        validation.fail(key, value, "every number must be finite (not NaN or inf)"
-                        + (f"; also non-finite: {', '.join(k for k, _ in bad[1:])}" if len(bad) > 1 else ""))
     levels = config["noise_levels"]
     noise_free_level(levels)
     for key in ("convergence", "sampling_sweep", "delay_sweep", "example_point"):
@@ -181,17 +167,12 @@ def check_study(config: dict) -> None:
             raise validation.InputError(f"{key}.strategies: {sorted(missing)} not in strategies {config['strategies']}")
     if "FS" not in config["strategies"]:
         raise validation.InputError("strategies: FS is needed as the reference of Table 1 and of the timing tables")
-    n_real = validation.check_int_range("realisations", config["realisations"], 1, validation.MAX_REALISATIONS)
-    per_job = validation.check_int_range("realisations_per_job", config["realisations_per_job"], 1,
-                                         validation.MAX_REALISATIONS)
-    validation.check_int_range("seed", config["seed"], 0, validation.MAX_INTEGER,
-                               why="stored as a netCDF int64 attribute")
-    validation.check_int_range("noise_records_stored", config["noise_records_stored"], 1, validation.MAX_REALISATIONS)
+    n_real, per_job = config["realisations"], config["realisations_per_job"]
     too_high = [k for k in config["example_point"]["realisations"] if k >= n_real]
     if too_high:
         raise validation.InputError(f"example_point.realisations: {too_high} >= realisations ({n_real})")
     block = block_from_dict(config["block"])
-    free_time = validation.check_nonnegative("free_time", config["free_time"], "s", validation.MAX_FREE_TIME)
+    free_time = config["free_time"]
     ag = config["amplitude_grid"]
     sims_per_case = validation.check_amplitude_grid(ag["start"], ag["stop"], ag["step"], ag["resolution"])
     top = amplitude_grid(ag).values()[-1]
@@ -199,24 +180,7 @@ def check_study(config: dict) -> None:
     fg = config["frequency_grid"]
     n_freq = validation.check_grid("frequency_grid", fg["start"], fg["stop"], fg["step"],
                                    high=validation.MAX_FREQUENCY_RATIO)
-    an = config["anchorage"]
-    for key, limit in (("kappa_max", validation.MAX_KAPPA), ("kappa_min", validation.MAX_KAPPA),
-                       ("damping_ratio", validation.MAX_DAMPING_RATIO)):
-        validation.check_nonnegative(f"anchorage.{key}", an[key], high=limit)
-    scenario_from_dict({"block": config["block"], "anchorage": an})
-    for key in ("control_histories", "example_point"):
-        validation.check_positive(f"{key}.frequency_ratio", config[key]["frequency_ratio"],
-                                  high=validation.MAX_FREQUENCY_RATIO)
-        validation.check_positive(f"{key}.amplitude_ratio", config[key]["amplitude_ratio"],
-                                  high=validation.MAX_AMPLITUDE_RATIO)
-    validation.check_positive("noise_reference_frequency_ratio", config["noise_reference_frequency_ratio"],
-                              high=validation.MAX_FREQUENCY_RATIO)
-    for i, ts in enumerate(config["sampling_sweep"]["sampling_times"]):
-        validation.check_positive(f"sampling_sweep.sampling_times[{i}]", ts, "s", validation.MAX_TIME_SPAN)
-    validation.check_positive("delay_sweep.sampling_time", config["delay_sweep"]["sampling_time"], "s",
-                              validation.MAX_TIME_SPAN)
-    for i, d in enumerate(config["delay_sweep"]["delays"]):
-        validation.check_positive(f"delay_sweep.delays[{i}]", d, "s", validation.MAX_TIME_SPAN)
+    scenario_from_dict({"block": config["block"], "anchorage": config["anchorage"]})  # the anchorage's relations
     freqs = frequency_ratios(fg)
     grid_name = "frequency_grid.start" if fg["start"] < 1 else "frequency_grid.stop"
     span_freqs = [fg["start"], float(freqs[-1])]  # the user's start (the grid rounds to 10 decimals)

@@ -1,0 +1,221 @@
+"""``rockstudy simulate`` (one run) and ``rockstudy threshold`` (the smallest overturning amplitude at one
+frequency), under the paper's excitations or a record."""
+from __future__ import annotations
+
+import json
+import math
+
+from rockstudy.cli import COMMANDS
+from rockstudy.cli.options import (
+    _check_common,
+    _check_outputs,
+    _check_record_options,
+    _check_time_span,
+    _common,
+    _grid,
+    _grid_args,
+    _number,
+    _read_record,
+    _record_description,
+    _scenario,
+    write_output,
+)
+from rockstudy.core import declarations, validation
+
+
+def register(sub) -> None:
+    """Add ``simulate`` and ``threshold`` to the subparsers ``sub``."""
+    ps = sub.add_parser("simulate", help=COMMANDS["simulate"].help)
+    _common(ps)
+    ps.add_argument("--amplitude-ratio", type=_number("--amplitude-ratio"), default=2.0, help="a_p/(g tan alpha) [-]")
+    ps.add_argument("--output", help="write the time history and every event (impacts, uplifts, returns to rest) "
+                    "to this netCDF file; the printed summary has their counts")
+    ps.add_argument("--plot", help="draw theta, theta_dot, K and the ground motion to this PNG")
+    ps.add_argument("--record", help="ground motion from a record instead of --excitation: a record of a suite, "
+                    "SUITE:ID (e.g. p695-near-field-pulse:1a; see 'rockstudy records'), or a file: PEER NGA .AT2 "
+                    "(in g), two columns time [s], acceleration, or one column with --record-dt (--excitation, "
+                    "--frequency-ratio and "
+                    "--amplitude-ratio are then not used)")
+    ps.add_argument("--record-unit", help="acceleration unit of a two-column record: "
+                    "g, m/s^2, cm/s^2 (gal) or mm/s^2 (default: the unit named in its header line)")
+    ps.add_argument("--record-scale", type=_number("--record-scale"), default=1.0,
+                    help="factor multiplying the record (default 1) [-]")
+    ps.add_argument("--record-dt", type=_number("--record-dt"), default=None, metavar="SECONDS",
+                    help="the record is one column of accelerations at this step [s] (as OpenSees' "
+                         "timeSeries Path -dt reads it); without it a text record has two columns")
+    pt = sub.add_parser("threshold", help=COMMANDS["threshold"].help)
+    _common(pt)
+    _grid_args(pt)
+    pt.add_argument("--record", help="scan the scale of a record instead of --excitation (SUITE:ID or a file, as "
+                    "for simulate): the amplitude ratios are then PGA/(g tan alpha) of the scaled record")
+    pt.add_argument("--record-unit", help="acceleration unit of a two-column record file (as for simulate)")
+    ps.set_defaults(run=_cmd_simulate)
+    pt.set_defaults(run=_cmd_threshold)
+
+
+def _cmd_simulate(args, parser):
+    if args.record is not None:
+        return _cmd_simulate_record(args, parser)
+    if args.record_unit is not None or args.record_scale != 1.0 or args.record_dt is not None:
+        parser.error("--record-unit, --record-scale and --record-dt need --record FILE")
+    _check_common(args)
+    declarations.check_option("--amplitude-ratio", args.amplitude_ratio)
+    scenario = _scenario(args, parser)
+    _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
+    _check_outputs(args, parser)
+    motion, rec = scenario.motion(args.frequency_ratio, args.amplitude_ratio, args.realisation)
+    out = {}
+    try:
+        res = scenario.simulate_motion(motion, engine=args.engine, record_history=bool(args.output or args.plot))
+    except RuntimeError as exc:  # the reference engine's piece cap: no result, and no file is written
+        res = None
+        out.update(status="undetermined", overturned=None, message=str(exc))
+    else:
+        out.update(res.compact_summary())
+        if res.status == "undetermined":  # the fast engine's event cap: no outcome, and no file is written
+            res = None
+    out.update(frequency_ratio=args.frequency_ratio, amplitude_ratio=args.amplitude_ratio,
+               strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
+               realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
+               energy_ratio=1.0 if rec is None else rec.energy_ratio,
+               pga_ratio=1.0 if rec is None else rec.pga_ratio, sensor_band_hz=args.sensor_band,
+               **scenario.noise.to_attrs())
+    if res is not None and (args.output or args.plot):
+        from rockstudy.studies.datasets import history_dataset
+        ds = history_dataset(res, scenario, motion, args.frequency_ratio, args.amplitude_ratio, args.realisation)
+        if args.output:
+            write_output(ds, args.output, "time history")
+            out["output"] = args.output
+        if args.plot:
+            from rockstudy.plotting import figure_control_history, save_figure
+            save_figure(figure_control_history(ds, "2-3 style"), args.plot)
+            out["plot"] = args.plot
+    print(json.dumps(out, indent=2))
+
+
+def _cmd_simulate_record(args, parser):
+    """``simulate --record FILE``: one run under a recorded (or synthetic) ground motion."""
+    _check_record_options(args, parser)
+    _check_common(args, single_frequency=False)
+    declarations.check_option("--record-scale", args.record_scale)
+    _check_outputs(args, parser)
+    info, record = _read_record(args, parser)
+    scenario = _scenario(args, parser, sensor_step=record.dt)
+    motion = record.motion(args.record_scale)
+    pga_ratio = motion.peak() / scenario.block.uplift_acceleration
+    top = validation.MAX_AMPLITUDE_RATIO * args.record_scale / pga_ratio if pga_ratio > 0 else None
+    validation.check_positive("--record-scale", args.record_scale, high=top,
+                              why=f"the scaled record's PGA/(g tan alpha) is {pga_ratio:.4g}, at most "
+                                  f"{validation.MAX_AMPLITUDE_RATIO:g} is allowed")
+    validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_TIME_SPAN - record.duration,
+                                 why=f"the record lasts {record.duration:.4g} s and a simulation at most "
+                                     f"{validation.MAX_TIME_SPAN:g} s")
+    if args.output or args.plot:  # the stored history samples the ground motion at min(DT, 2.5 ms)
+        samples = (record.duration + args.free_time) / min(record.dt, 0.0025)
+        if samples > validation.MAX_HISTORY_SAMPLES:
+            validation.fail("--record", args.record,
+                            f"its DT = {record.dt:g} s over {record.duration:.4g} s plus --free-time "
+                            f"{args.free_time:g} s gives a history of {samples:.3g} samples, the limit is "
+                            f"{validation.MAX_HISTORY_SAMPLES:.0e} (resample the record, lower --free-time, or "
+                            "run without --output/--plot)")
+    try:
+        res = scenario.simulate_motion(motion, engine=args.engine, record_history=bool(args.output or args.plot))
+    except RuntimeError as exc:  # the reference engine's piece cap: an undetermined result, no file written
+        res = None
+        message = str(exc)
+    else:
+        message = res.message
+    if res is None or res.status == "undetermined":  # the fast engine's event cap: no outcome, no file
+        print(json.dumps({"status": "undetermined", "overturned": None, "message": message,
+                          "strategy": args.strategy, "record": args.record}, indent=2))
+        return
+    out = res.compact_summary()
+    out.update(strategy=args.strategy, excitation="record", record=args.record, record_name=record.name,
+               record_unit=record.unit, record_scale=args.record_scale, record_dt_s=record.dt,
+               record_npts=int(record.acceleration.size), record_duration_s=record.duration,
+               pga_m_s2=motion.peak(), pga_uplift_ratio=pga_ratio, sampling_time_s=args.sampling_time,
+               delay_s=args.delay, sensor_band_hz=args.sensor_band, **_record_description(info))
+    if args.output or args.plot:
+        from rockstudy.studies.datasets import history_dataset
+        ds = history_dataset(res, scenario, motion, math.nan, pga_ratio, 0, dt=min(record.dt, 0.0025))
+        ds.attrs.update(record.to_attrs(), **({} if info is None else info.to_attrs()), excitation="record",
+                        record_scale=args.record_scale,
+                        excitation_end_s=record.duration,
+                        amplitude_ratio_note="PGA/(g tan(alpha)) of the scaled record",
+                        title=f"Time history, {args.strategy}, record {record.name}, scale {args.record_scale:g}")
+        if args.output:
+            write_output(ds, args.output, "time history")
+            out["output"] = args.output
+        if args.plot:
+            from rockstudy.plotting import figure_control_history, save_figure
+            fig = figure_control_history(ds, "record")
+            fig.axes[0].set_title(f"{args.strategy}, record {record.name} x {args.record_scale:g}, "
+                                  f"PGA/(g tan(alpha)) = {pga_ratio:.3g} ({res.status})", fontsize=10)
+            save_figure(fig, args.plot)
+            out["plot"] = args.plot
+    print(json.dumps(out, indent=2))
+
+
+def _cmd_threshold_record(args, parser):
+    """``threshold --record``: the smallest scale of a record that overturns the block (the spectra's scan)."""
+    from rockstudy.analysis.record_scan import RecordRun, record_threshold
+    from rockstudy.model.records import STANDARD_GRAVITY
+    _check_record_options(args, parser)
+    _check_common(args, single_frequency=False)
+    grid, _ = _grid(args, parser)
+    info, record = _read_record(args, parser)
+    scenario = _scenario(args, parser, sensor_step=record.dt)
+    validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_TIME_SPAN - record.duration,
+                                 why=f"the record lasts {record.duration:.4g} s and a simulation at most "
+                                     f"{validation.MAX_TIME_SPAN:g} s")
+    run = RecordRun(scenario.block, scenario.anchorage, scenario.control, record,
+                    overturn_criterion=scenario.overturn_criterion, free_time=scenario.free_time)
+    res = record_threshold(run, grid.values(), grid.resolution)
+    thr = res["amplitude_ratio"]
+    scale = float(run.scale(thr)) if math.isfinite(thr) else None
+    out = {"amplitude_ratio": thr if math.isfinite(thr) else None,
+           "last_safe_amplitude_ratio": res["last_safe_amplitude_ratio"], "record_scale": scale,
+           "pga_g": None if scale is None else scale * record.pga / STANDARD_GRAVITY,
+           "amplitude_ratio_note": "PGA/(g tan(alpha)) of the scaled record; every grid level below it was shown "
+                                   "safe (levels with PGA <= g tan(alpha) cannot uplift the block)",
+           "max_amplitude_ratio": float(grid.values()[-1]), "resolution": grid.resolution,
+           "n_simulations": res["n_simulations"], "n_undetermined": res["n_undetermined"],
+           "strategy": args.strategy, "record": args.record, "record_name": record.name,
+           "record_pga_g": record.pga / STANDARD_GRAVITY, "record_dt_s": record.dt,
+           "record_npts": int(record.acceleration.size), "sampling_time_s": args.sampling_time,
+           "delay_s": args.delay, "sensor_band_hz": args.sensor_band, **_record_description(info)}
+    print(json.dumps(out, indent=2))
+
+
+def _cmd_threshold(args, parser):
+    if args.record is not None:
+        return _cmd_threshold_record(args, parser)
+    if args.record_unit is not None:
+        parser.error("--record-unit needs --record FILE")
+    from rockstudy.analysis.spectra import threshold
+    _check_common(args)
+    scenario = _scenario(args, parser)
+    grid, _ = _grid(args, parser)
+    _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
+    res = threshold(scenario, args.frequency_ratio, realisation=args.realisation, grid=grid,
+                    engine=args.engine).as_dict()
+    uplift = 1.0 / scenario.unit_peak(args.frequency_ratio, args.realisation)
+    start = float(grid.values()[0])
+    complete = start <= uplift
+    res.update(scan_start_amplitude_ratio=start, uplift_amplitude_ratio=uplift,
+               lower_amplitudes_checked=complete)
+    if not complete:
+        res["note"] = (f"the scan started at {start:g}, above {uplift:.4g}, the lowest amplitude ratio that can "
+                       f"uplift the block: amplitude ratios in [{uplift:.4g}, {start:g}) were not scanned (at most "
+                       "bisected below an overturning one), and the overturning region has safe islands, so a "
+                       "lower overturning amplitude may exist and amplitude_ratio is not necessarily the threshold; "
+                       f"use --min-amplitude-ratio <= {uplift:.4g} to check them")
+    if res.get("n_undetermined"):
+        res["undetermined_note"] = (f"{res['n_undetermined']} run(s) hit the fast engine's event cap and were "
+                                    "counted as not overturned; check with --engine reference")
+    res.update(strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
+               realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
+               sensor_band_hz=args.sensor_band, **scenario.noise.to_attrs())
+    print(json.dumps(res, indent=2))
+
+

@@ -1,0 +1,612 @@
+"""Every input of a study config declared once: type, unit, range and size limit.
+
+The models below (pydantic v2, strict: a ``bool`` is not a number, NaN and inf are refused, an unknown key
+is refused) are the one declaration of the study config. From them come
+
+* the JSON schema Snakemake validates ``config.yaml`` against (``workflow/schemas/config.schema.yaml``,
+  written by ``python -m rockstudy.core.declarations``; a test fails when the checked-in file is stale),
+* :func:`check_config`, the first step of :func:`rockstudy.studies.study.check_study` and of the CLI's
+  ``--config``, whose error names the key path, the value, what is allowed and, for an unknown key, the
+  closest known one,
+* :func:`check_value`, the check of one value by its key path, which the CLI applies to the option that
+  sets that key (``--kappa-max`` is ``anchorage.kappa_max``).
+
+The limits are those of :mod:`rockstudy.core.validation`. Relations between keys (a noise level named by
+a sweep exists, a_max,0 within the scan, the work of one job) are checked after these declarations by
+:func:`rockstudy.studies.study.check_study`. pydantic is imported only here, and only by the config
+checks: neither ``rockstudy --help`` nor a simulation loads it.
+"""
+from __future__ import annotations
+
+import difflib
+import math
+from typing import Annotated, Literal, Union
+
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    ConfigDict,
+    Field,
+    StringConstraints,
+    TypeAdapter,
+    ValidationError,
+    create_model,
+    model_validator,
+)
+
+from rockstudy.core import validation as v
+from rockstudy.core.validation import InputError
+
+SCHEMA_PATH = "workflow/schemas/config.schema.yaml"
+"""Where the generated schema is checked in, relative to the repository."""
+
+# The names the library accepts (they equal the library's tuples, which load numba: a test keeps them equal).
+STRATEGIES = ("FS", "PASSIVE", "CS01", "CS02")
+EXCITATIONS = ("modulated", "one-sine")
+OVERTURN_CRITERIA = ("flat", "alpha")
+RESCALES = ("energy", "pga", "both", "none")
+LEVEL_MEANINGS = ("energy", "rms")
+BLOCK_PRESETS = ("BLC06",)
+SUITES = ("p695-far-field", "p695-near-field-pulse", "p695-near-field-no-pulse", "synthetic")
+RECORD_UNITS = ("g", "m/s^2", "m/s2", "cm/s^2", "cm/s2", "gal", "mm/s^2", "mm/s2")
+INTENSITY_MEASURES = ("pga_ratio", "pgv_ratio")
+
+MAX_PGA_G = 100.0
+"""Largest peak ground acceleration of a design stripe or a synthetic suite. [g]"""
+MIN_PGA_G = 1e-4
+"""Smallest peak ground acceleration of a design stripe. [g]"""
+MAX_A_MAX0_G = 100.0
+"""Largest protection level a_max,0. [g]"""
+MAX_BLOCK_SIZE = 1000.0
+"""Largest block dimension. [m]"""
+MIN_BLOCK_SIZE = 1e-4
+"""Smallest block dimension. [m]"""
+MAX_DENSITY = 1e5
+"""Largest block density. [kg/m^3]"""
+MAX_TEXT = 4096
+"""Longest string of a config (a path or a label)."""
+MIN_DESIGN_STEP = 1e-3
+"""Smallest step of a design block's amplitude scan (it has no stop: it scans up to a_max,0). [-]"""
+MIN_DESIGN_RESOLUTION = 1e-6
+"""Smallest resolution of a design block's threshold. [-]"""
+MIN_ALPHA = 1e-3
+"""Smallest slenderness alpha of a design block. [rad]"""
+MAX_ALPHA = 0.6
+"""Largest slenderness alpha of a design block. [rad]"""
+MAX_ROTATION_RATIO = 10.0
+"""Largest ultimate rotation of a calibration device, as a multiple of alpha. [-]"""
+
+
+def _unique(items: list) -> list:
+    if len(set(map(repr, items))) != len(items):
+        raise ValueError("the entries must be distinct")
+    return items
+
+
+def _list(item, low: int = 1, high: int = v.MAX_LIST_ITEMS, unique: bool = True):
+    """A list of ``item``, ``low`` to ``high`` entries (distinct if ``unique``)."""
+    extra = {"uniqueItems": True} if unique else None
+    checks = [AfterValidator(_unique)] if unique else []
+    field = Field(min_length=low, max_length=high, json_schema_extra=extra)
+    return Annotated[(list[item], field, *checks)]
+
+
+def _number(unit: str = "", **limits):
+    return Annotated[float, Field(description=f"[{unit}]" if unit else None, **limits)]
+
+
+Strategy = Literal[STRATEGIES]
+Strategies = _list(Strategy)
+LevelName = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9]+$", max_length=64)]
+Ratio = _number("-", gt=0, le=v.MAX_FREQUENCY_RATIO)
+AmplitudeRatio = _number("-", gt=0, le=v.MAX_AMPLITUDE_RATIO)
+Seconds = _number("s", gt=0, le=v.MAX_TIME_SPAN)
+Rotation = Union[_number("rad", gt=0, le=math.pi / 2), None]
+Kappa = _number("-", ge=0, le=v.MAX_KAPPA)
+Damping = _number("-", ge=0, le=v.MAX_DAMPING_RATIO)
+Count = Annotated[int, Field(ge=1, le=v.MAX_REALISATIONS)]
+Seed = Annotated[int, Field(ge=0, le=v.MAX_INTEGER, description="stored as a netCDF int64 attribute")]
+
+
+class Section(BaseModel):
+    """A config section: strict types, no unknown key, finite numbers."""
+    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+
+
+class Block(Section):
+    """A preset name, or the dimensions [m] (and density [kg/m^3], restitution [-])."""
+    model_config = ConfigDict(json_schema_extra={"oneOf": [
+        {"required": ["preset"], "not": {"anyOf": [{"required": [k]} for k in ("width", "height", "depth")]}},
+        {"required": ["width", "height", "depth"], "not": {"required": ["preset"]}}]})
+    preset: Literal[BLOCK_PRESETS] = None
+    width: _number("m", ge=MIN_BLOCK_SIZE, le=MAX_BLOCK_SIZE) = None
+    height: _number("m", ge=MIN_BLOCK_SIZE, le=MAX_BLOCK_SIZE) = None
+    depth: _number("m", ge=MIN_BLOCK_SIZE, le=MAX_BLOCK_SIZE) = None
+    density: _number("kg/m^3", gt=0, le=MAX_DENSITY) = None
+    restitution: Union[_number("-", ge=0, le=1), None] = None
+
+    @model_validator(mode="after")
+    def _one_way(self):
+        dims = [k for k in ("width", "height", "depth") if getattr(self, k) is not None]
+        if self.preset is not None and dims:
+            raise ValueError(f"give either a preset or the dimensions, not both (got preset and {', '.join(dims)})")
+        if self.preset is None and len(dims) < 3:
+            raise ValueError("give a preset, or width, height and depth")
+        return self
+
+
+class Anchorage(Section):
+    kappa_max: Kappa
+    kappa_min: Kappa
+    damping_ratio: Damping
+    spring_ultimate_rotation: Rotation
+    damper_ultimate_rotation: Rotation
+
+
+class Reading(Section):
+    """A noise reading (:class:`rockstudy.model.noise.NoiseReading`); a missing key takes the library's default."""
+    step: _number("s", gt=0, le=v.MAX_NOISE_STEP) = None
+    rescale: Literal[RESCALES] = None
+    level_means: Literal[LEVEL_MEANINGS] = None
+    band: Union[_number("Hz", gt=0, le=1e6), None] = None
+    span: _number("s", ge=0, le=v.MAX_TIME_SPAN) = None
+
+
+class Noise(Reading):
+    """The study's noise reading: every key given."""
+    step: _number("s", gt=0, le=v.MAX_NOISE_STEP)
+    rescale: Literal[RESCALES]
+    level_means: Literal[LEVEL_MEANINGS]
+    band: Union[_number("Hz", gt=0, le=1e6), None]
+    span: _number("s", ge=0, le=v.MAX_TIME_SPAN)
+
+
+class Control(Section):
+    sensor_band: Union[_number("Hz", gt=0, le=1e6), None]
+
+
+class Grid(Section):
+    start: Ratio
+    stop: Ratio
+    step: Ratio
+
+
+class AmplitudeGrid(Section):
+    start: AmplitudeRatio
+    stop: AmplitudeRatio
+    step: AmplitudeRatio
+    resolution: AmplitudeRatio
+
+
+class Table1(Section):
+    strategies: Strategies
+
+
+class Convergence(Section):
+    strategy: Strategy
+    noise_level: LevelName
+
+
+class SamplingSweep(Section):
+    strategies: Strategies
+    noise_level: LevelName
+    sampling_times: _list(Seconds)
+
+
+class DelaySweep(Section):
+    strategies: Strategies
+    noise_level: LevelName
+    sampling_time: Seconds
+    delays: _list(Seconds)
+
+
+class ControlHistories(Section):
+    strategies: Strategies
+    frequency_ratio: Ratio
+    amplitude_ratio: AmplitudeRatio
+
+
+class ExamplePoint(Section):
+    label: Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_-]+$", max_length=64)]
+    strategy: Strategy
+    noise_level: LevelName
+    realisations: _list(Annotated[int, Field(ge=0, le=v.MAX_REALISATIONS - 1)], high=4)
+    frequency_ratio: Ratio
+    amplitude_ratio: AmplitudeRatio
+
+
+class Maps(Section):
+    strategies: Strategies
+
+
+ReadingName = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_]+$", max_length=64)]
+
+
+class Reproduction(Section):
+    strategy: Strategy
+    realisations: Count
+    readings: Annotated[dict[ReadingName, Reading], Field(min_length=1, max_length=v.MAX_LIST_ITEMS)]
+
+
+class Calibration(Section):
+    kappa_max: _list(Kappa)
+    damping_ratio: _list(Damping)
+    ultimate_rotation_ratio: _list(_number("-", gt=0, le=MAX_ROTATION_RATIO))
+    kappa_min_ratio: _list(_number("-", ge=0, le=1))
+    coarse_realisations: Count
+    coarse_frequency_grid: Grid
+    candidates: Annotated[int, Field(ge=1, le=v.MAX_DEVICES)]
+
+
+class Probability(Section):
+    strategies: Strategies
+    noise_levels: _list(LevelName)
+    frequency_grid: Grid
+    amplitude_grid: AmplitudeGrid
+
+
+class RecordFile(Section):
+    path: Annotated[str, StringConstraints(min_length=1, max_length=MAX_TEXT)]
+    unit: Literal[RECORD_UNITS] = None
+
+
+RecordName = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_-]+(:[^/\\:]+)?$", max_length=256)]
+
+
+class Synthetic(Section):
+    n_records: Annotated[int, Field(ge=1, le=v.MAX_SUITE_RECORDS)]
+    seed: Seed
+    ground_frequency_hz: _list(_number("Hz", gt=0, le=v.MAX_FREQUENCY_RATIO), low=2, high=2, unique=False)
+    ground_damping: _list(_number("-", gt=0, le=v.MAX_FREQUENCY_RATIO), low=2, high=2, unique=False)
+    peak_time: _list(Seconds, low=2, high=2, unique=False)
+    envelope_shape: Ratio
+    filter_ratio: _number("-", gt=0, lt=1)
+    duration: Seconds
+    dt: Seconds
+    pga_g: _number("g", gt=0, le=MAX_PGA_G)
+
+
+class Fragility(Section):
+    strategies: Strategies
+    records: Union[Literal[SUITES], _list(Union[RecordName, RecordFile], high=v.MAX_SUITE_RECORDS, unique=False)]
+    synthetic: Synthetic
+    intensity_measure: Literal[INTENSITY_MEASURES]
+    intensity_levels: Grid
+    threshold_resolution: _number("intensity measure", gt=0, le=v.MAX_AMPLITUDE_RATIO)
+    bootstrap: Annotated[int, Field(ge=0, le=v.MAX_BOOTSTRAP)]
+    seed: Seed
+
+
+class Beyond(Section):
+    """Beyond the paper (optional): P(overturn) over noise realisations and record fragility."""
+    probability: Probability
+    fragility: Fragility
+
+
+class PgaLevels(Section):
+    start: _number("g", ge=MIN_PGA_G, le=MAX_PGA_G)
+    stop: _number("g", ge=MIN_PGA_G, le=MAX_PGA_G)
+    count: Annotated[int, Field(ge=2, le=v.MAX_LIST_ITEMS)]
+
+
+class DesignAmplitudeGrid(Section):
+    start: AmplitudeRatio
+    step: _number("-", ge=MIN_DESIGN_STEP, le=v.MAX_AMPLITUDE_RATIO)
+    resolution: _number("-", ge=MIN_DESIGN_RESOLUTION, le=v.MAX_AMPLITUDE_RATIO)
+
+
+class DesignBlocks(Section):
+    R: _list(_number("m", ge=MIN_BLOCK_SIZE, le=50))
+    alpha: _list(_number("rad", ge=MIN_ALPHA, le=MAX_ALPHA))
+    frequency_grid: Grid
+    amplitude_grid: DesignAmplitudeGrid
+    a_max0: _number("g", gt=0, le=MAX_A_MAX0_G)
+
+
+class DesignDevices(Section):
+    kappa_max: _list(Kappa)
+    damping_ratio: _list(Damping)
+    target_median_g: _number("g", gt=0, le=MAX_PGA_G)
+
+
+class Design(Section):
+    """Design charts (optional): block sweep over (R, alpha) and device sweep over (kappa_max, xi)."""
+    suite: Literal[SUITES]
+    strategies: Strategies
+    pga_levels_g: PgaLevels
+    blocks: DesignBlocks
+    devices: DesignDevices
+
+
+class Study(Section):
+    """The study of the paper (§5). Every key is required except ``beyond`` and ``design``; no other keys are
+    allowed. Relations between keys are checked by rockstudy.studies.study.check_study."""
+    results_dir: Annotated[str, StringConstraints(min_length=1, max_length=MAX_TEXT)]
+    block: Block
+    anchorage: Anchorage
+    strategies: Strategies
+    excitation: Literal[EXCITATIONS]
+    overturn_criterion: Literal[OVERTURN_CRITERIA]
+    free_time: _number("s", ge=0, le=v.MAX_FREE_TIME)
+    noise_levels: Annotated[dict[LevelName, _number("-", ge=0, lt=1)],
+                            Field(min_length=1, max_length=v.MAX_LIST_ITEMS)]
+    realisations: Count
+    realisations_per_job: Count
+    seed: Seed
+    noise: Noise
+    control: Control
+    noise_reference_frequency_ratio: Ratio
+    noise_records_stored: Count
+    frequency_grid: Grid
+    amplitude_grid: AmplitudeGrid
+    a_max0: _number("g", gt=0, le=MAX_A_MAX0_G)
+    table1: Table1
+    convergence: Convergence
+    sampling_sweep: SamplingSweep
+    delay_sweep: DelaySweep
+    control_histories: ControlHistories
+    example_point: ExamplePoint
+    maps: Maps
+    reproduction: Reproduction
+    calibration: Calibration
+    beyond: Beyond = None
+    design: Design = None
+
+
+def _declared(info):
+    """The declared type of a model field, with its constraints."""
+    return Annotated[(info.annotation, *info.metadata)] if info.metadata else info.annotation
+
+
+PartialStudy = create_model(
+    "PartialStudy", __base__=Section, __doc__="A study config in which any top-level key may be left out (the CLI's "
+    "--config): what is given is checked as declared in Study.",
+    **{name: (_declared(info), None) for name, info in Study.model_fields.items()})
+
+_MODEL_NAMES = {cls.__name__ for cls in (*Section.__subclasses__(), Noise)}
+"""The sections' class names, which pydantic puts into the location of an error inside a union."""
+
+NonNegativeSeconds = _number("s", ge=0, le=v.MAX_TIME_SPAN)
+Length = _number("m", ge=MIN_BLOCK_SIZE, le=MAX_BLOCK_SIZE)
+
+OPTIONS = {
+    "--frequency-ratio": Ratio, "--amplitude-ratio": AmplitudeRatio,
+    "--noise-level": _number("-", ge=0, lt=1),
+    "--realisation": Annotated[int, Field(ge=0, le=v.MAX_INTEGER)], "--realisations": Count, "--seed": Seed,
+    "--sampling-time": NonNegativeSeconds, "--delay": NonNegativeSeconds,
+    "--free-time": _number("s", ge=0, le=v.MAX_FREE_TIME),
+    "--kappa-max": Kappa, "--kappa-min": Kappa, "--damping-ratio": Damping,
+    "--width": Length, "--height": Length, "--depth": Length, "--density": _number("kg/m^3", gt=0, le=MAX_DENSITY),
+    "--restitution": _number("-", ge=0, le=1),
+    "--noise-step": _number("s", gt=0, le=v.MAX_NOISE_STEP), "--noise-band": _number("Hz", gt=0, le=1e6),
+    "--noise-span": NonNegativeSeconds, "--sensor-band": _number("Hz", gt=0, le=1e6),
+    "--record-scale": _number("-", gt=0, le=1e6), "--record-dt": Seconds,
+    "--a-max0": _number("g", gt=0, le=MAX_A_MAX0_G),
+}
+"""The command line's numeric options, each declared like the config key it stands for (``--kappa-max`` is
+``anchorage.kappa_max``); the CLI checks them with :func:`check_option`."""
+
+REPLACED_BY_OVERLAY = ("block", "noise_levels", "reproduction.readings", "beyond.fragility.records")
+"""Config keys whose value an overlay replaces whole instead of merging into: sections with alternatives
+(a block by preset or by dimensions) and mappings of names (noise levels, readings)."""
+
+MAX_NODES = 100_000
+"""Most nodes (mappings, lists and scalars, aliases expanded) of a config: a few-hundred-byte YAML alias
+bomb expands to billions, which any walk over it would take hours to visit."""
+
+
+# ----------------------------------------------------------------------------------------------- checks
+
+def replace_sections(config: dict, overlay: dict) -> dict:
+    """Give ``config`` (already deep-merged with ``overlay``, as Snakemake merges a ``--configfile``) the
+    overlay's own value of every key of :data:`REPLACED_BY_OVERLAY` it sets: an overlay's ``block:`` with
+    dimensions replaces the preset instead of being merged into it. Returns ``config`` (changed in place).
+    A YTE template (``__use_yte__: true``) is left to Snakemake's merge: its text is not the values it makes."""
+    if overlay.get("__use_yte__"):
+        return config
+    for path in REPLACED_BY_OVERLAY:
+        *parents, key = path.split(".")
+        src, dst = overlay, config
+        for part in parents:
+            src, dst = (src.get(part) if isinstance(src, dict) else None), (
+                dst.get(part) if isinstance(dst, dict) else None)
+        if isinstance(src, dict) and key in src and isinstance(dst, dict):
+            dst[key] = src[key]
+    return config
+
+
+LONG_LISTS = {"beyond.fragility.records": v.MAX_SUITE_RECORDS}
+"""Lists allowed more than :data:`~rockstudy.core.validation.MAX_LIST_ITEMS` entries, by key path."""
+
+
+def count_nodes(value, limit: int = MAX_NODES, name: str = "config") -> int:
+    """Nodes of a parsed config, aliases expanded, refused (:class:`InputError`) beyond ``limit`` as soon as
+    the count passes it (the walk never visits more than ``limit`` nodes), and no list or mapping longer
+    than :data:`~rockstudy.core.validation.MAX_LIST_ITEMS` entries (:data:`LONG_LISTS`), naming its key path."""
+    count, stack = 0, [(value, "")]
+    while stack:
+        node, path = stack.pop()
+        count += 1
+        if isinstance(node, (dict, list, tuple)):
+            most = LONG_LISTS.get(path, v.MAX_LIST_ITEMS)
+            if len(node) > most:
+                v.fail(f"{name}: {path}" if path else name, f"{len(node)} entries",
+                       f"at most {most} entries (each one multiplies the workflow's jobs, which Snakemake plans "
+                       "before any runs)")
+            count += len(node)
+            if count > limit:
+                raise InputError(f"{name}: more than {limit} values (YAML aliases expanded) is not allowed; a "
+                                 "config this large is an alias bomb or not a config")
+            if isinstance(node, dict):
+                stack.extend((item, f"{path}.{k}" if path else str(k)) for k, item in node.items())
+            else:
+                stack.extend((item, f"{path}[{i}]") for i, item in enumerate(node))
+    return count
+
+
+def load_yaml(path, name: str | None = None) -> dict:
+    """A YAML (or JSON) config file as a dict, refused when it is not a bounded mapping (:func:`count_nodes`),
+    not a regular file of at most 1 MiB, or not valid YAML; the message names the file."""
+    import yaml
+    name = name or str(path)
+    p = v.check_input_file(name, path, 2**20)
+    try:
+        with open(p, encoding="utf-8") as f:
+            data = yaml.safe_load(f)
+    except (yaml.YAMLError, UnicodeDecodeError) as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f" (line {mark.line + 1})" if mark is not None else ""
+        raise InputError(f"{name}: not valid YAML{where}: {getattr(exc, 'problem', None) or exc}") from None
+    if not isinstance(data, dict):
+        raise InputError(f"{name}: a config is a mapping of keys, got {type(data).__name__}")
+    count_nodes(data, name=name)
+    return data
+
+
+def _short(value, width: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= width else text[:width - 3] + "..."
+
+
+_TYPE_TAGS = ("str", "int", "float", "bool", "dict", "list", "none", "literal", "union", "function", "constrained",
+              "lax", "strict", "json", "tagged")
+
+
+def _path(loc) -> str:
+    """``a.b[0].c`` from a pydantic location, without pydantic's union tags."""
+    out = ""
+    for part in loc:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        elif "[" in str(part) or str(part) in _MODEL_NAMES or str(part).split("-")[0] in _TYPE_TAGS:
+            continue
+        else:
+            out += f".{part}" if out else str(part)
+    return out or "config"
+
+
+def _model_at(model, loc):
+    """The section model at a location (for the known keys of an unknown one), or None."""
+    for part in loc:
+        field = model.model_fields.get(part) if isinstance(part, str) else None
+        if field is None:
+            return None
+        ann = field.annotation
+        for arg in (ann, *getattr(ann, "__args__", ())):
+            if isinstance(arg, type) and issubclass(arg, BaseModel):
+                model = arg
+                break
+        else:
+            return None
+    return model
+
+
+def message(error: ValidationError, model=None, prefix: str = "") -> str:
+    """At most three lines for the first error of ``error``: the key path, the value, what is allowed and,
+    for an unknown key, the closest known one."""
+    errors = error.errors(include_url=False)
+    first = max(errors, key=lambda e: len([p for p in e["loc"] if not str(p).startswith(_TYPE_TAGS)]))
+    loc = first["loc"]
+    path = prefix + _path(loc)
+    if first["type"] == "extra_forbidden":
+        known = sorted(_model_at(model, loc[:-1]).model_fields) if model is not None and _model_at(
+            model, loc[:-1]) is not None else []
+        close = difflib.get_close_matches(str(loc[-1]), known, n=1)
+        hint = f"; did you mean `{close[0]}`?" if close else ""
+        listing = f"\nknown keys here: {', '.join(known)}" if known and len(", ".join(known)) < 200 else ""
+        return f"{path}: unknown key{hint}{listing}"
+    if first["type"] == "missing":
+        return f"{path}: the key is missing (required)"
+    text = f"{path} = {_short(first.get('input'))} is not allowed: {first['msg']}"
+    if len(errors) > 1:
+        text += f"\n({len(errors) - 1} more problem(s) after this one)"
+    return text
+
+
+def check_config(config, model=Study, name: str = "") -> None:
+    """Refuse a config (a parsed ``config.yaml``) that its declaration does not allow, naming the key path
+    (after ``name``, e.g. the file) in at most three lines (:class:`InputError`). The config is not changed."""
+    count_nodes(config, name=name or "config")
+    try:
+        model.model_validate(config)
+    except ValidationError as exc:
+        raise InputError(message(exc, model, f"{name}: " if name else "")) from None
+
+
+def field_type(path: str, model=Study):
+    """The declared type of the config key ``path`` (``"anchorage.kappa_max"``)."""
+    parts = path.split(".")
+    section = _model_at(model, parts[:-1]) if len(parts) > 1 else model
+    if section is None or parts[-1] not in section.model_fields:
+        raise KeyError(f"{path} is not a declared config key")
+    return _declared(section.model_fields[parts[-1]])
+
+
+_ADAPTERS: dict = {}
+
+
+def check_value(path: str, value, name: str | None = None):
+    """``value`` against the declaration of the config key ``path`` (e.g. ``"anchorage.kappa_max"``); the error
+    names ``name`` (e.g. the option ``--kappa-max``, default the key). Returns the value."""
+    if path not in _ADAPTERS:
+        declared = field_type(path)
+        model = isinstance(declared, type) and issubclass(declared, BaseModel)
+        _ADAPTERS[path] = TypeAdapter(declared, config=None if model else ConfigDict(strict=True, allow_inf_nan=False))
+    try:
+        return _ADAPTERS[path].validate_python(value)
+    except ValidationError as exc:
+        err = exc.errors(include_url=False)[0]
+        raise InputError(f"{name or path} = {_short(value)} is not allowed: {err['msg']}") from None
+
+
+def check_option(name: str, value):
+    """A command-line option's value against :data:`OPTIONS` (None: not given, allowed). Returns the value."""
+    if value is None:
+        return None
+    if name not in _ADAPTERS:
+        _ADAPTERS[name] = TypeAdapter(OPTIONS[name], config=ConfigDict(strict=True, allow_inf_nan=False))
+    try:
+        return _ADAPTERS[name].validate_python(value)
+    except ValidationError as exc:
+        err = exc.errors(include_url=False)[0]
+        raise InputError(f"{name} = {_short(value)} is not allowed: {err['msg']}") from None
+
+
+# ----------------------------------------------------------------------------------------------- schema
+
+def _tidy(node):
+    """The generated schema without pydantic's titles and defaults (Snakemake's validate would write the
+    defaults into the config), dict keys constrained by ``propertyNames``."""
+    if isinstance(node, dict):
+        node = {k: _tidy(item) for k, item in node.items() if k not in ("title", "default")}
+        pattern = node.pop("patternProperties", None)
+        if pattern:
+            (key, value), = pattern.items()
+            node["propertyNames"] = {"pattern": key}
+            node["additionalProperties"] = value
+        return node
+    if isinstance(node, list):
+        return [_tidy(item) for item in node]
+    return node
+
+
+def config_schema() -> dict:
+    """The JSON schema (draft 2020-12) of the study config, generated from :class:`Study`."""
+    schema = _tidy(Study.model_json_schema())
+    return {"$schema": "https://json-schema.org/draft/2020-12/schema", **schema}
+
+
+def schema_text() -> str:
+    """The checked-in schema file's text: a generated-file header and :func:`config_schema` as YAML."""
+    import yaml
+    header = ("# GENERATED from rockstudy.core.declarations (python -m rockstudy.core.declarations); do not edit.\n"
+              "# Snakemake validates config.yaml against it; rockstudy.studies.study.check_study checks the rest.\n")
+    return header + yaml.safe_dump(config_schema(), sort_keys=False, width=118)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    import sys
+    from pathlib import Path
+    target = Path(sys.argv[1] if len(sys.argv) > 1 else SCHEMA_PATH)
+    target.write_text(schema_text())
+    print(f"wrote {target}")
