@@ -265,3 +265,62 @@ def labels(result: str, paper: str = "") -> dict:
         Where it is in the paper ("Fig. 6", "Table 1"); empty: beyond the paper.
     """
     return {"result": f"{result} ({paper or 'beyond the paper'})"}
+
+
+# --- the fragility tables (Markdown) ---------------------------------------------------------------
+def fragility_markdown(ds: xr.Dataset) -> str:
+    """Markdown table of the fits: median (95 % interval), dispersion, median shift over FS (interval)."""
+    im = ds.attrs["intensity_measure_definition"]
+    lines = [f"| strategy | median θ of {im} (95 % CI) | dispersion β (± se) | θ/θ_FS (bootstrap 95 % CI) "
+             f"| median shift over FS | fit |", "|---|---|---|---|---|---|"]
+    for s in ds.strategy.values:
+        d = ds.sel(strategy=s)
+        lines.append(f"| {s} | {float(d.fragility_median):.3f} ({float(d.median_low):.3f}–{float(d.median_high):.3f}) "
+                     f"| {float(d.fragility_dispersion):.3f} ± {float(d.dispersion_se):.3f} "
+                     f"| {float(d.median_ratio):.3f} ({float(d.median_ratio_low):.3f}–{float(d.median_ratio_high):.3f})"
+                     f" | {float(d.median_shift_percent):+.1f} % | {str(d.fit_status.values)} |")
+    lines.append("")
+    lines.append(f"{ds.attrs['n_records']} records, {ds.sizes['intensity']} IM levels "
+                 f"({float(ds.intensity.min()):g}–{float(ds.intensity.max()):g}); "
+                 f"{ds.attrs['n_bootstrap']} bootstrap draws over records.")
+    return "\n".join(lines) + "\n"
+
+
+def suite_summary_markdown(rows) -> str:
+    """Markdown table of :func:`suite_summary`."""
+    from rockstudy.analysis.fragility import INTENSITY_MEASURES
+    if not rows:
+        return ""
+    r0 = rows[0]
+    lines = [f"| suite | strategy | median {INTENSITY_MEASURES[r0['intensity_measure']]} (95 % CI) | median "
+             f"[{r0['physical_unit']}] (95 % CI) | β ± se | median {INTENSITY_MEASURES[r0['other_measure']]} (95 % CI) "
+             "| θ/θ_FS (bootstrap 95 % CI) | shift over FS | fit |", "|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['suite']} | {r['strategy']} | {r['median']:.3f} ({r['median_low']:.3f}–"
+                     f"{r['median_high']:.3f}) | {r['median_physical']:.3f} ({r['median_physical_low']:.3f}–"
+                     f"{r['median_physical_high']:.3f}) | {r['dispersion']:.3f} ± {r['dispersion_se']:.3f} | "
+                     f"{r['median_other']:.3f} ({r['median_other_low']:.3f}–{r['median_other_high']:.3f}) | "
+                     f"{r['median_ratio']:.3f} ({r['median_ratio_low']:.3f}–{r['median_ratio_high']:.3f}) | "
+                     f"{r['median_shift_percent']:+.1f} % | {r['fit']} |")
+    return "\n".join(lines) + "\n"
+
+
+def threshold_markdown(ds: xr.Dataset) -> str:
+    """Markdown table of every record's threshold: the smallest PGA [g] (and scale) that overturns the block,
+    per strategy; "—" where nothing up to the last level overturns it."""
+    strategies = [str(s) for s in ds.strategy.values]
+    lines = ["| record | event | station | PGA [g] | " + " | ".join(f"{s}: PGA [g] (scale)" for s in strategies)
+             + " |", "|---" * (4 + len(strategies)) + "|"]
+    for k, name in enumerate(ds.record.values):
+        cells = []
+        for s in strategies:
+            g = float(ds.threshold_pga.sel(strategy=s).values[k])
+            sc = float(ds.threshold_scale.sel(strategy=s).values[k])
+            cells.append("—" if not np.isfinite(g) else f"{g:.3f} ({sc:.2f}{' *' if sc <= 1 else ''})")
+        lines.append(f"| {name} | {ds.record_event.values[k]} | {ds.record_station.values[k]} | "
+                     f"{float(ds.record_pga.values[k]):.3f} | " + " | ".join(cells) + " |")
+    lines.append("")
+    lines.append(f"Threshold: smallest scale that overturns the block, every lower stripe level shown safe, bisected "
+                 f"to {ds.attrs['threshold_resolution']:g} in {ds.attrs['intensity_measure_definition']}. "
+                 "* : the record as recorded (scale <= 1) already overturns the block.")
+    return "\n".join(lines) + "\n"
