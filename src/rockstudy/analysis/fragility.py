@@ -43,6 +43,12 @@ INTENSITY_MEASURES = {
 }
 """Intensity measures a suite can be scaled to, with their definition (dimensionless)."""
 
+SUITE_DEFAULTS = {"intensity_measure": "pga_ratio", "intensity_levels": {"start": 0.5, "stop": 12.0, "step": 0.25},
+                  "threshold_resolution": 0.01, "bootstrap": 200, "seed": 20190101}
+"""The study's settings of a record set's fragility (``beyond.fragility`` of config.yaml states the same
+values): the intensity measure, its stripe levels, the threshold resolution [IM], the bootstrap draws and
+their seed. ``rockstudy fragility`` takes them as its defaults."""
+
 
 def intensity(record: Record, block: Block, measure: str = "pga_ratio") -> float:
     """The intensity measure of an unscaled record for ``block`` (see :data:`INTENSITY_MEASURES`). [-]"""

@@ -24,7 +24,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize, special, stats
+from scipy import special
 
 BOOTSTRAP_KEY = 1302
 """Spawn key of the bootstrap's seed sequence."""
@@ -66,11 +66,15 @@ class FragilityFit:
 
     def median_interval(self, level: float = 0.95) -> tuple[float, float]:
         """Wald interval exp(ln θ ± z·se) for the median. [IM]"""
+        from scipy import stats  # imported on use: the command line's parsers load this module
+
         z = stats.norm.ppf(0.5 + level / 2)
         return (self.median * math.exp(-z * self.log_median_se), self.median * math.exp(z * self.log_median_se))
 
     def probability(self, x) -> np.ndarray:
         """Fitted P(overturn | IM = x), Eq. F1. [-]"""
+        from scipy import stats
+
         x = np.asarray(x, dtype=float)
         with np.errstate(divide="ignore"):
             return stats.norm.cdf(np.log(x / self.median) / self.dispersion)
@@ -159,6 +163,8 @@ def fit_lognormal(im, n_total, n_overturned) -> FragilityFit:
         return value, np.array([grad[0], grad[1] * math.exp(x[1])])
 
     lo, hi = DISPERSION_BOUNDS
+    from scipy import optimize
+
     res = optimize.minimize(in_log_beta, x0=[math.log(start_median), math.log(0.4)], jac=True, method="BFGS")
     log_median, beta = res.x[0], math.exp(res.x[1])
     if not lo < beta < hi:  # separated (β → 0) or flat (β → ∞) stripes: no interior maximum

@@ -375,6 +375,8 @@ def build_parser() -> argparse.ArgumentParser:
                          "free_time_s or block_width; 'all': any); repeatable. Without it, spectra made under "
                          "different excitations, criteria, free times, noise readings, seeds, numbers of "
                          "realisations, blocks, devices or amplitude scans are refused")
+    from rockstudy.cli import risk
+    risk.register(sub)
     return parser
 
 
@@ -726,6 +728,8 @@ def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
     args = parser.parse_args(argv)
     _apply_config(args, argv, parser)
+    if getattr(args, "run", None) is not None:  # command groups in modules of their own (register + run)
+        return args.run(args, parser) or 0
     {"simulate": _cmd_simulate, "threshold": _cmd_threshold, "spectrum": _cmd_spectrum, "jos": _cmd_jos,
      "records": _cmd_records}[
         args.command](args, parser)
