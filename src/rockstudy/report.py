@@ -324,3 +324,55 @@ def threshold_markdown(ds: xr.Dataset) -> str:
                  f"to {ds.attrs['threshold_resolution']:g} in {ds.attrs['intensity_measure_definition']}. "
                  "* : the record as recorded (scale <= 1) already overturns the block.")
     return "\n".join(lines) + "\n"
+
+
+# --- the risk table (Markdown) ------------------------------------------------------------------------
+def _percent(p: float) -> str:
+    return "—" if not np.isfinite(p) else (f"{100 * p:.3g} %" if p >= 1e-4 else f"{p:.2e}")
+
+
+def risk_markdown(ds: xr.Dataset) -> str:
+    """Markdown table of a record set's risk (:func:`rockstudy.analysis.risk.risk_dataset`): per strategy the
+    fragility used, P(overturn | scenario) for each scenario, and the annual rate and T-year probability
+    for each hazard curve, each with its reduction over FS and the range that the median's 95 % interval
+    gives."""
+    strategies = [str(s) for s in ds.strategy.values]
+    head = ["strategy", "median θ [g] (95 % CI)", "β"]
+    rows = []
+    for i, s in enumerate(strategies):
+        low = float(ds["median_low"].values[i]) if "median_low" in ds else math.nan
+        high = float(ds["median_high"].values[i]) if "median_high" in ds else math.nan
+        rows.append([s, f"{float(ds.fragility_median.values[i]):.3f} ({low:.3f}–{high:.3f})",
+                     f"{float(ds.fragility_dispersion.values[i]):.2f}"])
+    notes = []
+    for j, name in enumerate(ds["scenario"].values if "scenario" in ds.coords else []):
+        head += [f"P(overturn) in {name}", f"reduction over FS ({name})"]
+        for i in range(len(strategies)):
+            p = float(ds.scenario_probability.values[i, j])
+            rng = (_percent(float(ds.scenario_probability_low.values[i, j])),
+                   _percent(float(ds.scenario_probability_high.values[i, j])))
+            rows[i] += [f"{_percent(p)} ({rng[0]}–{rng[1]})",
+                        f"{float(ds.scenario_reduction_percent.values[i, j]):+.0f} %"]
+        notes.append(f"{name}: {ds.attrs['gmm']} median PGA {float(ds.median_pga.values[j]):.3f} g, σ_ln "
+                     f"{float(ds.ln_std_pga.values[j]):.2f}; scenario {ds.scenario_values.values[j]}.")
+    years = ds.attrs["years"]
+    for j, name in enumerate(ds["hazard"].values if "hazard" in ds.coords else []):
+        head += [f"λ [1/yr] ({name})", f"P in {years:g} yr ({name})", f"reduction over FS ({name})"]
+        for i in range(len(strategies)):
+            rng = (_percent(float(ds.probability_low.values[i, j])), _percent(float(ds.probability_high.values[i, j])))
+            rows[i] += [f"{float(ds.annual_rate.values[i, j]):.3g}",
+                        f"{_percent(float(ds.probability.values[i, j]))} ({rng[0]}–{rng[1]})",
+                        f"{float(ds.reduction_percent.values[i, j]):+.0f} %"]
+        share = float(np.nanmax(ds.tail_share.values[:, j]))
+        notes.append(f"{name}: hazard curve {ds.hazard_source.values[j]}; at most {100 * share:.2g} % of a rate "
+                     "comes from outside the curve's points (its end segments extended log-log)"
+                     + (" — more than 1 %: give the curve over a wider range of PGA." if share > 0.01 else "."))
+    lines = ["| " + " | ".join(head) + " |", "|---" * len(head) + "|"]
+    lines += ["| " + " | ".join(r) + " |" for r in rows]
+    lines += ["", "The fragility is the stripes' lognormal fit in PGA (the probability of overturning at each PGA "
+              "level, which is what the risk needs); the fit of the records' thresholds (each record's first "
+              "overturning scale) describes another curve, since overturning is not monotone in the scale. "
+              "In brackets: the probability with the median at the ends of its 95 % interval (how much the answer "
+              "rests on the few records behind the median).", ""]
+    lines += [f"- {n}" for n in notes]
+    return "\n".join(lines) + "\n"

@@ -133,3 +133,29 @@ def test_fragility_from_a_dataset():
         fragility_from_dataset(ds, "CS02")
     with pytest.raises(ValueError, match="not a PGA"):
         fragility_from_dataset(ds.drop_vars("fragility_median_physical"), "FS")
+
+
+def test_risk_dataset_and_table():
+    """Two strategies' fragilities on a power-law site and a scenario (needs pygmm): Cornell's rate, the
+    reduction over FS, the range from the median's interval, and one table row per strategy."""
+    pytest.importorskip("pygmm")
+    from rockstudy.analysis.risk import risk_dataset
+    from rockstudy.report import risk_markdown
+    fragility = xr.Dataset({"fragility_median_physical": ("strategy", [0.5, 0.8], {"units": "g"}),
+                            "median_low_physical": ("strategy", [0.4, 0.7], {"units": "g"}),
+                            "median_high_physical": ("strategy", [0.6, 0.9], {"units": "g"}),
+                            "fragility_median": ("strategy", [2.0, 3.2], {"units": "1"}),
+                            "fragility_dispersion": ("strategy", [0.4, 0.4])},
+                           coords={"strategy": ["FS", "CS01"]}, attrs={"record_suite": "test"})
+    ds = risk_dataset(fragility, scenarios={"M7": {"mag": 7, "dist_rup": 10, "v_s30": 400}},
+                      hazard_curves={"site": power_law()}, years=50)
+    rate = ds.annual_rate.sel(hazard="site").values
+    np.testing.assert_allclose(rate, [cornell(0.5, 0.4), cornell(0.8, 0.4)], rtol=0.01)
+    assert float(ds.reduction_percent.sel(strategy="CS01", hazard="site")) == pytest.approx(
+        100 * (1 - (0.8 / 0.5) ** -K), rel=1e-9)  # same β: the rates' ratio is (θ/θ_FS)^-k
+    p = ds.scenario_probability.values[:, 0]
+    assert ds.scenario_probability_low.values[0, 0] < p[0] < ds.scenario_probability_high.values[0, 0]
+    assert ds.disaggregation.sel(hazard="site").sum("pga_band").values == pytest.approx([1.0, 1.0])
+    table = risk_markdown(ds)
+    assert sum(line.startswith(("| FS |", "| CS01 |")) for line in table.splitlines()) == 2
+    assert "stripes' lognormal fit" in table

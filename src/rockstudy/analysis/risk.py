@@ -388,3 +388,179 @@ def scenario_risk(fragility: LognormalFragility, scenario: dict, gmm: str | None
     median, sigma, used = pga(scenario, gmm)
     return ScenarioRisk(gmm=gmm, scenario=used, median_pga_g=median, ln_std=sigma,
                         probability=scenario_probability(fragility, median, sigma), fragility=fragility)
+
+
+# --- the study's dataset: every strategy of a record set at every site -------------------------------
+BAND_EDGES_G = (0.05, 0.1, 0.2, 0.4, 0.8, 1.6)
+"""Inner PGA band edges of the study's disaggregation (0 and inf added). [g]"""
+
+
+def risk_dataset(fragility: xr.Dataset, *, scenarios=None, hazard_curves=None, years: float = DEFAULT_YEARS,
+                 gmm: str = DEFAULT_GMM) -> xr.Dataset:
+    """Risk of overturning of every strategy of a record set's fragility at every site.
+
+    Parameters
+    ----------
+    fragility : xarray.Dataset
+        A record set's fragility in PGA (:func:`rockstudy.analysis.fragility.suite_fragility_dataset`), FS
+        among its strategies; each strategy's lognormal fit of the stripes is used (:func:`fragility_from_dataset`).
+    scenarios : dict of str to dict, optional
+        Named earthquake scenarios (:func:`rockstudy.analysis.ground_motion.check_scenario`).
+    hazard_curves : dict of str to HazardCurve, optional
+        Named hazard curves.
+    years : float
+        Exposure time T of the probabilities. [yr]
+    gmm : str
+        Ground-motion model of the scenarios.
+
+    Returns
+    -------
+    xarray.Dataset
+        Per strategy the fragility used; per scenario the model's median PGA and ln standard deviation and
+        per (strategy, scenario) P(overturn | scenario) (Eq. R3) and its reduction over FS; per hazard curve
+        its points, and per (strategy, hazard) the annual rate (Eq. R1), the probability in T years (Eq. R2),
+        the reduction over FS, the share from outside the curve and the disaggregation over
+        :data:`BAND_EDGES_G`.
+    """
+    import json
+
+    import xarray as xr
+
+    from rockstudy._version import __version__
+    from rockstudy.analysis.ground_motion import pga
+    scenarios, hazard_curves = dict(scenarios or {}), dict(hazard_curves or {})
+    if not scenarios and not hazard_curves:
+        raise validation.InputError("give at least one scenario or hazard curve")
+    years = RISK_INPUTS["years"].check("years", years)
+    strategies = [str(s) for s in fragility["strategy"].values]
+    if "FS" not in strategies:
+        raise validation.InputError(f"the fragility needs FS (the reference of the reduction), got {strategies}")
+    fits = {s: fragility_from_dataset(fragility, s) if _finite_fit(fragility, s) else None for s in strategies}
+    nan = math.nan
+    ds = xr.Dataset(coords={"strategy": ("strategy", strategies, {"long_name": "control strategy"})})
+    ds["fragility_median"] = ("strategy", [f.median_g if f else nan for f in fits.values()], {
+        "units": "g", "long_name": "fragility median PGA used: the stripes' lognormal fit (MLE of P(overturn) at "
+                                  "each stripe level)"})
+    ds["fragility_dispersion"] = ("strategy", [f.dispersion if f else nan for f in fits.values()],
+                                  {"units": "1", "long_name": "fragility dispersion beta used (the stripes' fit)"})
+    for name in ("median_low_physical", "median_high_physical"):
+        if name in fragility:
+            ds[name.removesuffix("_physical")] = ("strategy", fragility[name].values.astype(float), {
+                "units": "g", "long_name": f"95 % Wald interval of the median, {name.split('_')[1]}"})
+    if scenarios:
+        names = list(scenarios)
+        ground = [pga(scenarios[n], gmm) for n in names]
+        p = np.array([[scenario_probability(fits[s], g[0], g[1]) if fits[s] else nan for g in ground]
+                      for s in strategies])
+        ds = ds.assign_coords(scenario=("scenario", names, {"long_name": "earthquake scenario"}))
+        ds["scenario_values"] = ("scenario", [json.dumps(g[2], sort_keys=True) for g in ground],
+                                 {"long_name": f"every scenario value {gmm} used (JSON), defaults included"})
+        ds["median_pga"] = ("scenario", [g[0] for g in ground], {"units": "g", "long_name": f"median PGA ({gmm})"})
+        ds["ln_std_pga"] = ("scenario", [g[1] for g in ground],
+                            {"units": "1", "long_name": f"standard deviation of ln PGA ({gmm})"})
+        ds["scenario_probability"] = (("strategy", "scenario"), p, {
+            "units": "1", "long_name": "P(overturn | scenario) = Phi((ln mu - ln theta)/sqrt(beta^2 + sigma^2))"})
+        lo, hi = _probability_range(fits, ds, strategies, lambda f: [scenario_probability(f, g[0], g[1])
+                                                                     for g in ground], len(names))
+        ds["scenario_probability_low"] = (("strategy", "scenario"), lo, {
+            "units": "1", "long_name": "P(overturn | scenario) with the median at the high end of its 95 % interval"})
+        ds["scenario_probability_high"] = (("strategy", "scenario"), hi, {
+            "units": "1", "long_name": "P(overturn | scenario) with the median at the low end of its 95 % interval"})
+        ds["scenario_reduction_percent"] = (("strategy", "scenario"), 100 * (1 - p / p[strategies.index("FS")]), {
+            "units": "percent", "long_name": "reduction of P(overturn | scenario) over FS, 100 (1 - P/P_FS)"})
+    if hazard_curves:
+        names = list(hazard_curves)
+        n_points = max(h.pga_g.size for h in hazard_curves.values())
+        points = np.full((len(names), 2, n_points), nan)
+        rate, tail = np.full((len(strategies), len(names)), nan), np.full((len(strategies), len(names)), nan)
+        bands = np.full((len(strategies), len(names), len(BAND_EDGES_G) + 1), nan)
+        for j, name in enumerate(names):
+            h = hazard_curves[name]
+            points[j, 0, :h.pga_g.size], points[j, 1, :h.pga_g.size] = h.pga_g, h.annual_rate
+            for i, s in enumerate(strategies):
+                if fits[s] is None:
+                    continue
+                result = annual_rate(fits[s], h, band_edges_g=BAND_EDGES_G, warn=False)
+                rate[i, j], tail[i, j], bands[i, j] = result.annual_rate, result.tail_share, result.band_share
+        edges = np.array((0.0,) + BAND_EDGES_G + (np.inf,))
+        ds = ds.assign_coords(hazard=("hazard", names, {"long_name": "hazard curve"}),
+                              pga_band_low=("pga_band", edges[:-1], {"units": "g", "long_name": "PGA band, low"}),
+                              pga_band_high=("pga_band", edges[1:], {"units": "g", "long_name": "PGA band, high"}))
+        ds["hazard_pga"] = (("hazard", "hazard_point"), points[:, 0], {"units": "g", "long_name": "PGA of the "
+                            "hazard curve's points (NaN: padding)"})
+        ds["hazard_rate"] = (("hazard", "hazard_point"), points[:, 1], {"units": "1/yr", "long_name": "annual rate "
+                             "of exceedance of the hazard curve's points (NaN: padding)"})
+        ds["hazard_source"] = ("hazard", [hazard_curves[n].source for n in names], {"long_name": "hazard file"})
+        ds["annual_rate"] = (("strategy", "hazard"), rate, {
+            "units": "1/yr", "long_name": "mean annual frequency of overturning, integral of P(overturn|x) "
+                                          "|d lambda_IM(x)|, the curve's end segments extended log-log"})
+        ds["probability"] = (("strategy", "hazard"), -np.expm1(-rate * years), {
+            "units": "1", "long_name": f"probability of overturning in {years:g} years, 1 - exp(-lambda T)"})
+        lo, hi = _probability_range(fits, ds, strategies, lambda f: [
+            -math.expm1(-annual_rate(f, hazard_curves[n], warn=False).annual_rate * years) for n in names], len(names))
+        ds["probability_low"] = (("strategy", "hazard"), lo, {
+            "units": "1", "long_name": f"probability in {years:g} years with the median at the high end of its 95 % "
+                                       "interval"})
+        ds["probability_high"] = (("strategy", "hazard"), hi, {
+            "units": "1", "long_name": f"probability in {years:g} years with the median at the low end of its 95 % "
+                                       "interval"})
+        ds["reduction_percent"] = (("strategy", "hazard"), 100 * (1 - rate / rate[strategies.index("FS")]), {
+            "units": "percent", "long_name": "reduction of the annual rate of overturning over FS"})
+        ds["tail_share"] = (("strategy", "hazard"), tail, {"units": "1", "long_name": "share of the annual rate "
+                            "from below the curve's first point and beyond its last"})
+        ds["disaggregation"] = (("strategy", "hazard", "pga_band"), bands, {
+            "units": "1", "long_name": "share of the annual rate of overturning from each PGA band"})
+    ds.attrs = {"title": f"Risk of overturning on {fragility.attrs.get('record_suite', 'a record set')}: every "
+                         "strategy at every site",
+                "rockstudy_version": __version__, "record_suite": fragility.attrs.get("record_suite", ""),
+                "years": years, "gmm": gmm, "hazard_extension": DEFAULT_EXTENSION,
+                "fragility_used": "the stripes' lognormal fit in PGA (P(overturn) at each PGA level, what the "
+                                  "hazard integral needs); the fit of the records' thresholds describes their first "
+                                  "overturning instead, and overturning is not monotone in the scale",
+                "method": "Eq. R1: exact integral on the log-log interpolated hazard curve (Cornell et al. 2002); "
+                          "Eq. R2: Poisson; Eq. R3: lognormal fragility and lognormal ground motion",
+                **{k: v for k, v in fragility.attrs.items() if k.startswith(("block_", "anchorage_"))}}
+    return ds
+
+
+def _probability_range(fits, ds, strategies, probabilities, n_sites):
+    """Probabilities with each fragility's median at the ends of its 95 % interval (NaN without one)."""
+    lo, hi = np.full((len(strategies), n_sites), math.nan), np.full((len(strategies), n_sites), math.nan)
+    if "median_low" not in ds:
+        return lo, hi
+    for i, s in enumerate(strategies):
+        low, high = float(ds["median_low"].values[i]), float(ds["median_high"].values[i])
+        if fits[s] is None or not (math.isfinite(low) and math.isfinite(high)):
+            continue
+        lo[i] = probabilities(LognormalFragility(high, fits[s].dispersion))
+        hi[i] = probabilities(LognormalFragility(low, fits[s].dispersion))
+    return lo, hi
+
+
+def _finite_fit(ds: xr.Dataset, strategy: str) -> bool:
+    return bool(np.isfinite(float(ds["fragility_dispersion"].sel(strategy=strategy)))
+                and np.isfinite(float(ds["fragility_median"].sel(strategy=strategy))))
+
+
+def check_config(section: dict, key: str = "risk") -> dict:
+    """The config's ``risk:`` section (after its schema, :func:`rockstudy.analysis.risk_inputs.config_schema`):
+    every scenario complete and in range, every hazard file readable. Returns the hazard curves by name.
+
+    Raises
+    ------
+    ValueError
+        (:class:`~rockstudy.core.validation.InputError`) naming ``<key>.<entry>``.
+    """
+    from rockstudy.analysis.ground_motion import check_scenario
+    from rockstudy.analysis.hazard import read_hazard_curve
+    from rockstudy.analysis.risk_inputs import GMMS
+    RISK_INPUTS["years"].check(f"{key}.years", section.get("years", DEFAULT_YEARS))
+    gmm = section.get("gmm", DEFAULT_GMM)
+    if gmm not in GMMS:
+        raise validation.InputError(f"{key}.gmm = {gmm!r} is not allowed: one of {', '.join(GMMS)}")
+    scenarios, curves = section.get("scenarios") or {}, section.get("hazard_curves") or {}
+    if not scenarios and not curves:
+        raise validation.InputError(f"{key}: give at least one scenario or hazard curve")
+    for name, scenario in scenarios.items():
+        check_scenario(scenario, f"{key}.scenarios.{name}")
+    return {name: read_hazard_curve(path, f"{key}.hazard_curves.{name}") for name, path in curves.items()}

@@ -71,8 +71,6 @@ DEFAULT_GMM = "ASK14"
 """The ground-motion model used unless another is named."""
 DEFAULT_YEARS = 50.0
 """Exposure time of the probabilities. [yr]"""
-DEFAULT_SCENARIO = {"mag": 7.0, "dist_rup": 10.0, "v_s30": 400.0}
-"""The study's scenario unless the config names others: M 7 at 10 km from the rupture on firm soil."""
 MAX_SCENARIOS = 100
 """Most scenarios (and hazard curves) of a study."""
 
