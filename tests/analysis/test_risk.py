@@ -135,7 +135,7 @@ def test_fragility_from_a_dataset():
         fragility_from_dataset(ds.drop_vars("fragility_median_physical"), "FS")
 
 
-def test_risk_dataset_and_table():
+def test_risk_dataset_and_table(tmp_path):
     """Two strategies' fragilities on a power-law site and a scenario (needs pygmm): Cornell's rate, the
     reduction over FS, the range from the median's interval, and one table row per strategy."""
     pytest.importorskip("pygmm")
@@ -159,3 +159,8 @@ def test_risk_dataset_and_table():
     table = risk_markdown(ds)
     assert sum(line.startswith(("| FS |", "| CS01 |")) for line in table.splitlines()) == 2
     assert "stripes' lognormal fit" in table
+    pytest.importorskip("compliance_checker")
+    from compliance import high_priority_findings
+    from rockstudy.core import io
+    io.write_netcdf(ds, tmp_path / "risk.nc")
+    assert high_priority_findings(tmp_path / "risk.nc") == []
