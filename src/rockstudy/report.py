@@ -321,7 +321,10 @@ def threshold_markdown(ds: xr.Dataset) -> str:
                      f"{float(ds.record_pga.values[k]):.3f} | " + " | ".join(cells) + " |")
     lines.append("")
     lines.append(f"Threshold: smallest scale that overturns the block, every lower stripe level shown safe, bisected "
-                 f"to {ds.attrs['threshold_resolution']:g} in {ds.attrs['intensity_measure_definition']}. "
+                 f"to {ds.attrs['threshold_resolution']:g} in {ds.attrs['intensity_measure_definition']}: the first "
+                 "overturning the upward scan finds. Overturning is not monotone in the scale, so a record may "
+                 "leave the block standing at a higher scale, and narrower overturning windows between the stripe "
+                 "levels below it are not searched. "
                  "* : the record as recorded (scale <= 1) already overturns the block.")
     return "\n".join(lines) + "\n"
 
@@ -337,13 +340,19 @@ def risk_markdown(ds: xr.Dataset) -> str:
     for each hazard curve, each with its reduction over FS and the range that the median's 95 % interval
     gives."""
     strategies = [str(s) for s in ds.strategy.values]
-    head = ["strategy", "median θ [g] (95 % CI)", "β"]
+    head = ["strategy", "stripes' fit: median θ [g] (95 % CI)", "β"]
+    thresholds = "threshold_fit_median" in ds
+    if thresholds:
+        head.append("thresholds' fit: θ [g], β (not used)")
     rows = []
     for i, s in enumerate(strategies):
         low = float(ds["median_low"].values[i]) if "median_low" in ds else math.nan
         high = float(ds["median_high"].values[i]) if "median_high" in ds else math.nan
         rows.append([s, f"{float(ds.fragility_median.values[i]):.3f} ({low:.3f}–{high:.3f})",
                      f"{float(ds.fragility_dispersion.values[i]):.2f}"])
+        if thresholds:
+            rows[-1].append(f"{float(ds.threshold_fit_median.values[i]):.3f}, "
+                            f"{float(ds.threshold_fit_dispersion.values[i]):.2f}")
     notes = []
     for j, name in enumerate(ds["scenario"].values if "scenario" in ds.coords else []):
         head += [f"P(overturn) in {name}", f"reduction over FS ({name})"]
@@ -369,9 +378,10 @@ def risk_markdown(ds: xr.Dataset) -> str:
                      + (" — more than 1 %: give the curve over a wider range of PGA." if share > 0.01 else "."))
     lines = ["| " + " | ".join(head) + " |", "|---" * len(head) + "|"]
     lines += ["| " + " | ".join(r) + " |" for r in rows]
-    lines += ["", "The fragility is the stripes' lognormal fit in PGA (the probability of overturning at each PGA "
-              "level, which is what the risk needs); the fit of the records' thresholds (each record's first "
-              "overturning scale) describes another curve, since overturning is not monotone in the scale. "
+    lines += ["", "The risk uses the stripes' lognormal fit in PGA: the probability of overturning at each PGA "
+              "level, which is what the risk needs. The fit of the records' thresholds (each record's first "
+              "overturning scale, found by the upward scan) describes another curve, since overturning is not "
+              "monotone in the scale: a record may overturn the block at one scale and not at a higher one. "
               "In brackets: the probability with the median at the ends of its 95 % interval (how much the answer "
               "rests on the few records behind the median).", ""]
     lines += [f"- {n}" for n in notes]

@@ -17,7 +17,7 @@ def test_loglog_interpolation_is_exact_for_a_power_law_and_inverts():
 def test_hazard_file_comma_or_spaces_with_comments(tmp_path):
     path = tmp_path / "site.txt"
     path.write_text("# PGA [g], annual rate [1/yr]\n0.01, 2e-2\n\n0.1 3e-3  # a comment\n1.0\t1e-5\n")
-    curve = read_hazard_curve(path)
+    curve = read_hazard_curve(path, "site")
     np.testing.assert_array_equal(curve.pga_g, [0.01, 0.1, 1.0])
     np.testing.assert_array_equal(curve.annual_rate, [2e-2, 3e-3, 1e-5])
     assert curve.source == str(path)

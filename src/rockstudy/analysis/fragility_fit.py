@@ -218,3 +218,65 @@ def bootstrap_median_ratios(levels, overturned, reference: int, n_boot: int, rng
         medians = np.array([fit_lognormal(levels, n_total, counts[c]).median for c in range(n_controls)])
         ratios[b] = medians / medians[reference]
     return ratios
+
+
+def fit_lognormal_thresholds(thresholds, censored_above) -> FragilityFit:
+    """Lognormal MLE of per-record thresholds, right-censored where a record has none.
+
+    A threshold t_r is the smallest intensity at which record r overturns the block; where the scan
+    found none (NaN) the threshold is only known to lie above ``censored_above[r]``, the highest level
+    run. ln L = Σ_found [ln φ(z_r) − ln β − ln t_r] + Σ_censored ln(1 − Φ(z_r)), z = ln(t/θ)/β.
+
+    Parameters
+    ----------
+    thresholds : array_like
+        t_r, > 0, NaN where none was found. [IM]
+    censored_above : array_like
+        For each record, the level its threshold lies above when it is NaN. [IM]
+
+    Returns
+    -------
+    FragilityFit
+        θ and β of the thresholds' distribution (``status`` as for :func:`fit_lognormal`; "no overturning"
+        when no record has a threshold, "separated" when all thresholds are equal).
+    """
+    t = np.asarray(thresholds, dtype=float).ravel()
+    c = np.asarray(censored_above, dtype=float).ravel()
+    if t.shape != c.shape or t.size < 1:
+        raise ValueError("thresholds and censored_above must have one value per record")
+    found = np.isfinite(t)
+    if np.any(t[found] <= 0) or np.any(~np.isfinite(c[~found])) or np.any(c[~found] <= 0):
+        raise ValueError("thresholds must be > 0 (or NaN) and every censoring level finite and > 0")
+    nan2 = np.full((2, 2), np.nan)
+    if not found.any():
+        return FragilityFit(math.nan, math.nan, math.nan, math.nan, nan2, 0.0, "no overturning")
+    log_t, log_c = np.log(t[found]), np.log(c[~found])
+    if found.all() and np.ptp(log_t) == 0:
+        return FragilityFit(float(t[found][0]), 0.0, math.nan, math.nan, nan2, 0.0, "separated")
+
+    def nll(x):  # x = (ln θ, ln β)
+        log_median, beta = x[0], math.exp(x[1])
+        z = (log_t - log_median) / beta
+        return -float(np.sum(-0.5 * z * z - 0.5 * math.log(2 * math.pi) - math.log(beta) - log_t)
+                      + np.sum(special.log_ndtr(-(log_c - log_median) / beta)))
+
+    from scipy import optimize
+
+    start_beta = float(np.std(log_t)) if log_t.size > 1 and np.ptp(log_t) > 0 else 0.4
+    res = optimize.minimize(nll, x0=[float(np.mean(log_t)), math.log(start_beta)], method="Nelder-Mead",
+                            options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000})
+    log_median, beta = float(res.x[0]), math.exp(float(res.x[1]))
+    lo, hi = DISPERSION_BOUNDS
+    status = "ok" if lo < beta < hi else "at bound"
+    beta = min(max(beta, lo), hi)
+    cov, se = nan2, (math.nan, math.nan)
+    if status == "ok":
+        def in_beta(x):
+            return nll((x[0], math.log(x[1])))
+        hess = _hessian(in_beta, np.array([log_median, beta]), np.array([1e-4, 1e-4 * beta]))
+        if np.all(np.linalg.eigvalsh(hess) > 0):
+            cov = np.linalg.inv(hess)
+            se = (math.sqrt(cov[0, 0]), math.sqrt(cov[1, 1]))
+        else:
+            status = "no curvature"
+    return FragilityFit(math.exp(log_median), beta, se[0], se[1], cov, -float(res.fun), status)

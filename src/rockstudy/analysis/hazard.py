@@ -20,6 +20,7 @@ References
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from dataclasses import dataclass, field
@@ -142,4 +143,4 @@ def read_hazard_curve(path, name: str | None = None) -> HazardCurve:
         text = Path(path).read_text(encoding="utf-8")
     except UnicodeDecodeError:
         raise HazardFileError(f"{name}: not a text file (UTF-8)") from None
-    return parse_hazard_text(text, str(name))
+    return dataclasses.replace(parse_hazard_text(text, str(name)), source=str(path))

@@ -447,6 +447,13 @@ def risk_dataset(fragility: xr.Dataset, *, scenarios=None, hazard_curves=None, y
         if name in fragility:
             ds[name.removesuffix("_physical")] = ("strategy", fragility[name].values.astype(float), {
                 "units": "g", "long_name": f"95 % Wald interval of the median, {name.split('_')[1]}"})
+    if "threshold_pga" in fragility and "record_pga" in fragility.coords:
+        thr = [threshold_fit(fragility, s) for s in strategies]
+        ds["threshold_fit_median"] = ("strategy", [f.median for f in thr], {
+            "units": "g", "long_name": "median of the records' threshold PGA (lognormal MLE, censored where a record "
+                                       "does not overturn the block up to the last level); not used by the risk"})
+        ds["threshold_fit_dispersion"] = ("strategy", [f.dispersion for f in thr], {
+            "units": "1", "long_name": "dispersion of the records' threshold PGA (lognormal MLE)"})
     if scenarios:
         names = list(scenarios)
         ground = [pga(scenarios[n], gmm) for n in names]
@@ -521,6 +528,20 @@ def risk_dataset(fragility: xr.Dataset, *, scenarios=None, hazard_curves=None, y
                           "Eq. R2: Poisson; Eq. R3: lognormal fragility and lognormal ground motion",
                 **{k: v for k, v in fragility.attrs.items() if k.startswith(("block_", "anchorage_"))}}
     return ds
+
+
+def threshold_fit(fragility: xr.Dataset, strategy: str):
+    """Lognormal fit of a record set's per-record threshold PGA [g] for ``strategy``
+    (:func:`rockstudy.analysis.fragility_fit.fit_lognormal_thresholds`), a record without a threshold
+    censored at its PGA at the last stripe level.
+
+    It describes the first overturning of each record along its scale, not P(overturn | PGA): a record
+    may overturn the block at one scale and not at a higher one, so it differs from the stripes' fit
+    that the risk uses."""
+    from rockstudy.analysis.fragility_fit import fit_lognormal_thresholds
+    top_pga = (float(fragility["intensity"].values[-1]) / fragility["record_intensity"].values
+               * fragility["record_pga"].values)
+    return fit_lognormal_thresholds(fragility["threshold_pga"].sel(strategy=strategy).values, top_pga)
 
 
 def _probability_range(fits, ds, strategies, probabilities, n_sites):
