@@ -5,17 +5,12 @@ import json
 from rockstudy.analysis import risk
 from rockstudy.cli import main
 from rockstudy.core import io
-from test_docs import DOCS, blocks, commands
+from test_docs import DOCS, commands, run_python_blocks
 
 
 def test_risk_page_examples_run(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
-    namespace: dict = {"__name__": "risk_page"}
-    for i, code in enumerate(blocks(DOCS / "risk.md", "python")):
-        try:
-            exec(compile(code, f"docs/risk.md, python block {i + 1}", "exec"), namespace)
-        except Exception as exc:  # name the block in the failure
-            raise AssertionError(f"docs/risk.md, python block {i + 1} failed: {exc!r}\n{code}") from exc
+    namespace = run_python_blocks(DOCS / "risk.md", "risk_page")
     printed = capsys.readouterr().out
     assert "% in 50 years" in printed and "the device lowers the rate by" in printed
     outputs = []
