@@ -49,6 +49,7 @@ include: "workflow/rules/spectra.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/reproduction.smk"
 include: "workflow/rules/beyond.smk"
+include: "workflow/rules/risk.smk"
 include: "workflow/rules/report.smk"
 include: "workflow/rules/design.smk"
 

@@ -15,10 +15,10 @@ import os
 
 import yaml
 
+from rockstudy.analysis.jos import jos
 from rockstudy.analysis.spectra import spectrum
 from rockstudy.core.io import read_netcdf, write_netcdf
 from rockstudy.studies import parameters
-from rockstudy.studies.tables import jos_of
 
 
 def spectrum_file(cfg, out, strategy, level, band, n):
@@ -57,11 +57,11 @@ def main():
         cs_free = spectrum_file(cfg, args.out, "CS02", free, band, 1)
         cs = {lvl: spectrum_file(cfg, args.out, "CS02", lvl, band, n) for lvl in noisy}
         references = ({lvl: cs_free for lvl in noisy}, {lvl: ideal_free for lvl in noisy}, fs)
-        cells = [[jos_of(cs[lvl], ref[lvl], a_max0)[0] for lvl in noisy] for ref in references]
+        cells = [[jos(cs[lvl], ref[lvl], a_max0).j_os for lvl in noisy] for ref in references]
         row = [" / ".join(f"{x:+.2f}" for x in c) for c in cells]
-        j_free = jos_of(cs_free, ideal_free, a_max0)[0]
+        j_free = jos(cs_free, ideal_free, a_max0).j_os
         print(f"| {'ideal' if band is None else f'{band:g}'} | " + " | ".join(row) + f" | {j_free:+.2f} |")
-    print("\nFS vs no noise: " + " / ".join(f"{jos_of(fs[lvl], fs[free], a_max0)[0]:+.2f}" for lvl in noisy)
+    print("\nFS vs no noise: " + " / ".join(f"{jos(fs[lvl], fs[free], a_max0).j_os:+.2f}" for lvl in noisy)
           + f"  (N = {n} realisations, a_max,0 = {a_max0:g} g)")
 
 

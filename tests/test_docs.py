@@ -35,6 +35,18 @@ def commands(path: Path, program: str = "rockstudy") -> list[list[str]]:
     return found
 
 
+def run_python_blocks(path: Path, name: str) -> dict:
+    """Every Python block of a page, in order and in one namespace (returned); a failure names the block."""
+    namespace: dict = {"__name__": name}
+    for i, code in enumerate(blocks(path, "python")):
+        where = f"{path.parent.name}/{path.name}, python block {i + 1}"
+        try:
+            exec(compile(code, where, "exec"), namespace)
+        except Exception as exc:  # name the block in the failure
+            raise AssertionError(f"{where} failed: {exc!r}\n{code}") from exc
+    return namespace
+
+
 def env_with_package() -> dict:
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join([str(ROOT / "src"), env.get("PYTHONPATH", "")])
@@ -66,12 +78,7 @@ def test_guide_examples_run(tmp_path, monkeypatch, capsys):
     """Every Python block of the usage guide, in order and in one namespace, then every `rockstudy` command
     (they read the files the blocks wrote: the guide is one session)."""
     monkeypatch.chdir(tmp_path)
-    namespace: dict = {"__name__": "usage_guide"}
-    for i, code in enumerate(blocks(DOCS / "usage.md", "python")):
-        try:
-            exec(compile(code, f"docs/usage.md, python block {i + 1}", "exec"), namespace)
-        except Exception as exc:  # name the block in the failure
-            raise AssertionError(f"docs/usage.md, python block {i + 1} failed: {exc!r}\n{code}") from exc
+    run_python_blocks(DOCS / "usage.md", "usage_guide")
     printed = capsys.readouterr().out
     assert "J_OS(CS01 vs FS) =" in printed and "samples, PGA 0.30 g" in printed
     for args in commands(DOCS / "usage.md"):

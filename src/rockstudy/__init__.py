@@ -16,6 +16,8 @@ from rockstudy._version import __version__
 
 _PUBLIC = {
     "Scenario": "rockstudy.analysis.scenario",
+    "JosResult": "rockstudy.analysis.jos",
+    "jos": "rockstudy.analysis.jos",
     "AmplitudeGrid": "rockstudy.analysis.spectra",
     "ThresholdResult": "rockstudy.analysis.spectra",
     "frequency_grid": "rockstudy.analysis.spectra",
@@ -38,7 +40,7 @@ _SUBPACKAGES = ("analysis", "core", "engine", "model", "studies", "plotting", "r
 
 __all__ = ["Block", "BLOCK_PRESETS", "GRAVITY", "Anchorage", "Control", "STRATEGIES", "GroundMotion", "Outcome",
            "SimulationResult", "AmplitudeGrid", "Scenario", "frequency_grid", "simulate", "spectrum", "threshold",
-           "ThresholdResult",
+           "ThresholdResult", "jos", "JosResult",
            "__version__"]
 
 

@@ -265,3 +265,124 @@ def labels(result: str, paper: str = "") -> dict:
         Where it is in the paper ("Fig. 6", "Table 1"); empty: beyond the paper.
     """
     return {"result": f"{result} ({paper or 'beyond the paper'})"}
+
+
+# --- the fragility tables (Markdown) ---------------------------------------------------------------
+def fragility_markdown(ds: xr.Dataset) -> str:
+    """Markdown table of the fits: median (95 % interval), dispersion, median shift over FS (interval)."""
+    im = ds.attrs["intensity_measure_definition"]
+    lines = [f"| strategy | median θ of {im} (95 % CI) | dispersion β (± se) | θ/θ_FS (bootstrap 95 % CI) "
+             f"| median shift over FS | fit |", "|---|---|---|---|---|---|"]
+    for s in ds.strategy.values:
+        d = ds.sel(strategy=s)
+        lines.append(f"| {s} | {float(d.fragility_median):.3f} ({float(d.median_low):.3f}–{float(d.median_high):.3f}) "
+                     f"| {float(d.fragility_dispersion):.3f} ± {float(d.dispersion_se):.3f} "
+                     f"| {float(d.median_ratio):.3f} ({float(d.median_ratio_low):.3f}–{float(d.median_ratio_high):.3f})"
+                     f" | {float(d.median_shift_percent):+.1f} % | {str(d.fit_status.values)} |")
+    lines.append("")
+    lines.append(f"{ds.attrs['n_records']} records, {ds.sizes['intensity']} IM levels "
+                 f"({float(ds.intensity.min()):g}–{float(ds.intensity.max()):g}); "
+                 f"{ds.attrs['n_bootstrap']} bootstrap draws over records.")
+    return "\n".join(lines) + "\n"
+
+
+def suite_summary_markdown(rows) -> str:
+    """Markdown table of :func:`suite_summary`."""
+    from rockstudy.analysis.fragility import INTENSITY_MEASURES
+    if not rows:
+        return ""
+    r0 = rows[0]
+    lines = [f"| suite | strategy | median {INTENSITY_MEASURES[r0['intensity_measure']]} (95 % CI) | median "
+             f"[{r0['physical_unit']}] (95 % CI) | β ± se | median {INTENSITY_MEASURES[r0['other_measure']]} (95 % CI) "
+             "| θ/θ_FS (bootstrap 95 % CI) | shift over FS | fit |", "|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['suite']} | {r['strategy']} | {r['median']:.3f} ({r['median_low']:.3f}–"
+                     f"{r['median_high']:.3f}) | {r['median_physical']:.3f} ({r['median_physical_low']:.3f}–"
+                     f"{r['median_physical_high']:.3f}) | {r['dispersion']:.3f} ± {r['dispersion_se']:.3f} | "
+                     f"{r['median_other']:.3f} ({r['median_other_low']:.3f}–{r['median_other_high']:.3f}) | "
+                     f"{r['median_ratio']:.3f} ({r['median_ratio_low']:.3f}–{r['median_ratio_high']:.3f}) | "
+                     f"{r['median_shift_percent']:+.1f} % | {r['fit']} |")
+    return "\n".join(lines) + "\n"
+
+
+def threshold_markdown(ds: xr.Dataset) -> str:
+    """Markdown table of every record's threshold: the smallest PGA [g] (and scale) that overturns the block,
+    per strategy; "—" where nothing up to the last level overturns it."""
+    strategies = [str(s) for s in ds.strategy.values]
+    lines = ["| record | event | station | PGA [g] | " + " | ".join(f"{s}: PGA [g] (scale)" for s in strategies)
+             + " |", "|---" * (4 + len(strategies)) + "|"]
+    for k, name in enumerate(ds.record.values):
+        cells = []
+        for s in strategies:
+            g = float(ds.threshold_pga.sel(strategy=s).values[k])
+            sc = float(ds.threshold_scale.sel(strategy=s).values[k])
+            cells.append("—" if not np.isfinite(g) else f"{g:.3f} ({sc:.2f}{' *' if sc <= 1 else ''})")
+        lines.append(f"| {name} | {ds.record_event.values[k]} | {ds.record_station.values[k]} | "
+                     f"{float(ds.record_pga.values[k]):.3f} | " + " | ".join(cells) + " |")
+    lines.append("")
+    lines.append(f"Threshold: smallest scale that overturns the block, every lower stripe level shown safe, bisected "
+                 f"to {ds.attrs['threshold_resolution']:g} in {ds.attrs['intensity_measure_definition']}: the first "
+                 "overturning the upward scan finds. Overturning is not monotone in the scale, so a record may "
+                 "leave the block standing at a higher scale, and narrower overturning windows between the stripe "
+                 "levels below it are not searched. "
+                 "* : the record as recorded (scale <= 1) already overturns the block.")
+    return "\n".join(lines) + "\n"
+
+
+# --- the risk table (Markdown) ------------------------------------------------------------------------
+def _percent(p: float) -> str:
+    return "—" if not np.isfinite(p) else (f"{100 * p:.3g} %" if p >= 1e-4 else f"{p:.2e}")
+
+
+def risk_markdown(ds: xr.Dataset) -> str:
+    """Markdown table of a record set's risk (:func:`rockstudy.analysis.risk.risk_dataset`): per strategy the
+    fragility used, P(overturn | scenario) for each scenario, and the annual rate and T-year probability
+    for each hazard curve, each with its reduction over FS and the range that the median's 95 % interval
+    gives."""
+    strategies = [str(s) for s in ds.strategy.values]
+    head = ["strategy", "stripes' fit: median θ [g] (95 % CI)", "β"]
+    thresholds = "threshold_fit_median" in ds
+    if thresholds:
+        head.append("thresholds' fit: θ [g], β (not used)")
+    rows = []
+    for i, s in enumerate(strategies):
+        low = float(ds["median_low"].values[i]) if "median_low" in ds else math.nan
+        high = float(ds["median_high"].values[i]) if "median_high" in ds else math.nan
+        rows.append([s, f"{float(ds.fragility_median.values[i]):.3f} ({low:.3f}–{high:.3f})",
+                     f"{float(ds.fragility_dispersion.values[i]):.2f}"])
+        if thresholds:
+            rows[-1].append(f"{float(ds.threshold_fit_median.values[i]):.3f}, "
+                            f"{float(ds.threshold_fit_dispersion.values[i]):.2f}")
+    notes = []
+    for j, name in enumerate(ds["scenario"].values if "scenario" in ds.coords else []):
+        head += [f"P(overturn) in {name}", f"reduction over FS ({name})"]
+        for i in range(len(strategies)):
+            p = float(ds.scenario_probability.values[i, j])
+            rng = (_percent(float(ds.scenario_probability_low.values[i, j])),
+                   _percent(float(ds.scenario_probability_high.values[i, j])))
+            rows[i] += [f"{_percent(p)} ({rng[0]}–{rng[1]})",
+                        f"{float(ds.scenario_reduction_percent.values[i, j]):+.0f} %"]
+        notes.append(f"{name}: {ds.attrs['gmm']} median PGA {float(ds.median_pga.values[j]):.3f} g, σ_ln "
+                     f"{float(ds.ln_std_pga.values[j]):.2f}; scenario {ds.scenario_values.values[j]}.")
+    years = ds.attrs["years"]
+    for j, name in enumerate(ds["hazard"].values if "hazard" in ds.coords else []):
+        head += [f"λ [1/yr] ({name})", f"P in {years:g} yr ({name})", f"reduction over FS ({name})"]
+        for i in range(len(strategies)):
+            rng = (_percent(float(ds.probability_low.values[i, j])), _percent(float(ds.probability_high.values[i, j])))
+            rows[i] += [f"{float(ds.annual_rate.values[i, j]):.3g}",
+                        f"{_percent(float(ds.probability.values[i, j]))} ({rng[0]}–{rng[1]})",
+                        f"{float(ds.reduction_percent.values[i, j]):+.0f} %"]
+        share = float(np.nanmax(ds.tail_share.values[:, j]))
+        notes.append(f"{name}: hazard curve {ds.hazard_source.values[j]}; at most {100 * share:.2g} % of a rate "
+                     "comes from outside the curve's points (its end segments extended log-log)"
+                     + (" — more than 1 %: give the curve over a wider range of PGA." if share > 0.01 else "."))
+    lines = ["| " + " | ".join(head) + " |", "|---" * len(head) + "|"]
+    lines += ["| " + " | ".join(r) + " |" for r in rows]
+    lines += ["", "The risk uses the stripes' lognormal fit in PGA: the probability of overturning at each PGA "
+              "level, which is what the risk needs. The fit of the records' thresholds (each record's first "
+              "overturning scale, found by the upward scan) describes another curve, since overturning is not "
+              "monotone in the scale: a record may overturn the block at one scale and not at a higher one. "
+              "In brackets: the probability with the median at the ends of its 95 % interval (how much the answer "
+              "rests on the few records behind the median).", ""]
+    lines += [f"- {n}" for n in notes]
+    return "\n".join(lines) + "\n"

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from builders import BLC06, FREQS, fake_spectrum
+from rockstudy.analysis.jos import jos
 from rockstudy.analysis.spectra import AmplitudeGrid, Scenario
 from rockstudy.core import io
 from rockstudy.model.anchorage import Anchorage
@@ -151,7 +152,7 @@ def test_table1_hand_worked():
     # FS against itself: every term is 0 over the 3 frequencies below a_max,0 -- as `rockstudy jos` gives
     assert float(j.sel(reference="fs_same_noise", strategy="FS", noise_level="R005")) == 0.0
     assert int(table["n_star"].sel(reference="fs_same_noise", strategy="FS", noise_level="R005")) == 3
-    assert tables.jos_of(fs5, fs5, 1.0)[:2] == (0.0, 3)
+    assert (jos(fs5, fs5, 1.0).j_os, jos(fs5, fs5, 1.0).n_star) == (0.0, 3)
     assert float(j.sel(reference="no_noise", strategy="CS01", noise_level="R005")) == pytest.approx(100.0)
     assert float(j.sel(reference="fs_same_noise", strategy="CS01", noise_level="R005")) == pytest.approx(100.0)
     md = tables.table_markdown(table)
@@ -165,11 +166,11 @@ def test_table1_hand_worked():
 
 def test_jos_undefined_is_nan_with_n_star_zero_and_a_max0_above_the_scan_is_refused():
     never = fake_spectrum("CS01", 0.05, [np.nan, np.nan, np.nan, np.nan])
-    j, n, _ = tables.jos_of(never, never, 1.0)
+    j, n = jos(never, never, 1.0).j_os, jos(never, never, 1.0).n_star
     assert np.isnan(j) and n == 0
     top_g = never.attrs["grid_amplitude_stop"] * math.tan(never.attrs["block_alpha"])
     with pytest.raises(ValueError, match=r"a_max0 = .* g is not allowed.*scan"):
-        tables.jos_of(never, never, 1.01 * top_g)
+        jos(never, never, 1.01 * top_g)
 
 
 def test_timing_table_references():

@@ -1,9 +1,10 @@
 """Fragility of each strategy over one record set: stripes, lognormal MLE, median shift over FS, and every
 record's threshold (the smallest scale that overturns the block)."""
-from rockstudy.analysis.fragility import fragility_markdown, suite_fragility_dataset, threshold_markdown
+from rockstudy.analysis.fragility import suite_fragility_dataset
 from rockstudy.core import io
 from rockstudy.model.control import Control
 from rockstudy.model.record_suites import entries_from_dataset
+from rockstudy.report import fragility_markdown, threshold_markdown
 from rockstudy.studies import parameters, study
 
 study.log_to(snakemake.log[0])

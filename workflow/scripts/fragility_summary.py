@@ -1,8 +1,9 @@
 """The fragility medians of every strategy on every record set, side by side (with intervals)."""
 import pandas as pd
 
-from rockstudy.analysis.fragility import suite_summary, suite_summary_markdown
+from rockstudy.analysis.fragility import suite_summary
 from rockstudy.core import io
+from rockstudy.report import suite_summary_markdown
 from rockstudy.studies import study
 
 study.log_to(snakemake.log[0])

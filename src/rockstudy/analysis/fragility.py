@@ -1,19 +1,9 @@
-"""Fragility of a controlled block over a suite of ground-motion records.
+"""Fragility of a controlled block over a suite of ground-motion records (multiple stripe analysis).
 
-Multiple stripe analysis: every record is scaled to each level x_j of an intensity measure
-(IM), the block is simulated under it for each strategy, and the number z_j of the n records
-that overturn it is counted. A lognormal fragility function
-
-    P(overturn | IM = x) = Φ( ln(x/θ) / β )                                  (Eq. F1)
-
-with median θ and dispersion β is fitted by maximum likelihood, the stripes' counts being
-binomial (Eq. 11 of Baker [1]_):
-
-    ln L(θ, β) = Σ_j [ z_j ln Φ(ln(x_j/θ)/β) + (n_j − z_j) ln(1 − Φ(ln(x_j/θ)/β)) ].   (Eq. F2)
-
-Uncertainty: standard errors of ln θ and β from the observed information matrix (the inverse
-Hessian of −ln L at the maximum), and a bootstrap over records (records drawn with
-replacement, every strategy refitted on the same draw) for the ratio of medians.
+Every record is scaled to each level x_j of an intensity measure (IM), the block is run under it
+for each strategy on the compiled engine, and the number z_j of the n records that overturn it is
+counted; the lognormal fragility (median θ, dispersion β) is fitted to these counts by maximum
+likelihood (:mod:`rockstudy.analysis.fragility_fit`, Eqs. F1–F2).
 
 J_OS (Eqs. 18–22 of the paper) measures how far a device lifts the overturning spectrum above
 free standing (FS); carried over to records, the measure is the **shift of the median**,
@@ -24,32 +14,28 @@ Intensity measures (each record is scaled to the IM level):
 
 * ``pga_ratio``: PGA/(g·tanα), the amplitude ratio of the paper's spectra (default);
 * ``pgv_ratio``: PGV·p/(g·tanα), the peak ground velocity in the rocking block's own scale
-  (PGV from the trapezoidal integral of the record, exact for its linear interpolation).
+  (:func:`rockstudy.model.record_suites.peak_ground_velocity`).
 
-References
-----------
-.. [1] J. W. Baker (2015). Efficient analytical fragility function fitting using dynamic
-   structural analysis. Earthquake Spectra 31(1), 579–599.
+The Markdown tables of these datasets are in :mod:`rockstudy.report`.
 """
 from __future__ import annotations
 
-import logging
 import math
 import time
 import warnings
-from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
-from scipy import optimize, special, stats
 
 from rockstudy._version import __version__
-from rockstudy.engine.simulate import DEFAULT_FREE_TIME, simulate
+from rockstudy.analysis.fragility_fit import BOOTSTRAP_KEY, bootstrap_median_ratios, fit_lognormal, fit_lognormal_points
+from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturned, stripes_and_thresholds
+from rockstudy.engine.outcome import OUTCOME_MEANINGS
+from rockstudy.engine.simulate import DEFAULT_FREE_TIME
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
-from rockstudy.model.records import Record
-
-log = logging.getLogger("rockstudy")
+from rockstudy.model.record_suites import peak_ground_velocity
+from rockstudy.model.records import STANDARD_GRAVITY, Record
 
 INTENSITY_MEASURES = {
     "pga_ratio": "PGA/(g tan(alpha))",
@@ -57,18 +43,11 @@ INTENSITY_MEASURES = {
 }
 """Intensity measures a suite can be scaled to, with their definition (dimensionless)."""
 
-BOOTSTRAP_KEY = 1302
-"""Spawn key of the bootstrap's seed sequence."""
-
-DISPERSION_BOUNDS = (0.01, 5.0)
-"""Range of β searched; a fit at a bound is flagged (separated or flat data). [-]"""
-
-
-def peak_ground_velocity(record: Record) -> float:
-    """max|v(t)|, v the trapezoidal integral of the record from rest (exact for linear interpolation). [m/s]"""
-    acc = record.acceleration
-    velocity = np.concatenate([[0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * record.dt)])
-    return float(np.max(np.abs(velocity)))
+SUITE_DEFAULTS = {"intensity_measure": "pga_ratio", "intensity_levels": {"start": 0.5, "stop": 12.0, "step": 0.25},
+                  "threshold_resolution": 0.01, "bootstrap": 200, "seed": 20190101}
+"""The study's settings of a record set's fragility (``beyond.fragility`` of config.yaml states the same
+values): the intensity measure, its stripe levels, the threshold resolution [IM], the bootstrap draws and
+their seed. ``rockstudy fragility`` takes them as its defaults."""
 
 
 def intensity(record: Record, block: Block, measure: str = "pga_ratio") -> float:
@@ -80,154 +59,12 @@ def intensity(record: Record, block: Block, measure: str = "pga_ratio") -> float
     raise ValueError(f"intensity measure must be one of {', '.join(INTENSITY_MEASURES)}, got {measure!r}")
 
 
-# --- the maximum-likelihood fit -------------------------------------------------------------------
-@dataclass(frozen=True)
-class FragilityFit:
-    """Lognormal fragility fitted by maximum likelihood (Eqs. F1–F2).
-
-    Parameters
-    ----------
-    median : float
-        θ, the IM with 50 % probability of overturning. [IM]
-    dispersion : float
-        β, the standard deviation of ln IM at overturning. [-]
-    log_median_se, dispersion_se : float
-        Standard errors of ln θ and β from the observed information matrix (NaN if singular). [-]
-    covariance : ndarray, shape (2, 2)
-        Inverse observed information of (ln θ, β). [-]
-    log_likelihood : float
-        ln L at the maximum. [-]
-    status : str
-        "ok"; "separated" (every stripe all safe below θ and all overturned above: β = 0, θ the
-        geometric mean of the two stripes around the jump); "at bound" (β clipped to
-        :data:`DISPERSION_BOUNDS`); "no curvature" (the observed information is not positive
-        definite: no standard errors); "no overturning" / "all overturned" (θ undefined, NaN).
-    """
-
-    median: float
-    dispersion: float
-    log_median_se: float
-    dispersion_se: float
-    covariance: np.ndarray
-    log_likelihood: float
-    status: str
-
-    def median_interval(self, level: float = 0.95) -> tuple[float, float]:
-        """Wald interval exp(ln θ ± z·se) for the median. [IM]"""
-        z = stats.norm.ppf(0.5 + level / 2)
-        return (self.median * math.exp(-z * self.log_median_se), self.median * math.exp(z * self.log_median_se))
-
-    def probability(self, x) -> np.ndarray:
-        """Fitted P(overturn | IM = x), Eq. F1. [-]"""
-        x = np.asarray(x, dtype=float)
-        with np.errstate(divide="ignore"):
-            return stats.norm.cdf(np.log(x / self.median) / self.dispersion)
-
-
-def negative_log_likelihood(params, im, n_total, n_overturned) -> float:
-    """−ln L of Eq. F2 for params = (ln θ, β). [-]"""
-    return _nll_and_gradient(params, np.log(im), n_total, n_overturned)[0]
-
-
-def _nll_and_gradient(params, log_im, n_total, n_overturned):
-    """−ln L (Eq. F2) and its gradient in (ln θ, β)."""
-    log_median, beta = params
-    if not beta > 0:
-        return math.inf, np.zeros(2)
-    z = (log_im - log_median) / beta
-    log_p, log_q = special.log_ndtr(z), special.log_ndtr(-z)
-    log_pdf = -0.5 * z * z - 0.5 * math.log(2.0 * math.pi)
-    # d(-ln L)/dz_j; dz/d(ln θ) = -1/β, dz/dβ = -z/β
-    dz = -(n_overturned * np.exp(log_pdf - log_p) - (n_total - n_overturned) * np.exp(log_pdf - log_q))
-    value = -float(np.sum(n_overturned * log_p + (n_total - n_overturned) * log_q))
-    return value, np.array([-np.sum(dz) / beta, -np.sum(dz * z) / beta])
-
-
-def _hessian(fun, x, steps):
-    """Central-difference Hessian of a scalar function. [-]"""
-    n = len(x)
-    h = np.zeros((n, n))
-    for i in range(n):
-        for j in range(i, n):
-            ei = np.zeros(n)
-            ej = np.zeros(n)
-            ei[i], ej[j] = steps[i], steps[j]
-            h[i, j] = h[j, i] = (fun(x + ei + ej) - fun(x + ei - ej) - fun(x - ei + ej) + fun(x - ei - ej)) / (
-                4 * steps[i] * steps[j])
-    return h
-
-
-def fit_lognormal(im, n_total, n_overturned) -> FragilityFit:
-    """Maximum-likelihood lognormal fragility of stripe counts (Eqs. F1–F2, Baker [1]_).
-
-    Parameters
-    ----------
-    im : array_like
-        IM levels x_j, > 0. [IM]
-    n_total : array_like of int
-        Records run at each level n_j. [-]
-    n_overturned : array_like of int
-        Records that overturned the block at each level z_j (0 <= z_j <= n_j). [-]
-
-    Returns
-    -------
-    FragilityFit
-    """
-    im = np.asarray(im, dtype=float)
-    n_total = np.asarray(n_total, dtype=float)
-    n_overturned = np.asarray(n_overturned, dtype=float)
-    if im.ndim != 1 or im.size < 2 or im.shape != n_total.shape or im.shape != n_overturned.shape:
-        raise ValueError(f"im, n_total and n_overturned must be 1-D arrays of one length >= 2, got shapes "
-                         f"{im.shape}, {n_total.shape}, {n_overturned.shape}")
-    if np.any(~np.isfinite(im)) or np.any(im <= 0):
-        raise ValueError("im must hold positive finite intensity levels")
-    if np.any(n_overturned < 0) or np.any(n_overturned > n_total):
-        raise ValueError("n_overturned must lie between 0 and n_total at every level")
-    nan2 = np.full((2, 2), np.nan)
-    if n_overturned.sum() == 0:
-        return FragilityFit(math.nan, math.nan, math.nan, math.nan, nan2, 0.0, "no overturning")
-    if np.all(n_overturned == n_total):
-        return FragilityFit(math.nan, math.nan, math.nan, math.nan, nan2, 0.0, "all overturned")
-    fraction = n_overturned / np.maximum(n_total, 1)
-    order = np.argsort(im)
-    if np.all((fraction == 0) | (fraction == 1)) and np.all(np.diff(fraction[order]) >= 0):
-        # every stripe all-safe below and all-overturned above: β → 0, θ anywhere in between
-        first = int(np.argmax(fraction[order] == 1))
-        median = math.sqrt(im[order][first - 1] * im[order][first])
-        return FragilityFit(median, 0.0, math.nan, math.nan, nan2, 0.0, "separated")
-    # start: the IM where the observed fraction first reaches 1/2, and a moderate dispersion
-    start_median = im[np.argmax(fraction >= 0.5)] if np.any(fraction >= 0.5) else im[-1]
-    log_im = np.log(im)
-
-    def fun(x):
-        return _nll_and_gradient(x, log_im, n_total, n_overturned)[0]
-
-    def in_log_beta(x):  # (ln θ, ln β): unconstrained, so the quasi-Newton steps need no bounds
-        value, grad = _nll_and_gradient((x[0], math.exp(x[1])), log_im, n_total, n_overturned)
-        return value, np.array([grad[0], grad[1] * math.exp(x[1])])
-
-    lo, hi = DISPERSION_BOUNDS
-    res = optimize.minimize(in_log_beta, x0=[math.log(start_median), math.log(0.4)], jac=True, method="BFGS")
-    log_median, beta = res.x[0], math.exp(res.x[1])
-    if not lo < beta < hi:  # separated (β → 0) or flat (β → ∞) stripes: no interior maximum
-        beta = min(max(beta, lo), hi)
-    status = "ok" if lo < beta < hi else "at bound"
-    cov = nan2
-    se = (math.nan, math.nan)
-    if status == "ok":
-        hess = _hessian(fun, np.array([log_median, beta]), np.array([1e-4, 1e-4 * max(beta, 0.05)]))
-        if np.all(np.linalg.eigvalsh(hess) > 0):
-            cov = np.linalg.inv(hess)
-            se = (math.sqrt(cov[0, 0]), math.sqrt(cov[1, 1]))
-        else:
-            status = "no curvature"
-    return FragilityFit(float(math.exp(log_median)), float(beta), se[0], se[1], cov, -float(res.fun), status)
-
-
 # --- the stripes -----------------------------------------------------------------------------------
 def stripe_outcomes(block: Block, anchorage: Anchorage, controls, records, levels, *, measure: str = "pga_ratio",
                     overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME):
-    """Simulate every (control, record, IM level): the record scaled so that its IM equals the level.
+    """Outcome of every (control, record, IM level) on the compiled engine, the record scaled so that its
+    IM equals the level (the runs of :func:`rockstudy.analysis.record_scan.stripes_and_thresholds`
+    without the thresholds).
 
     Parameters
     ----------
@@ -236,7 +73,7 @@ def stripe_outcomes(block: Block, anchorage: Anchorage, controls, records, level
         The strategies (with their timing).
     records : sequence of Record
     levels : array_like
-        IM levels x_j. [IM]
+        IM levels x_j, increasing. [IM]
     measure : str
         Intensity measure, a key of :data:`INTENSITY_MEASURES`.
     overturn_criterion, free_time
@@ -244,9 +81,8 @@ def stripe_outcomes(block: Block, anchorage: Anchorage, controls, records, level
 
     Returns
     -------
-    overturned : ndarray of bool, shape (control, record, level)
-    max_rotation_ratio : ndarray, shape (control, record, level)
-        max|θ|/α of each run. [-]
+    outcome : ndarray of int8, shape (control, record, level)
+        :class:`~rockstudy.engine.outcome.Outcome` codes.
     scale : ndarray, shape (record, level)
         Factor applied to each record. [-]
     """
@@ -257,57 +93,29 @@ def stripe_outcomes(block: Block, anchorage: Anchorage, controls, records, level
         raise ValueError("records must hold at least one record")
     base = np.array([intensity(r, block, measure) for r in records])
     scale = levels[None, :] / base[:, None]
-    shape = (len(controls), len(records), len(levels))
-    overturned = np.zeros(shape, dtype=bool)
-    rotation = np.zeros(shape)
-    t0 = time.perf_counter()
-    for c, control in enumerate(controls):
-        for r, record in enumerate(records):
-            for j in range(len(levels)):
-                res = simulate(block, anchorage, control, record.motion(float(scale[r, j])),
-                               overturn_criterion=overturn_criterion, free_time=free_time)
-                overturned[c, r, j] = res.overturned
-                rotation[c, r, j] = res.max_rotation_ratio
-        log.info("fragility stripes: %s done (%d/%d strategies), %.1f s", control.strategy, c + 1, len(controls),
-                 time.perf_counter() - t0)
-    return overturned, rotation, scale
+    outcome = np.zeros((len(controls), len(records), levels.size), dtype=np.int8)
+    for r, record in enumerate(records):
+        per_level = record.pga / block.uplift_acceleration / base[r]  # PGA/(g tan(alpha)) per IM unit
+        for c, control in enumerate(controls):
+            run = RecordRun(block, anchorage, control, record, overturn_criterion=overturn_criterion,
+                            free_time=free_time)
+            outcome[c, r] = grid_outcomes(run, levels * per_level)
+    return outcome, scale
 
 
-def bootstrap_median_ratios(levels, overturned, reference: int, n_boot: int, rng: np.random.Generator):
-    """Bootstrap over records of θ_c/θ_reference for every control c (records drawn with replacement).
-
-    Parameters
-    ----------
-    levels : array_like, shape (level,)
-        IM levels. [IM]
-    overturned : ndarray of bool, shape (control, record, level)
-    reference : int
-        Index of the reference control (FS).
-    n_boot : int
-        Number of bootstrap draws.
-    rng : numpy.random.Generator
-
-    Returns
-    -------
-    ndarray, shape (n_boot, control)
-        Ratios of the medians; NaN for draws where either fit has no finite median.
-    """
-    n_controls, n_records, n_levels = overturned.shape
-    ratios = np.full((n_boot, n_controls), np.nan)
-    n_total = np.full(n_levels, n_records)
-    for b in range(n_boot):
-        pick = rng.integers(0, n_records, n_records)
-        counts = overturned[:, pick, :].sum(axis=1)
-        medians = np.array([fit_lognormal(levels, n_total, counts[c]).median for c in range(n_controls)])
-        ratios[b] = medians / medians[reference]
-    return ratios
+def _outcome_variable(outcome) -> tuple:
+    return (("strategy", "record", "intensity"), outcome,
+            {"long_name": "outcome of the run at each level",
+             "flag_values": np.arange(len(OUTCOME_MEANINGS), dtype=np.int8),
+             "flag_meanings": " ".join(OUTCOME_MEANINGS)})
 
 
 def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, levels, *,
                       measure: str = "pga_ratio", n_boot: int = 200, seed: int = 0,
                       overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
                       record_attrs=None) -> xr.Dataset:
-    """Fragility of each strategy over a record suite: stripes, lognormal MLE fits, median shifts.
+    """Fragility of each strategy over a record suite: stripes (:func:`stripe_outcomes`), lognormal MLE
+    fits, median shifts.
 
     Parameters
     ----------
@@ -331,7 +139,7 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
     Returns
     -------
     xarray.Dataset
-        ``overturned`` and ``max_rotation_ratio`` (strategy, record, intensity); ``fraction``
+        ``overturned`` and ``outcome`` (strategy, record, intensity); ``fraction``
         (strategy, intensity); ``fragility_median``, ``fragility_dispersion``, their standard errors and 95 %
         intervals, ``fit_status``; ``median_ratio`` θ/θ_FS with its bootstrap 95 % interval (NaN when no
         draw has a finite ratio) and ``median_shift_percent`` 100·(θ/θ_FS − 1), per strategy.
@@ -339,11 +147,12 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
     _check_fragility_inputs(controls, n_boot)
     levels = np.asarray(levels, dtype=float)
     t0 = time.perf_counter()
-    overturned, rotation, scale = stripe_outcomes(block, anchorage, controls, records, levels, measure=measure,
-                                                  overturn_criterion=overturn_criterion, free_time=free_time)
-    ds = fragility_from_stripes(block, anchorage, controls, records, levels, overturned, scale, rotation=rotation,
+    outcome, scale = stripe_outcomes(block, anchorage, controls, records, levels, measure=measure,
+                                     overturn_criterion=overturn_criterion, free_time=free_time)
+    ds = fragility_from_stripes(block, anchorage, controls, records, levels, is_overturned(outcome), scale,
                                 measure=measure, n_boot=n_boot, seed=seed, overturn_criterion=overturn_criterion,
                                 free_time=free_time, record_attrs=record_attrs)
+    ds["outcome"] = _outcome_variable(outcome)
     ds.attrs["compute_time_s"] = time.perf_counter() - t0
     return ds
 
@@ -358,7 +167,7 @@ def _check_fragility_inputs(controls, n_boot):
 
 
 def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records, levels, overturned, scale, *,
-                           rotation=None, measure: str = "pga_ratio", n_boot: int = 200, seed: int = 0,
+                           measure: str = "pga_ratio", n_boot: int = 200, seed: int = 0,
                            overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
                            record_attrs=None) -> xr.Dataset:
     """The fits, median shifts and dataset of :func:`fragility_dataset` from stripes already run.
@@ -368,8 +177,6 @@ def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records
     overturned : ndarray of bool, shape (control, record, level)
     scale : ndarray, shape (record, level)
         Factor applied to each record. [-]
-    rotation : ndarray, shape (control, record, level), optional
-        max|θ|/α of each run (stored when given).
     Others as for :func:`fragility_dataset`.
     """
     strategies = _check_fragility_inputs(controls, n_boot)
@@ -447,39 +254,11 @@ def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records
             **block.to_attrs(), **anchorage.to_attrs(block), **(record_attrs or {}),
         },
     )
-    if rotation is not None:
-        ds["max_rotation_ratio"] = (dims3, np.asarray(rotation), {"units": "1", "long_name": "max |theta| / alpha"})
     return ds
-
-
-def fragility_markdown(ds: xr.Dataset) -> str:
-    """Markdown table of the fits: median (95 % interval), dispersion, median shift over FS (interval)."""
-    im = ds.attrs["intensity_measure_definition"]
-    lines = [f"| strategy | median θ of {im} (95 % CI) | dispersion β (± se) | θ/θ_FS (bootstrap 95 % CI) "
-             f"| median shift over FS | fit |", "|---|---|---|---|---|---|"]
-    for s in ds.strategy.values:
-        d = ds.sel(strategy=s)
-        lines.append(f"| {s} | {float(d.fragility_median):.3f} ({float(d.median_low):.3f}–{float(d.median_high):.3f}) "
-                     f"| {float(d.fragility_dispersion):.3f} ± {float(d.dispersion_se):.3f} "
-                     f"| {float(d.median_ratio):.3f} ({float(d.median_ratio_low):.3f}–{float(d.median_ratio_high):.3f})"
-                     f" | {float(d.median_shift_percent):+.1f} % | {str(d.fit_status.values)} |")
-    lines.append("")
-    lines.append(f"{ds.attrs['n_records']} records, {ds.sizes['intensity']} IM levels "
-                 f"({float(ds.intensity.min()):g}–{float(ds.intensity.max()):g}); "
-                 f"{ds.attrs['n_bootstrap']} bootstrap draws over records.")
-    return "\n".join(lines) + "\n"
 
 
 # --- fragility over a named record suite, with every record's threshold -----------------------------
 OTHER_MEASURE = {"pga_ratio": "pgv_ratio", "pgv_ratio": "pga_ratio"}
-
-
-def fit_lognormal_points(im, overturned) -> FragilityFit:
-    """Lognormal MLE (Eq. F2) of single runs at arbitrary intensities: each run is a stripe of one. [-]"""
-    im = np.asarray(im, dtype=float).ravel()
-    overturned = np.asarray(overturned, dtype=float).ravel()
-    order = np.argsort(im, kind="stable")
-    return fit_lognormal(im[order], np.ones(im.size), overturned[order])
 
 
 def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entries, levels, *,
@@ -520,9 +299,6 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
         ``fragility_dispersion_other`` and the interval in the other measure; the records' catalogue as
         coordinates (suite, id, event, station, year, magnitude, distance, site class, PGA, PGV, pulse).
     """
-    from rockstudy.analysis.record_scan import is_overturned, stripes_and_thresholds
-    from rockstudy.engine.outcome import OUTCOME_MEANINGS
-    from rockstudy.model.records import STANDARD_GRAVITY
     _check_fragility_inputs(controls, n_boot)
     if measure not in INTENSITY_MEASURES:
         raise ValueError(f"intensity measure must be one of {', '.join(INTENSITY_MEASURES)}, got {measure!r}")
@@ -537,10 +313,8 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
     ds = fragility_from_stripes(block, anchorage, controls, records, levels, overturned, runs["scale"],
                                 measure=measure, n_boot=n_boot, seed=seed, overturn_criterion=overturn_criterion,
                                 free_time=free_time, record_attrs={"record_suite": suite})
-    dims2, dims3 = ("strategy", "record"), ("strategy", "record", "intensity")
-    ds["outcome"] = (dims3, runs["outcome"], {"long_name": "outcome of the run at each level",
-                                              "flag_values": np.arange(len(OUTCOME_MEANINGS), dtype=np.int8),
-                                              "flag_meanings": " ".join(OUTCOME_MEANINGS)})
+    dims2 = ("strategy", "record")
+    ds["outcome"] = _outcome_variable(runs["outcome"])
     im_attrs = {"units": "1", "long_name": INTENSITY_MEASURES[measure]}
     threshold_scale = runs["threshold"] / base[None, :]
     pga_g = np.array([r.pga for r in records]) / STANDARD_GRAVITY
@@ -636,42 +410,3 @@ def suite_summary(datasets) -> "list[dict]":
                          "median_ratio_high": float(d.median_ratio_high),
                          "median_shift_percent": float(d.median_shift_percent), "fit": str(d.fit_status.values)})
     return rows
-
-
-def suite_summary_markdown(rows) -> str:
-    """Markdown table of :func:`suite_summary`."""
-    if not rows:
-        return ""
-    r0 = rows[0]
-    lines = [f"| suite | strategy | median {INTENSITY_MEASURES[r0['intensity_measure']]} (95 % CI) | median "
-             f"[{r0['physical_unit']}] (95 % CI) | β ± se | median {INTENSITY_MEASURES[r0['other_measure']]} (95 % CI) "
-             "| θ/θ_FS (bootstrap 95 % CI) | shift over FS | fit |", "|---|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        lines.append(f"| {r['suite']} | {r['strategy']} | {r['median']:.3f} ({r['median_low']:.3f}–"
-                     f"{r['median_high']:.3f}) | {r['median_physical']:.3f} ({r['median_physical_low']:.3f}–"
-                     f"{r['median_physical_high']:.3f}) | {r['dispersion']:.3f} ± {r['dispersion_se']:.3f} | "
-                     f"{r['median_other']:.3f} ({r['median_other_low']:.3f}–{r['median_other_high']:.3f}) | "
-                     f"{r['median_ratio']:.3f} ({r['median_ratio_low']:.3f}–{r['median_ratio_high']:.3f}) | "
-                     f"{r['median_shift_percent']:+.1f} % | {r['fit']} |")
-    return "\n".join(lines) + "\n"
-
-
-def threshold_markdown(ds: xr.Dataset) -> str:
-    """Markdown table of every record's threshold: the smallest PGA [g] (and scale) that overturns the block,
-    per strategy; "—" where nothing up to the last level overturns it."""
-    strategies = [str(s) for s in ds.strategy.values]
-    lines = ["| record | event | station | PGA [g] | " + " | ".join(f"{s}: PGA [g] (scale)" for s in strategies)
-             + " |", "|---" * (4 + len(strategies)) + "|"]
-    for k, name in enumerate(ds.record.values):
-        cells = []
-        for s in strategies:
-            g = float(ds.threshold_pga.sel(strategy=s).values[k])
-            sc = float(ds.threshold_scale.sel(strategy=s).values[k])
-            cells.append("—" if not np.isfinite(g) else f"{g:.3f} ({sc:.2f}{' *' if sc <= 1 else ''})")
-        lines.append(f"| {name} | {ds.record_event.values[k]} | {ds.record_station.values[k]} | "
-                     f"{float(ds.record_pga.values[k]):.3f} | " + " | ".join(cells) + " |")
-    lines.append("")
-    lines.append(f"Threshold: smallest scale that overturns the block, every lower stripe level shown safe, bisected "
-                 f"to {ds.attrs['threshold_resolution']:g} in {ds.attrs['intensity_measure_definition']}. "
-                 "* : the record as recorded (scale <= 1) already overturns the block.")
-    return "\n".join(lines) + "\n"

@@ -6,7 +6,7 @@ acceleration a_max,0 the system must protect against (the paper suggests g).
 
 A NaN threshold means "no overturning found below the scan bound"; it counts as
 >= a_max,0, which requires the scan bound to be at least a_max,0 (checked where spectra enter,
-by :func:`rockstudy.studies.tables.jos_of` and :func:`rockstudy.core.validation.check_a_max0`).
+by :func:`rockstudy.analysis.jos.jos` and :func:`rockstudy.core.validation.check_a_max0`).
 
 Thresholds and a_max,0 may be given in any one unit (m/s^2, or the amplitude ratios a/(g·tanα)
 the spectra store): J_OS is a ratio of differences and does not depend on it.

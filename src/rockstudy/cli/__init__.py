@@ -1,4 +1,4 @@
-"""Command line: ``rockstudy simulate | threshold | spectrum | jos | records`` (``rockstudy --version``).
+"""Command line: ``rockstudy simulate | threshold | spectrum | jos | records | fragility | risk`` (``rockstudy --version``).
 
 A block is a preset (``--block BLC06``) or its dimensions (``--width --height --depth``, with
 ``--density`` and ``--restitution``); ``--config FILE`` takes a study's settings (block, anchorage,
@@ -41,6 +41,10 @@ COMMANDS = {
     "jos": Command("spectrum", "utility index J_OS (Eqs. 18-22) of two spectrum files"),
     "records": Command("suites", "list the record suites and their records (id, event, year, magnitude, station, "
                                  "distance, site class, PGA, PGV, pulse)"),
+    "fragility": Command("risk", "fragility of one object on a record suite (netCDF; JSON with median_g and "
+                                 "dispersion)"),
+    "risk": Command("risk", "rate and probability of overturning from a hazard curve or a scenario, or the "
+                            "fragility median that meets a target"),
 }
 """Every command: the module of this package that registers it, and its one-line help."""
 

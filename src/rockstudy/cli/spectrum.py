@@ -101,7 +101,8 @@ def _cmd_jos(args, parser):
     import numpy as np
 
     from rockstudy.core.io import read_netcdf
-    from rockstudy.studies.tables import check_spectrum_file, jos_of, spectrum_mismatches
+    from rockstudy.analysis.jos import jos
+    from rockstudy.studies.tables import check_spectrum_file, spectrum_mismatches
     declarations.check_option("--a-max0", args.a_max0)
     datasets = {}
     for name, path in (("--reference", args.reference), ("--system", args.system)):
@@ -122,7 +123,8 @@ def _cmd_jos(args, parser):
                          f"--system and {b!r} in --reference; J_OS compares strategies under one setting (pass "
                          f"--allow-mismatch {attr} to compare them anyway)")
     try:
-        j, n, a_max0 = jos_of(sys_, ref, args.a_max0, a_max0_name="--a-max0")
+        result = jos(sys_, ref, args.a_max0, a_max0_name="--a-max0")
+        j, n, a_max0 = result.j_os, result.n_star, result.a_max0_ratio
     except ValueError as exc:
         parser.error(str(exc))
     out = {"J_OS_percent": None if math.isnan(j) else j, "N_star": n, "a_max0_g": args.a_max0,

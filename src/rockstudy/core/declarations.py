@@ -34,6 +34,7 @@ from pydantic import (
     model_validator,
 )
 
+from rockstudy.core import risk_inputs as r
 from rockstudy.core import validation as v
 from rockstudy.core.validation import InputError
 
@@ -318,8 +319,41 @@ class Design(Section):
     devices: DesignDevices
 
 
+def _bounded(bound: r.Bound):
+    """A number within a :class:`~rockstudy.core.risk_inputs.Bound`."""
+    low = {"gt" if bound.low_open else "ge": bound.low}
+    high = {"lt" if bound.high_open else "le": bound.high}
+    unit = f" [{bound.unit}]" if bound.unit else ""
+    return Annotated[float, Field(description=bound.description + unit, **low, **high)]
+
+
+class Scenario(Section):
+    """An earthquake scenario of a ground-motion model (:data:`rockstudy.core.risk_inputs.SCENARIO_INPUTS`)."""
+    mag: _bounded(r.SCENARIO_INPUTS["mag"])
+    dist_rup: _bounded(r.SCENARIO_INPUTS["dist_rup"])
+    v_s30: _bounded(r.SCENARIO_INPUTS["v_s30"])
+    dist_jb: _bounded(r.SCENARIO_INPUTS["dist_jb"]) = None
+    dist_x: _bounded(r.SCENARIO_INPUTS["dist_x"]) = None
+    dip: _bounded(r.SCENARIO_INPUTS["dip"]) = None
+    depth_tor: _bounded(r.SCENARIO_INPUTS["depth_tor"]) = None
+    mechanism: Literal[r.MECHANISMS] = None
+
+
+RiskName = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_-]+$", max_length=64)]
+
+
+class Risk(Section):
+    """Risk at a site (optional): the rate and probability of overturning per record set and strategy, from
+    hazard curves (files: PGA [g], annual rate of exceedance [1/yr]) and earthquake scenarios."""
+    years: _bounded(r.RISK_INPUTS["years"]) = None
+    gmm: Literal[tuple(r.GMMS)] = None
+    scenarios: Annotated[dict[RiskName, Scenario], Field(max_length=r.MAX_SCENARIOS)] = None
+    hazard_curves: Annotated[dict[RiskName, Annotated[str, StringConstraints(min_length=1, max_length=MAX_TEXT)]],
+                             Field(max_length=r.MAX_SCENARIOS)] = None
+
+
 class Study(Section):
-    """The study of the paper (§5). Every key is required except ``beyond`` and ``design``; no other keys are
+    """The study of the paper (§5). Every key is required except ``beyond``, ``design`` and ``risk``; no other keys are
     allowed. Relations between keys are checked by rockstudy.studies.study.check_study."""
     results_dir: Annotated[str, StringConstraints(min_length=1, max_length=MAX_TEXT)]
     block: Block
@@ -351,6 +385,7 @@ class Study(Section):
     calibration: Calibration
     beyond: Beyond = None
     design: Design = None
+    risk: Risk = None
 
 
 def _declared(info):

@@ -28,7 +28,7 @@ import numpy as np
 import xarray as xr
 
 from rockstudy._version import __version__
-from rockstudy.analysis.fragility import fit_lognormal
+from rockstudy.analysis.fragility_fit import fit_lognormal
 from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturned
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.analysis.spectra import AmplitudeGrid, spectrum

@@ -12,11 +12,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rockstudy.analysis.jos import a_max0_ratio  # noqa: F401 (the scripts' a_max,0 in g as a ratio)
 from rockstudy.core import validation
 from rockstudy.model.block import BLOCK_PRESETS, Block
 
 if TYPE_CHECKING:
-    import xarray as xr
 
     from rockstudy.analysis.scenario import Scenario
     from rockstudy.analysis.spectra import AmplitudeGrid
@@ -137,16 +137,6 @@ def noise_free_level(levels: dict) -> str:
     if len(names) != 1:
         raise ValueError(f"noise_levels needs exactly one level equal to 0 (R000), got {levels!r}")
     return names[0]
-
-
-def a_max0_ratio(ds: xr.Dataset, a_max0_g: float, name: str = "a_max0") -> float:
-    """a_max,0 given in units of g as an amplitude ratio a/(g·tanα), refused (naming ``name``) when it is
-    not positive or lies above the amplitude scan's top recorded in ``ds`` (see
-    :func:`rockstudy.core.validation.check_a_max0`). [-]"""
-    top = validation.scan_top(ds.attrs["grid_amplitude_start"], ds.attrs["grid_amplitude_stop"],
-                              ds.attrs["grid_amplitude_step"])
-    return validation.check_a_max0(name, a_max0_g, float(ds.attrs["block_alpha"]), top,
-                          "the spectrum's scan top, grid_amplitude_stop")
 
 
 def grid_size_points(spec: dict) -> int:

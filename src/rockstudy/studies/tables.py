@@ -1,6 +1,5 @@
-"""J_OS tables (paper Eq. 21, Table 1 and the timing sweeps of §5.2): the utility index of one
-spectrum against another with a_max,0 in units of g, Table 1 against both references, the timing
-tables, and their Markdown and CSV forms.
+"""J_OS tables (paper Eq. 21, Table 1 and the timing sweeps of §5.2): Table 1 against both references,
+the timing tables, and their Markdown and CSV forms, each cell from :func:`rockstudy.analysis.jos.jos`.
 """
 from __future__ import annotations
 
@@ -8,40 +7,14 @@ import numpy as np
 import xarray as xr
 
 from rockstudy._version import __version__
-from rockstudy.analysis.utility_index import utility_index
+from rockstudy.analysis.jos import jos
 from rockstudy.studies.datasets import MISSING_MEANINGS, PAPER
-from rockstudy.studies.parameters import a_max0_ratio, noise_free_level
+from rockstudy.studies.parameters import noise_free_level
 
 REFERENCES = ("no_noise", "fs_same_noise")
 
 
 """Table 1's two references: the same strategy without noise, and FS at the same noise level."""
-
-
-def jos_of(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float,
-           a_max0_name: str = "a_max0") -> tuple[float, int, float]:
-    """J_OS of ``system`` against ``reference`` (Eq. 21) with a_max,0 in units of g.
-
-    The one rule used by the tables and by ``rockstudy jos``: a_max,0 must not lie above either
-    spectrum's amplitude scan (a NaN threshold then means "safe up to a_max,0"). Where no
-    frequency counts (N* = 0) J_OS is undefined and returned as NaN.
-
-    Returns
-    -------
-    j_os : float
-        Utility index, NaN when N* = 0. [%]
-    n_star : int
-        N*, the frequencies counted in Eq. (21).
-    a_max0_ratio : float
-        a_max,0 as an amplitude ratio a/(g·tanα). [-]
-    """
-    if system.sizes["frequency_ratio"] != reference.sizes["frequency_ratio"] or not np.allclose(
-            system["frequency_ratio"], reference["frequency_ratio"]):
-        raise ValueError("J_OS needs the system and the reference on the same frequencies")
-    ratio = a_max0_ratio(system, a_max0_g, a_max0_name)
-    a_max0_ratio(reference, a_max0_g, a_max0_name)
-    j, n = utility_index(system["threshold"].values, reference["threshold"].values, ratio, undefined="nan")
-    return j, n, ratio
 
 
 SPECTRUM_NUMBERS = ("block_alpha", "grid_amplitude_start", "grid_amplitude_stop", "grid_amplitude_step")
@@ -125,8 +98,8 @@ def spectrum_mismatches(system: xr.Dataset, reference: xr.Dataset) -> list[tuple
 
 
 def _jos(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float) -> tuple[float, int]:
-    j, n, _ = jos_of(system, reference, a_max0_g)
-    return j, n
+    result = jos(system, reference, a_max0_g)
+    return result.j_os, result.n_star
 
 
 PROVENANCE_PREFIXES = ("block_", "anchorage_")

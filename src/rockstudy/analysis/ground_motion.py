@@ -1,0 +1,103 @@
+"""Median PGA and its log standard deviation for an earthquake scenario, from a published ground-motion
+model (GMM) through pygmm [1]_: the NGA-West2 models of Abrahamson, Silva and Kamai (ASK14), Boore,
+Stewart, Seyhan and Atkinson (BSSA14), Campbell and Bozorgnia (CB14) and Chiou and Youngs (CY14).
+
+A scenario is magnitude ``mag``, closest distance to the rupture ``dist_rup`` [km] and ``v_s30`` [m/s];
+what a model needs besides, unless given, is taken from
+:data:`rockstudy.core.risk_inputs.SCENARIO_DEFAULTS` (a vertical
+strike-slip rupture reaching the surface, the site off its end: R_JB = R_X = R_rup), and pygmm fills
+its own defaults (region, basin depths, rupture width). :func:`pga` returns every value the model
+used, defaults included.
+
+References
+----------
+.. [1] A. R. Kottke. pygmm: ground motion models implemented in Python. https://github.com/arkottke/pygmm
+"""
+from __future__ import annotations
+
+import math
+
+from rockstudy.core.risk_inputs import (
+    DEFAULT_GMM,
+    GMMS,
+    MECHANISMS,
+    SCENARIO_DEFAULTS,
+    SCENARIO_INPUTS,
+    SCENARIO_REQUIRED,
+)
+from rockstudy.core import validation
+
+
+def check_scenario(scenario: dict, name: str = "scenario") -> dict:
+    """The scenario with the defaults filled in, checked against the declared ranges
+    (:mod:`rockstudy.core.risk_inputs`).
+
+    Raises
+    ------
+    ValueError
+        (:class:`~rockstudy.core.validation.InputError`) naming ``name.<key>`` for a missing, unknown or
+        out-of-range value.
+    """
+    missing = [k for k in SCENARIO_REQUIRED if k not in scenario]
+    if missing:
+        raise validation.InputError(f"{name}: missing {', '.join(missing)} (a scenario gives "
+                                    f"{', '.join(SCENARIO_REQUIRED)})")
+    known = set(SCENARIO_INPUTS) | {"mechanism"}
+    unknown = sorted(set(scenario) - known)
+    if unknown:
+        raise validation.InputError(f"{name}: unknown key(s) {', '.join(unknown)}; allowed: {', '.join(sorted(known))}")
+    used = {**SCENARIO_DEFAULTS, **scenario}
+    used.setdefault("dist_jb", used["dist_rup"])
+    used.setdefault("dist_x", used["dist_jb"])
+    if used["mechanism"] not in MECHANISMS:
+        raise validation.InputError(f"{name}.mechanism = {used['mechanism']!r} is not allowed: one of "
+                                    f"{', '.join(MECHANISMS)}")
+    for key, bound in SCENARIO_INPUTS.items():
+        used[key] = bound.check(f"{name}.{key}", used[key])
+    return used
+
+
+def pga(scenario: dict, gmm: str = DEFAULT_GMM) -> tuple[float, float, dict]:
+    """Median PGA and its log standard deviation for a scenario, from the model ``gmm`` (pygmm).
+
+    Parameters
+    ----------
+    scenario : dict
+        ``mag``, ``dist_rup`` [km], ``v_s30`` [m/s] and optionally ``mechanism``, ``dip`` [deg],
+        ``depth_tor``, ``dist_jb``, ``dist_x`` [km] (:func:`check_scenario`).
+    gmm : str
+        A key of :data:`rockstudy.core.risk_inputs.GMMS`.
+
+    Returns
+    -------
+    median_pga_g : float
+        [g]
+    ln_std : float
+        Total standard deviation of ln PGA. [-]
+    used : dict
+        Every scenario value the model used, pygmm's defaults included.
+    """
+    if gmm not in GMMS:
+        raise validation.InputError(f"gmm = {gmm!r} is not allowed: one of {', '.join(GMMS)}")
+    used = check_scenario(scenario)
+    try:
+        import pygmm
+    except ImportError:  # pragma: no cover - pygmm is a dependency
+        raise validation.InputError("the scenario risk needs pygmm: pip install pygmm") from None
+    model = getattr(pygmm, GMMS[gmm])(pygmm.Scenario(**used))
+    # the values the model used (pygmm keeps them, with its own defaults, on the model)
+    used = {k: _plain(v) for k, v in model._scenario.items()}
+    median, sigma = float(model.pga), float(model.ln_std_pga)
+    if not (math.isfinite(median) and median > 0 and math.isfinite(sigma) and sigma >= 0):
+        raise validation.InputError(f"{gmm} gives no finite PGA for the scenario {used}")
+    return median, sigma, used
+
+
+def _plain(value):
+    """A JSON-ready scalar (numpy numbers as Python floats)."""
+    if value is None or isinstance(value, (bool, str)):
+        return value
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return str(value)

@@ -1,0 +1,317 @@
+"""Command group ``rockstudy fragility`` and ``rockstudy risk``: the fragility of one object on a record
+suite, and its risk of overturning at a site (:mod:`rockstudy.analysis.risk`).
+
+* ``rockstudy fragility --strategy S --suite SUITE [block and device options] --output F.nc`` runs the
+  record-set fragility of the study (:func:`rockstudy.analysis.fragility.suite_fragility_dataset`, the
+  study's stripes, threshold resolution and bootstrap by default) for S beside free standing, writes
+  the dataset and prints JSON with ``median_g`` and ``dispersion`` of S (the stripes' lognormal fit).
+* ``rockstudy risk (--median G --dispersion B | --fragility F.nc --strategy S)
+  (--hazard FILE [--years N] | --scenario mag=7,dist_rup=10,v_s30=400 [--gmm NAME])`` prints JSON with
+  ``annual_rate`` and ``probability`` (hazard), or ``gmm``, ``scenario``, ``median_pga_g``, ``ln_std``
+  and ``probability`` (scenario).
+* ``rockstudy risk --dispersion B --hazard FILE (--target-rate R | --target-probability P --years N)``
+  prints JSON with the ``median_g`` that meets the target (and, with ``--devices FILE``, which devices
+  of a design study's device sweep meet it).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import warnings
+
+from rockstudy.analysis.fragility import INTENSITY_MEASURES, SUITE_DEFAULTS
+from rockstudy.analysis.hazard import EXTENSIONS
+from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, GMMS, RISK_INPUTS
+from rockstudy.core import validation
+from rockstudy.engine.simulate import DEFAULT_FREE_TIME, OVERTURN_CRITERIA
+from rockstudy.model.anchorage import Anchorage
+from rockstudy.model.block import BLOCK_PRESETS
+from rockstudy.model.control import STRATEGIES, Control
+
+ANCHORAGE, CONTROL = Anchorage(), Control()
+"""The library's defaults the options show."""
+BLOCK_DIMENSIONS = {"width": "base width 2b [m]", "height": "height 2h [m]", "depth": "depth [m]",
+                    "density": "density [kg/m^3] (default 2700)",
+                    "restitution": "coefficient of restitution e [-] (default: Housner's Eq. 14)"}
+"""Block options besides the preset ``--block``."""
+
+
+def _typed(option: str, kind=float):
+    """argparse type: a number of ``kind`` (finite), the error naming ``option``."""
+    def convert(text):
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{option} must be {'an integer' if kind is int else 'a number'}, "
+                                             f"got {text!r}") from None
+        try:
+            return validation.check_number(option, value) if kind is float else value
+        except validation.InputError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+    return convert
+
+
+def _num(p, option: str, default, text: str) -> None:
+    """A number option (its help states the default, the library's)."""
+    p.add_argument(option, type=_typed(option), default=default, help=text)
+
+
+def register(sub) -> None:
+    """Add ``fragility`` and ``risk`` to the subparsers ``sub`` (each with ``run``)."""
+    from rockstudy.analysis.scenario import DEFAULT_BLOCK, DEFAULT_OVERTURN_CRITERION
+    from rockstudy.model.record_suites import suite_names
+    pf = sub.add_parser("fragility", help="fragility of one object on a record suite (netCDF; JSON with median_g "
+                        "and dispersion)")
+    pf.add_argument("--strategy", default=CONTROL.strategy, choices=STRATEGIES,
+                    help=f"control strategy, run beside FS (default {CONTROL.strategy})")
+    pf.add_argument("--suite", required=True, choices=suite_names(), help="record suite (see 'rockstudy records')")
+    pf.add_argument("--max-records", type=_typed("--max-records", int), default=None, metavar="N",
+                    help="only the suite's first N records (default: all)")
+    pf.add_argument("--block", default=DEFAULT_BLOCK, choices=sorted(BLOCK_PRESETS),
+                    help=f"block preset (default {DEFAULT_BLOCK}); or give --width, --height, --depth")
+    dims = pf.add_argument_group("block by its dimensions (instead of --block)")
+    for name, text in BLOCK_DIMENSIONS.items():
+        dims.add_argument(f"--{name}", type=_typed(f"--{name}"), default=None, help=text)
+    _num(pf, "--kappa-max", ANCHORAGE.kappa_max, "4 K_max b^2/(m g R) [-]")
+    _num(pf, "--kappa-min", ANCHORAGE.kappa_min, "4 K_min b^2/(m g R) [-]")
+    _num(pf, "--damping-ratio", ANCHORAGE.damping_ratio, "xi [-]")
+    _num(pf, "--sampling-time", CONTROL.sampling_time, "controller sampling time T_s [s] (0: continuous)")
+    _num(pf, "--delay", CONTROL.delay, "actuation delay [s] (needs T_s > 0)")
+    pf.add_argument("--overturn-criterion", default=DEFAULT_OVERTURN_CRITERION, choices=OVERTURN_CRITERIA,
+                    help=f"overturned at |theta| >= pi/2 (flat) or >= alpha (default {DEFAULT_OVERTURN_CRITERION})")
+    _num(pf, "--free-time", DEFAULT_FREE_TIME, "free motion allowed after the record [s]")
+    levels = SUITE_DEFAULTS["intensity_levels"]
+    pf.add_argument("--intensity-measure", default=SUITE_DEFAULTS["intensity_measure"], choices=INTENSITY_MEASURES,
+                    help=f"intensity measure of the stripes (default {SUITE_DEFAULTS['intensity_measure']})")
+    _num(pf, "--levels-start", levels["start"], "first stripe level [IM]")
+    _num(pf, "--levels-stop", levels["stop"], "last stripe level [IM]")
+    _num(pf, "--levels-step", levels["step"], "step of the stripe levels [IM]")
+    _num(pf, "--threshold-resolution", SUITE_DEFAULTS["threshold_resolution"],
+         "resolution of each record's threshold [IM]")
+    pf.add_argument("--bootstrap", type=_typed("--bootstrap", int), default=SUITE_DEFAULTS["bootstrap"],
+                    help="bootstrap draws over records for the median shift's interval")
+    pf.add_argument("--seed", type=_typed("--seed", int), default=SUITE_DEFAULTS["seed"], help="bootstrap seed")
+    pf.add_argument("--output", required=True, help="netCDF file to write")
+    pf.set_defaults(run=run_fragility)
+
+    pr = sub.add_parser("risk", help="rate and probability of overturning from a hazard curve or a scenario, or "
+                        "the median meeting a target (JSON)")
+    src = pr.add_argument_group("the fragility: --median and --dispersion, or --fragility and --strategy")
+    src.add_argument("--median", type=_typed("--median"), metavar="G", help="fragility median PGA theta [g]")
+    src.add_argument("--dispersion", type=_typed("--dispersion"), metavar="B", help="fragility dispersion beta [-]")
+    src.add_argument("--fragility", metavar="F.nc", help="a fragility dataset ('rockstudy fragility' or the "
+                     "study's fragility/<set>.nc): its stripes' lognormal fit in PGA")
+    src.add_argument("--strategy", choices=STRATEGIES, help="the strategy of --fragility")
+    site = pr.add_argument_group("the site: --hazard, or --scenario")
+    site.add_argument("--hazard", metavar="FILE", help="hazard curve: two columns, PGA [g] and annual rate of "
+                      "exceedance [1/yr], comma or space separated, '#' comments")
+    site.add_argument("--scenario", metavar="KEY=VALUE,...", help="earthquake scenario, e.g. "
+                      "mag=7,dist_rup=10,v_s30=400 (optional: mechanism, dip, depth_tor, dist_jb, dist_x)")
+    site.add_argument("--gmm", default=DEFAULT_GMM, choices=sorted(GMMS), help="ground-motion model of --scenario")
+    _num(pr, "--years", DEFAULT_YEARS, "exposure time T of the probability 1 - exp(-lambda T) [yr]")
+    pr.add_argument("--extension", default=EXTENSIONS[0], choices=EXTENSIONS,
+                    help="below the first and beyond the last point of the hazard curve, extend its end "
+                         "segments' power laws (loglog) or count nothing (none)")
+    pr.add_argument("--bands", metavar="G,G,...", help="PGA band edges [g] of a disaggregation to print")
+    target = pr.add_argument_group("risk-targeted design (with --dispersion and --hazard)")
+    target.add_argument("--target-rate", type=_typed("--target-rate"), metavar="R",
+                        help="the median meeting this annual rate of overturning [1/yr]")
+    target.add_argument("--target-probability", type=_typed("--target-probability"), metavar="P",
+                        help="the median meeting this probability of overturning in --years")
+    target.add_argument("--devices", metavar="FILE", help="a design study's device sweep (design/devices.nc): "
+                        "which devices meet the target")
+    pr.set_defaults(run=run_risk)
+
+
+def _fail(parser, exc) -> None:
+    parser.error(str(exc))
+
+
+def run_fragility(args, parser) -> None:
+    """``rockstudy fragility``: the suite's fragility of --strategy beside FS; JSON on stdout."""
+    from rockstudy.analysis.fragility import suite_fragility_dataset
+    from rockstudy.core.io import write_netcdf
+    from rockstudy.model import record_suites
+    from rockstudy.studies import parameters
+    try:
+        validation.check_output_path("--output", args.output, formats=("nc",))
+        anchorage = {"kappa_max": args.kappa_max, "kappa_min": args.kappa_min, "damping_ratio": args.damping_ratio}
+        Anchorage.check({k: f"--{k.replace('_', '-')}" for k in anchorage}, **anchorage)
+        block = _block(args)
+        validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_FREE_TIME)
+        levels = parameters.intensity_levels({"start": args.levels_start, "stop": args.levels_stop,
+                                              "step": args.levels_step}, "--levels")
+        validation.check_positive("--threshold-resolution", args.threshold_resolution)
+        validation.check_int_range("--bootstrap", args.bootstrap, 0, validation.MAX_BOOTSTRAP)
+        validation.check_int_range("--seed", args.seed, 0, validation.MAX_INTEGER)
+        if args.max_records is not None:
+            validation.check_int_range("--max-records", args.max_records, 1, validation.MAX_SUITE_RECORDS)
+        entries = record_suites.load_suite(args.suite)[:args.max_records]
+    except (ValueError, record_suites.RecordSuiteError) as exc:
+        _fail(parser, exc)
+    strategies = ["FS"] if args.strategy == "FS" else ["FS", args.strategy]
+    try:
+        controls = [Control(s, sampling_time=args.sampling_time, delay=args.delay) for s in strategies]
+    except ValueError as exc:
+        _fail(parser, exc)
+    ds = suite_fragility_dataset(block, Anchorage(**anchorage), controls, entries, levels, suite=args.suite,
+                                 measure=args.intensity_measure, resolution=args.threshold_resolution,
+                                 n_boot=args.bootstrap, seed=args.seed, overturn_criterion=args.overturn_criterion,
+                                 free_time=args.free_time)
+    write_netcdf(ds, args.output)
+    d = ds.sel(strategy=args.strategy)
+    unit = ds["fragility_median_physical"].attrs["units"]
+    key = "median_g" if unit == "g" else "median_pgv_m_per_s"
+    print(json.dumps({"strategy": args.strategy, "suite": args.suite, "n_records": len(entries),
+                      key: _value(d.fragility_median_physical), f"{key}_low": _value(d.median_low_physical),
+                      f"{key}_high": _value(d.median_high_physical), "dispersion": _value(d.fragility_dispersion),
+                      "fit": str(d.fit_status.values), "intensity_measure": args.intensity_measure,
+                      "fit_of": "the stripes' lognormal fit (P(overturn) at each level)", "output": args.output}))
+
+
+def _block(args):
+    """The block of the options: its dimensions, or the preset ``--block``."""
+    from rockstudy.studies.parameters import block_from_dict
+    dims = {name: getattr(args, name) for name in BLOCK_DIMENSIONS if getattr(args, name) is not None}
+    if not dims:
+        return BLOCK_PRESETS[args.block]
+    try:
+        return block_from_dict(dims)
+    except ValueError as exc:
+        message = str(exc)
+        for name in BLOCK_DIMENSIONS:
+            message = message.replace(f"block.{name}", f"--{name}")
+        raise validation.InputError(message.replace("block: missing key(s)", "missing block option(s)")) from None
+
+
+def _value(da):
+    value = float(da)
+    return value if math.isfinite(value) else None
+
+
+def _scenario(text: str, parser) -> dict:
+    out = {}
+    for item in text.split(","):
+        key, sep, value = item.partition("=")
+        key, value = key.strip(), value.strip()
+        if not sep or not key or not value:
+            parser.error(f"argument --scenario: {item!r} is not KEY=VALUE (e.g. mag=7,dist_rup=10,v_s30=400)")
+        if key in out:
+            parser.error(f"argument --scenario: {key} is given twice")
+        if key == "mechanism":
+            out[key] = value
+            continue
+        try:
+            out[key] = float(value)
+        except ValueError:
+            parser.error(f"argument --scenario: {key}={value!r} is not a number")
+    return out
+
+
+def _fragility(args, parser):
+    from rockstudy.analysis.risk import LognormalFragility, fragility_from_dataset
+    from rockstudy.core.io import read_netcdf
+    if args.fragility is not None:
+        if args.median is not None or args.dispersion is not None:
+            parser.error("give the fragility either as --median and --dispersion or as --fragility and --strategy")
+        if args.strategy is None:
+            parser.error("--fragility needs --strategy (the strategy whose fragility to use)")
+        validation.check_input_file("--fragility", args.fragility, validation.MAX_DATASET_BYTES)
+        try:
+            ds = read_netcdf(args.fragility)
+        except (OSError, ValueError, RuntimeError) as exc:
+            parser.error(f"argument --fragility: cannot read {args.fragility!r} as a netCDF file: {exc}")
+        if "strategy" not in ds.coords or "fragility_dispersion" not in ds:
+            parser.error(f"argument --fragility: {args.fragility!r} is not a fragility dataset")
+        return fragility_from_dataset(ds, args.strategy)
+    if args.median is None or args.dispersion is None:
+        parser.error("give the fragility: --median and --dispersion, or --fragility and --strategy")
+    if args.strategy is not None:
+        parser.error("--strategy goes with --fragility")
+    return LognormalFragility(RISK_INPUTS["median_g"].check("--median", args.median),
+                              RISK_INPUTS["dispersion"].check("--dispersion", args.dispersion))
+
+
+def run_risk(args, parser) -> None:
+    """``rockstudy risk``: hazard, scenario or target mode; JSON on stdout."""
+    try:
+        out = _risk(args, parser)
+    except validation.InputError as exc:
+        _fail(parser, exc)
+    print(json.dumps(out))
+
+
+def _risk(args, parser) -> dict:
+    from rockstudy.analysis import risk
+    from rockstudy.analysis.hazard import read_hazard_curve
+    years = RISK_INPUTS["years"].check("--years", args.years)
+    targets = [t for t in ("target_rate", "target_probability") if getattr(args, t) is not None]
+    if (args.hazard is None) == (args.scenario is None):
+        parser.error("give the site: --hazard FILE or --scenario KEY=VALUE,...")
+    if targets:
+        if len(targets) > 1:
+            parser.error("give one target: --target-rate or --target-probability")
+        if args.hazard is None:
+            parser.error("a target needs --hazard (the median meeting it on the hazard curve)")
+        if args.dispersion is None or args.median is not None or args.fragility is not None:
+            parser.error("a target takes --dispersion only (the median is what it finds)")
+        hazard = read_hazard_curve(args.hazard, "--hazard")
+        dispersion = RISK_INPUTS["dispersion"].check("--dispersion", args.dispersion)
+        if args.target_rate is not None:
+            rate = RISK_INPUTS["target_rate"].check("--target-rate", args.target_rate)
+        else:
+            RISK_INPUTS["target_probability"].check("--target-probability", args.target_probability)
+            rate = risk.rate_for_probability(args.target_probability, years)
+        median = risk.median_for_target(hazard, dispersion, target_rate=rate, extension=args.extension)
+        out = {"median_g": median, "dispersion": dispersion, "target_rate": rate,
+               "target_probability": risk.probability_in_years(rate, years), "years": years, "hazard": args.hazard,
+               "extension": args.extension}
+        if args.devices is not None:
+            out["devices"] = _devices(args, parser, median)
+        return out
+    if args.devices is not None:
+        parser.error("--devices goes with --target-rate or --target-probability")
+    fragility = _fragility(args, parser)
+    base = {"median_g": fragility.median_g, "dispersion": fragility.dispersion}
+    if args.fragility is not None:
+        base.update(fragility=args.fragility, strategy=args.strategy)
+    if args.scenario is not None:
+        result = risk.scenario_risk(fragility, _scenario(args.scenario, parser), args.gmm)
+        return {"gmm": result.gmm, "scenario": result.scenario, "median_pga_g": result.median_pga_g,
+                "ln_std": result.ln_std, "probability": result.probability, **base}
+    hazard = read_hazard_curve(args.hazard, "--hazard")
+    edges = None
+    if args.bands is not None:
+        try:
+            edges = [float(v) for v in args.bands.split(",")]
+        except ValueError:
+            parser.error(f"argument --bands: {args.bands!r} is not a comma-separated list of PGA [g]")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", risk.HazardExtensionWarning)
+        result = risk.annual_rate(fragility, hazard, band_edges_g=edges, extension=args.extension)
+    for w in caught:
+        print(f"rockstudy: warning: {w.message}", file=sys.stderr)
+    out = {"annual_rate": result.annual_rate, "probability": result.probability(years), "years": years, **base,
+           "hazard": args.hazard, "extension": args.extension, "rate_below_curve": result.rate_below,
+           "rate_above_curve": result.rate_above, "tail_share": result.tail_share}
+    if edges is not None:
+        out["disaggregation"] = [{"pga_low_g": float(lo), "pga_high_g": None if math.isinf(hi) else float(hi),
+                                  "share": float(s)}
+                                 for lo, hi, s in zip(result.band_edges_g[:-1], result.band_edges_g[1:],
+                                                      result.band_share)]
+    return out
+
+
+def _devices(args, parser, median: float) -> list[dict]:
+    from rockstudy.analysis.risk import devices_meeting
+    from rockstudy.core.io import read_netcdf
+    validation.check_input_file("--devices", args.devices, validation.MAX_DATASET_BYTES)
+    try:
+        ds = read_netcdf(args.devices)
+    except (OSError, ValueError, RuntimeError) as exc:
+        parser.error(f"argument --devices: cannot read {args.devices!r} as a netCDF file: {exc}")
+    if not {"kappa_max", "damping_ratio", "strategy"} <= set(ds.coords) or "fragility_median" not in ds:
+        parser.error(f"argument --devices: {args.devices!r} is not a device sweep (design/devices.nc)")
+    return devices_meeting(ds, median)
