@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 
+from rockstudy.core import validation
 from rockstudy.core.risk_inputs import (
     DEFAULT_GMM,
     GMMS,
@@ -25,7 +26,6 @@ from rockstudy.core.risk_inputs import (
     SCENARIO_INPUTS,
     SCENARIO_REQUIRED,
 )
-from rockstudy.core import validation
 
 
 def check_scenario(scenario: dict, name: str = "scenario") -> dict:

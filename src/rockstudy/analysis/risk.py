@@ -50,8 +50,8 @@ import numpy as np
 from scipy import optimize, special
 
 from rockstudy.analysis.hazard import EXTENSIONS, HazardCurve
-from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, RISK_INPUTS
 from rockstudy.core import validation
+from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, RISK_INPUTS
 
 if TYPE_CHECKING:
     import xarray as xr

@@ -1,4 +1,5 @@
-"""Command line: ``rockstudy simulate | threshold | spectrum | jos | records | fragility | risk`` (``rockstudy --version``).
+"""Command line: ``rockstudy simulate | threshold | spectrum | jos | records | fragility | risk``
+(``rockstudy --version``).
 
 A block is a preset (``--block BLC06``) or its dimensions (``--width --height --depth``, with
 ``--density`` and ``--restitution``); ``--config FILE`` takes a study's settings (block, anchorage,

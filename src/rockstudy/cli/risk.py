@@ -23,8 +23,8 @@ import warnings
 
 from rockstudy.analysis.fragility import INTENSITY_MEASURES, SUITE_DEFAULTS
 from rockstudy.analysis.hazard import EXTENSIONS
-from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, GMMS, RISK_INPUTS
 from rockstudy.core import validation
+from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, GMMS, RISK_INPUTS
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME, OVERTURN_CRITERIA
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS

@@ -100,8 +100,8 @@ def _cmd_spectrum(args, parser):
 def _cmd_jos(args, parser):
     import numpy as np
 
-    from rockstudy.core.io import read_netcdf
     from rockstudy.analysis.jos import jos
+    from rockstudy.core.io import read_netcdf
     from rockstudy.studies.tables import check_spectrum_file, spectrum_mismatches
     declarations.check_option("--a-max0", args.a_max0)
     datasets = {}
