@@ -22,7 +22,7 @@ ROOT = Path(__file__).resolve().parents[1]
 FENCE = re.compile(r"^```(\w+)[^\n]*\n(.*?)^```", re.MULTILINE | re.DOTALL)
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
 SHELL = ("bash", "sh", "shell", "console")
-PYTHON_RUN_ELSEWHERE = {"README.md", "docs/usage.md"}  # tests/test_docs.py runs their Python blocks
+PYTHON_RUN_ELSEWHERE = {"README.md", "docs/usage.md", "docs/risk.md"}  # test_docs(_risk).py run them in order
 NOT_RUN_HERE = ("pip", "ruff", "pytest", "sphinx", "git", "cd", "open")
 """Shell commands these tests do not run: installs, the linter and test suite themselves, the docs build."""
 DEFAULT = yaml.safe_load((ROOT / "config.yaml").read_text())
