@@ -37,6 +37,10 @@ if BEYOND:
         figure_record_thresholds,
         fragility_summary,
 
+    def expect_fragility(wildcards, input):
+        """The fragility of the job's record set (rules figure_fragility, figure_record_thresholds)."""
+        return expected(input, [EXPECT.fragility(wildcards.recordset)])
+
     rule probability:
         input:
             PROBABILITY_FILES,
@@ -56,7 +60,7 @@ if BEYOND:
         log:
             f"{OUT}/logs/probability/{{strategy}}_{{level}}.log",
         params:
-            expect=expect,
+            expect=expect_noise,
             scenario=get_scenario,
             realisations=config["realisations"],
             frequency_grid=PROB["frequency_grid"],
@@ -124,6 +128,8 @@ if BEYOND:
         log:
             f"{OUT}/logs/fragility/{{recordset}}.log",
         params:
+            expect=lambda wildcards, input: expected([input.records], [EXPECT.record_set(
+                wildcards.recordset, RECORD_SETS[wildcards.recordset])]),
             scenario=scenario("FS", FREE),
             strategies=FRAG["strategies"],
             intensity_measure=FRAG["intensity_measure"],
@@ -150,6 +156,8 @@ if BEYOND:
         log:
             f"{OUT}/logs/fragility/summary.log",
         params:
+            expect=expected([f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS],
+                            [EXPECT.fragility(name) for name in RECORD_SETS]),
             library=BOOKKEEPING,
         conda:
             "../envs/rockstudy.yaml"
@@ -168,7 +176,8 @@ if BEYOND:
         log:
             f"{OUT}/logs/figures/probability_overturning.log",
         params:
-            expect=expect,
+            expect=expected(PROBABILITY_FILES, [EXPECT.probability(s, l) for s in PROB["strategies"]
+                                                for l in PROB["noise_levels"]]),
             plotting=PLOTTING,
             a_max0=config["a_max0"],
         conda:
@@ -188,7 +197,7 @@ if BEYOND:
         log:
             f"{OUT}/logs/figures/fragility_{{recordset}}.log",
         params:
-            expect=expect,
+            expect=expect_fragility,
             plotting=PLOTTING,
         conda:
             "../envs/rockstudy.yaml"
@@ -208,6 +217,7 @@ if BEYOND:
         log:
             f"{OUT}/logs/figures/record_thresholds_{{recordset}}.log",
         params:
+            expect=expect_fragility,
             plotting=PLOTTING,
         conda:
             "../envs/rockstudy.yaml"
