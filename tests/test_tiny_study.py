@@ -51,7 +51,8 @@ def test_tiny_study_end_to_end(tiny_run):
 @pytest.mark.slow
 def test_tiny_study_files_follow_cf_and_histories_have_one_value_per_time(tiny_run):
     """One netCDF file of each kind the tiny study writes (one per folder) passes the CF-1.11
-    checker without a high-priority finding; every history's time is strictly increasing."""
+    checker without a high-priority finding; every units attribute of every file parses with cf-units
+    (and none is a mass); every history's time is strictly increasing."""
     from compliance import high_priority_findings
 
     out, _, res = tiny_run
@@ -62,6 +63,10 @@ def test_tiny_study_files_follow_cf_and_histories_have_one_value_per_time(tiny_r
     assert len(kinds) >= 9, sorted(kinds)  # every spectrum written whole: no chunks/ folder
     findings = {str(path.relative_to(out)): high_priority_findings(path) for path in kinds.values()}
     assert all(not f for f in findings.values()), {k: f for k, f in findings.items() if f}
+    from test_conventions import units_problems
+
+    units = {str(path.relative_to(out)): units_problems(path) for path in sorted(out.rglob("*.nc"))}
+    assert all(not u for u in units.values()), {k: u for k, u in units.items() if u}
     import xarray as xr
 
     histories = sorted((out / "histories").glob("*.nc"))
