@@ -1,8 +1,8 @@
 # Figures (PNG for the report, PDF for print), drawn only from the netCDF outputs.
 
 FIG6_PANELS = [s for s in ("FS", "CS01", "CS02") if s in config["strategies"]]  # Fig. 6b-d
-CONVERGENCE = {f"{OUT}/convergence/{config['convergence']['strategy']}_{config['convergence']['noise_level']}.nc":
-               EXPECT.spectrum(config["convergence"]["strategy"], config["convergence"]["noise_level"])}
+CONVERGENCE_FILE = f"{OUT}/convergence/{config['convergence']['strategy']}_{config['convergence']['noise_level']}.nc"
+CONVERGENCE = {CONVERGENCE_FILE: EXPECT.spectrum(config["convergence"]["strategy"], config["convergence"]["noise_level"])}
 """The convergence file of Fig. 6a and of the claims, and its expectation."""
 
 
@@ -74,7 +74,7 @@ rule figure_realisations:
 
 rule figure_noise_sensitivity:
     input:
-        convergence=list(CONVERGENCE),
+        convergence=CONVERGENCE_FILE,
         spectra=spectrum_files(FIG6_PANELS, LEVELS),
     output:
         png=report(f"{OUT}/figures/fig6_noise_sensitivity.png", caption="../report/fig6.rst", category="Figures",

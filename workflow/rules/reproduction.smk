@@ -35,7 +35,7 @@ rule claims:
         table1=f"{OUT}/tables/table1.nc",
         sampling=f"{OUT}/tables/timing_sampling.nc",
         delay=f"{OUT}/tables/timing_delay.nc",
-        convergence=list(CONVERGENCE),
+        convergence=CONVERGENCE_FILE,
         spectra=spectrum_files(FIG6_PANELS, LEVELS),
     output:
         md=f"{OUT}/reproduction/claims.md",

@@ -9,9 +9,9 @@ from rockstudy.studies import jobs, parameters
 
 def main(snakemake):
     job = jobs.open_job(snakemake)
+    entries = entries_from_dataset(job.read(snakemake.input.records))  # the record set checked first
     p = snakemake.params
     scenario = parameters.scenario_from_dict(p.scenario)
-    entries = entries_from_dataset(job.read(snakemake.input.records))
     controls = [Control(s, sensor_band=scenario.control.sensor_band) for s in p.strategies]
     ds = suite_fragility_dataset(scenario.block, scenario.anchorage, controls, entries,
                                  parameters.intensity_levels(p.intensity_levels), suite=snakemake.wildcards.recordset,
