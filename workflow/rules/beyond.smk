@@ -37,10 +37,6 @@ if BEYOND:
         figure_record_thresholds,
         fragility_summary,
 
-    def expect_fragility(wildcards, input):
-        """The fragility of the job's record set (rules figure_fragility, figure_record_thresholds)."""
-        return expected(input, [EXPECT.fragility(wildcards.recordset)])
-
     rule probability:
         input:
             PROBABILITY_FILES,

@@ -193,6 +193,11 @@ def expect_control_history(wildcards, input):
     return expected(input, [EXPECT.history(wildcards.strategy, FREE, 0, HIST["frequency_ratio"],
                                            HIST["amplitude_ratio"])])
 
+
+def expect_fragility(wildcards, input):
+    """The fragility of the job's record set (rules figure_fragility, figure_record_thresholds)."""
+    return expected(input, [EXPECT.fragility(wildcards.recordset)])
+
 # Reproducing the paper's numbers: readings study, claims checklist, device calibration.
 REPRO = config["reproduction"]
 READINGS = REPRO["readings"]
