@@ -168,6 +168,8 @@ TAMPERED = {  # (intermediate, how, the step that reads it, what the refusal say
     "map of another strategy": ("maps/FS.nc", _copy_over("maps/CS01.nc"), "figure_maps",
                                 "control_strategy is 'CS01', expected 'FS'"),
     "truncated file": ("convergence/FS_R005.nc", _truncate, "figure_noise_sensitivity", ""),
+    "table swapped": ("tables/table1.nc", _copy_over("tables/timing_sampling.nc"), "claims",
+                      "strategy is ['CS01', 'CS02'], expected ['FS', 'CS01', 'CS02']"),
 }
 
 

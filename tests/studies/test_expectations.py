@@ -60,6 +60,16 @@ def test_beyond_and_design_expectations(tiny):
     assert point["R"] == config["design"]["blocks"]["R"][0] and point["record_suite"] == config["design"]["suite"]
 
 
+def test_tables_expect_their_strategies_and_sweeps(tiny):
+    expect = expectations.StudyExpectations(tiny)
+    assert expect.table1()["strategy"] == tiny["table1"]["strategies"]
+    assert expect.timing_table("sampling")["sampling_time"] == tiny["sampling_sweep"]["sampling_times"]
+    assert expect.timing_table("delay")["delay"] == tiny["delay_sweep"]["delays"]
+    assert "delay" not in expect.timing_table("sampling") and expect.table1()["block_alpha"] > 0
+    with pytest.raises(ValueError, match="sampling or delay"):
+        expect.timing_table("noise")
+
+
 def test_paired_refuses_a_length_mismatch():
     assert expectations.paired(["a", "b"], [{}, {"x": 1}]) == {"a": {}, "b": {"x": 1}}
     with pytest.raises(ValueError, match="2 input files but 1 expectations"):

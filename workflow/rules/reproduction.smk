@@ -47,7 +47,7 @@ rule claims:
         f"{OUT}/logs/reproduction/claims.log",
     params:
         expect={**expected([f"{OUT}/tables/{t}.nc" for t in ("table1", "timing_sampling", "timing_delay")],
-                           [EXPECT.table()] * 3),
+                           [EXPECT.table1(), EXPECT.timing_table("sampling"), EXPECT.timing_table("delay")]),
                 **CONVERGENCE, **expected(spectrum_files(FIG6_PANELS, LEVELS), spectra_expected(FIG6_PANELS, LEVELS))},
         bookkeeping=BOOKKEEPING,
         noise_levels=LEVELS,

@@ -106,6 +106,21 @@ class StudyExpectations:
         what it inherits from the study (block, excitation, seed, criterion, free time)."""
         return expected_attrs(self.scenario("FS", self.free), "study")
 
+    def table1(self) -> dict:
+        """Table 1 (``tables/table1.nc``): the study's attributes and ``table1.strategies``."""
+        return {**self.table(), "strategy": list(self.config["table1"]["strategies"])}
+
+    def timing_table(self, sweep: str) -> dict:
+        """The J_OS table of the ``"sampling"`` or ``"delay"`` sweep: its strategies and sampling times (delays)."""
+        if sweep == "sampling":
+            spec = self.config["sampling_sweep"]
+            return {**self.table(), "strategy": list(spec["strategies"]),
+                    "sampling_time": [float(t) for t in spec["sampling_times"]]}
+        if sweep == "delay":
+            spec = self.config["delay_sweep"]
+            return {**self.table(), "strategy": list(spec["strategies"]), "delay": [float(d) for d in spec["delays"]]}
+        raise ValueError(f"sweep must be sampling or delay, got {sweep!r}")
+
     def claims(self) -> dict:
         """The claims checklist: made under the study's noise reading and anchorage."""
         return {"noise_reading": self.config["noise"], "anchorage": str(self.config["anchorage"])}
