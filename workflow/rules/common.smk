@@ -169,7 +169,6 @@ FIGURES = [FIG.format(name=n, ext=e) for n in FIGURE_NAMES for e in ("png", "pdf
 TABLES = [f"{OUT}/tables/{t}.{e}" for t in ("table1", "timing_sampling", "timing_delay") for e in ("nc", "csv", "md")]
 
 
-
 # params `expect` of the rules whose inputs depend on the job's wildcards
 def expect_noise(wildcards, input):
     """The job's noise file: its level's realisations (rules spectrum*, probability_surface)."""
@@ -197,6 +196,7 @@ def expect_control_history(wildcards, input):
 def expect_fragility(wildcards, input):
     """The fragility of the job's record set (rules figure_fragility, figure_record_thresholds)."""
     return expected(input, [EXPECT.fragility(wildcards.recordset)])
+
 
 # Reproducing the paper's numbers: readings study, claims checklist, device calibration.
 REPRO = config["reproduction"]
@@ -232,9 +232,7 @@ READING_SPECTRA_EXPECTED = [reading_spectrum_expected(name, level) for name in R
 
 
 def get_reading_scenario(wildcards):
-    spec = scenario(wildcards.strategy, wildcards.level)
-    spec["noise"] = dict(READINGS[wildcards.reading])  # missing keys: the library defaults
-    return spec
+    return expectations.reading_scenario_spec(config, wildcards.strategy, wildcards.reading, wildcards.level)
 
 
 READINGS_TABLE = [f"{OUT}/reproduction/readings/readings.{e}" for e in ("nc", "csv", "md")]

@@ -37,6 +37,14 @@ def scenario_spec(config: dict, strategy: str, level: str, sampling_time=0.0, de
     }
 
 
+def reading_scenario_spec(config: dict, strategy: str, reading: str, level: str) -> dict:
+    """The scenario of the readings study's spectrum of ``strategy`` under the noise reading ``reading``
+    (``reproduction.readings``; missing keys take the library's defaults) at ``level``."""
+    spec = scenario_spec(config, strategy, level)
+    spec["noise"] = dict(config["reproduction"]["readings"][reading])
+    return spec
+
+
 def record_set_members(members) -> str:
     """The ``record_set_members`` attribute of a record set: its config entry (a suite name, or the list
     of ``SUITE:ID`` names and files) as text."""
@@ -135,10 +143,8 @@ class StudyExpectations:
     def reading_spectrum(self, strategy: str, reading: str, level: str) -> dict:
         """The spectrum of ``strategy`` under the noise reading ``reading`` at ``level``
         (``reproduction.readings``; missing keys take the library's defaults)."""
-        repro = self.config["reproduction"]
-        spec = scenario_spec(self.config, strategy, level)
-        spec["noise"] = dict(repro["readings"][reading])
-        realisations = list(range(repro["realisations"])) if self.levels[level] > 0 else [0]
+        spec = reading_scenario_spec(self.config, strategy, reading, level)
+        realisations = list(range(self.config["reproduction"]["realisations"])) if self.levels[level] > 0 else [0]
         return expected_attrs(parameters.scenario_from_dict(spec), realisations=realisations, **self._grids())
 
     # --- beyond the paper -----------------------------------------------------------------------------
