@@ -70,6 +70,18 @@ def test_tables_expect_their_strategies_and_sweeps(tiny):
         expect.timing_table("noise")
 
 
+def test_calibration_and_readings_expectations(tiny):
+    expect = expectations.StudyExpectations(tiny)
+    cal = tiny["calibration"]
+    assert len(expect.calibration_devices) == len(cal["kappa_max"]) * len(cal["damping_ratio"]) * len(
+        cal["ultimate_rotation_ratio"]) * len(cal["kappa_min_ratio"])
+    devices = [expect.calibration_device(i) for i in range(len(expect.calibration_devices))]
+    assert {d["anchorage_kappa_max"] for d in devices} == set(cal["kappa_max"])
+    assert len({tuple(sorted(d.items())) for d in devices}) == len(devices)  # one expectation per device
+    assert expect.calibration_refined(0, "CS02", "R005")["control_strategy"] == "CS02"
+    assert expect.readings_table()["reading"] == list(tiny["reproduction"]["readings"])
+
+
 def test_paired_refuses_a_length_mismatch():
     assert expectations.paired(["a", "b"], [{}, {"x": 1}]) == {"a": {}, "b": {"x": 1}}
     with pytest.raises(ValueError, match="2 input files but 1 expectations"):

@@ -242,10 +242,11 @@ CLAIMS = [f"{OUT}/reproduction/{name}" for name in ("claims.md", "claims.nc", "c
 CAL = config["calibration"]
 CAL_DESIGN = {key: CAL[key] for key in ("kappa_max", "damping_ratio", "ultimate_rotation_ratio", "kappa_min_ratio")}
 CAL_ALPHA = parameters.block_from_dict(config["block"]).alpha  # theta_u = ratio * alpha
-CAL_DEVICES = calibration.CalibrationDesign(**CAL_DESIGN).devices(CAL_ALPHA)
+CAL_DEVICES = EXPECT.calibration_devices
 CAL_FS = [f"{OUT}/reproduction/calibration/coarse/FS_{level}.nc" for level in LEVELS]
-CAL_REFINE = [f"{OUT}/reproduction/calibration/refine/c{rank}_{s}_{level}.nc"
-              for rank in range(CAL["candidates"]) for s in ("CS01", "CS02") for level in LEVELS]
+CAL_DEVICE_FILES = [f"{OUT}/reproduction/calibration/coarse/device{i}.nc" for i in range(len(CAL_DEVICES))]
+CAL_REFINE_KEYS = [(rank, s, level) for rank in range(CAL["candidates"]) for s in ("CS01", "CS02") for level in LEVELS]
+CAL_REFINE = [f"{OUT}/reproduction/calibration/refine/c{rank}_{s}_{level}.nc" for rank, s, level in CAL_REFINE_KEYS]
 
 
 def calibration_base():

@@ -99,7 +99,7 @@ rule figure_readings:
     log:
         f"{OUT}/logs/reproduction/figure_readings.log",
     params:
-        expect=expected([f"{OUT}/reproduction/readings/readings.nc"], [EXPECT.table()]),
+        expect=expected([f"{OUT}/reproduction/readings/readings.nc"], [EXPECT.readings_table()]),
         plotting=PLOTTING,
     conda:
         "../envs/rockstudy.yaml"
@@ -151,7 +151,7 @@ rule calibration_device:
     wildcard_constraints:
         device="[0-9]+",
     params:
-        expect=expected(CAL_FS, [EXPECT.table()] * len(CAL_FS)),
+        expect=expected(CAL_FS, [EXPECT.calibration_fs(level) for level in LEVELS]),
         scenario=calibration_base(),
         anchorage=get_device_anchorage,
         levels=LEVELS,
@@ -172,7 +172,7 @@ rule calibration_device:
 
 rule calibration_grid:
     input:
-        [f"{OUT}/reproduction/calibration/coarse/device{i}.nc" for i in range(len(CAL_DEVICES))],
+        CAL_DEVICE_FILES,
     output:
         nc=f"{OUT}/reproduction/calibration/grid.nc",
         png=report(f"{OUT}/reproduction/calibration/fig_calibration.png", caption="../report/calibration.rst",
@@ -182,7 +182,7 @@ rule calibration_grid:
     log:
         f"{OUT}/logs/reproduction/calibration/grid.log",
     params:
-        expect=lambda wildcards, input: expected(input, [EXPECT.table()] * len(input)),
+        expect=expected(CAL_DEVICE_FILES, [EXPECT.calibration_device(i) for i in range(len(CAL_DEVICES))]),
         design=CAL_DESIGN,
         alpha=CAL_ALPHA,
         reading=config["noise"],
@@ -206,7 +206,7 @@ rule calibration_refine_spectrum:
     wildcard_constraints:
         rank="[0-9]+",
     params:
-        expect=expected([f"{OUT}/reproduction/calibration/grid.nc"], [EXPECT.table()]),
+        expect=expected([f"{OUT}/reproduction/calibration/grid.nc"], [EXPECT.calibration_grid()]),
         scenario=calibration_base(),
         noise_level=get_noise_level,
         realisations=config["realisations"],
@@ -235,7 +235,7 @@ rule calibration_refine:
         f"{OUT}/logs/reproduction/calibration/refine.log",
     params:
         expect={**expected([f"{OUT}/reproduction/calibration/grid.nc"] + CAL_REFINE,
-                           [EXPECT.table()] * (1 + len(CAL_REFINE))),
+                           [EXPECT.calibration_grid()] + [EXPECT.calibration_refined(*key) for key in CAL_REFINE_KEYS]),
                 **expected(fs_spectra_of_the_study(), spectra_expected(["FS"], LEVELS))},
         block=config["block"],
         candidates=CAL["candidates"],

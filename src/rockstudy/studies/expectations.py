@@ -147,6 +147,40 @@ class StudyExpectations:
         realisations = list(range(self.config["reproduction"]["realisations"])) if self.levels[level] > 0 else [0]
         return expected_attrs(parameters.scenario_from_dict(spec), realisations=realisations, **self._grids())
 
+    def readings_table(self) -> dict:
+        """The readings study's table: one row per reading of ``reproduction.readings``."""
+        return {"reading": list(self.config["reproduction"]["readings"]), "a_max0_g": float(self.config["a_max0"])}
+
+    # --- the device calibration -----------------------------------------------------------------------
+    @cached_property
+    def calibration_devices(self) -> list[dict]:
+        """The anchorages the calibration screens, in the order of its ``device`` wildcard."""
+        from rockstudy.studies.device_calibration import CalibrationDesign
+
+        cal = self.config["calibration"]
+        design = CalibrationDesign(**{key: cal[key] for key in ("kappa_max", "damping_ratio",
+                                                                 "ultimate_rotation_ratio", "kappa_min_ratio")})
+        return design.devices(parameters.block_from_dict(self.config["block"]).alpha)
+
+    def calibration_fs(self, level: str) -> dict:
+        """The FS spectrum of ``level`` on the calibration's coarse grid."""
+        return {**self.table(), "control_strategy": "FS", "noise_level": self.levels[level]}
+
+    def calibration_device(self, device) -> dict:
+        """The coarse Table 1 of the calibration's device number ``device``."""
+        anchorage = self.calibration_devices[int(device)]
+        return {"a_max0_g": float(self.config["a_max0"]), **{f"anchorage_{k}": v for k, v in anchorage.items()}}
+
+    def calibration_grid(self) -> dict:
+        """The screened grid of the calibration."""
+        return {"block_alpha": parameters.block_from_dict(self.config["block"]).alpha,
+                "noise_reading": str(self.config["noise"])}
+
+    def calibration_refined(self, rank, strategy: str, level: str) -> dict:
+        """The spectrum of the ``rank``-th best screened device under ``strategy`` at ``level``."""
+        return {**self.table(), "calibration_rank": int(rank), "control_strategy": strategy,
+                "noise_level": self.levels[level]}
+
     # --- beyond the paper -----------------------------------------------------------------------------
     def probability(self, strategy: str, level: str) -> dict:
         """A P(overturn) surface (``beyond.probability``) over the study's realisations."""
