@@ -153,6 +153,45 @@ def test_every_kind_of_file_passes_the_cf_checker(kind, tmp_path):
         for name, var in nc.variables.items():
             if name in nc.dimensions:  # a coordinate variable
                 assert "_FillValue" not in var.ncattrs(), name
+    assert units_problems(path) == []
+
+
+def units_problems(path) -> list[str]:
+    """Every ``units`` attribute of the netCDF file ``path`` that cf-units (UDUNITS-2) cannot parse, or reads
+    as a mass: "g" is the gram there, not an acceleration."""
+    import cf_units
+
+    problems = []
+    with netCDF4.Dataset(path) as nc:
+        for name, var in nc.variables.items():
+            if "units" not in var.ncattrs():
+                continue
+            units = var.getncattr("units")
+            try:
+                unit = cf_units.Unit(units)
+            except ValueError as exc:
+                problems.append(f"{name}: {units!r} does not parse ({exc})")
+                continue
+            if unit.is_convertible(cf_units.Unit("kg")):
+                problems.append(f"{name}: {units!r} is a mass to UDUNITS")
+    return problems
+
+
+def test_units_problems_sees_a_gram_and_a_made_up_unit(tmp_path):
+    """What the files wrote before: ``units = "g"`` for a PGA (a gram to UDUNITS); and a unit nobody reads."""
+    ds = xr.Dataset({"pga": ("record", [0.3], {"units": "g"}), "x": ("record", [1.0], {"units": "metres per fish"})})
+    found = units_problems(io.write_netcdf(ds, tmp_path / "old.nc"))
+    assert len(found) == 2 and "'g' is a mass" in found[0] and "does not parse" in found[1]
+
+
+def test_a_pga_in_standard_gravity_converts_to_metres_per_second_squared():
+    import cf_units
+
+    from rockstudy.model.records import STANDARD_GRAVITY, STANDARD_GRAVITY_UNITS, unit_label
+
+    assert cf_units.Unit(STANDARD_GRAVITY_UNITS).convert(0.5, cf_units.Unit("m s-2")) == pytest.approx(
+        0.5 * STANDARD_GRAVITY, rel=1e-15)
+    assert unit_label(STANDARD_GRAVITY_UNITS) == "g" and unit_label("m/s") == "m/s"
 
 
 def test_the_checker_sees_what_main_used_to_write(tmp_path):

@@ -51,7 +51,8 @@ def test_tiny_study_end_to_end(tiny_run):
 @pytest.mark.slow
 def test_tiny_study_files_follow_cf_and_histories_have_one_value_per_time(tiny_run):
     """One netCDF file of each kind the tiny study writes (one per folder) passes the CF-1.11
-    checker without a high-priority finding; every history's time is strictly increasing."""
+    checker without a high-priority finding; every units attribute of every file parses with cf-units
+    (and none is a mass); every history's time is strictly increasing."""
     from compliance import high_priority_findings
 
     out, _, res = tiny_run
@@ -62,6 +63,10 @@ def test_tiny_study_files_follow_cf_and_histories_have_one_value_per_time(tiny_r
     assert len(kinds) >= 9, sorted(kinds)  # every spectrum written whole: no chunks/ folder
     findings = {str(path.relative_to(out)): high_priority_findings(path) for path in kinds.values()}
     assert all(not f for f in findings.values()), {k: f for k, f in findings.items() if f}
+    from test_conventions import units_problems
+
+    units = {str(path.relative_to(out)): units_problems(path) for path in sorted(out.rglob("*.nc"))}
+    assert all(not u for u in units.values()), {k: u for k, u in units.items() if u}
     import xarray as xr
 
     histories = sorted((out / "histories").glob("*.nc"))
@@ -116,3 +121,72 @@ def test_interrupted_j1_run_resumes_to_the_same_numbers_as_j2(tiny_run, tmp_path
             a.attrs.pop("compute_time_s", None)
             b.attrs.pop("compute_time_s", None)
             xr.testing.assert_identical(a, b)
+
+
+def _tampered_edit(path, edit):
+    """Rewrite the netCDF file ``path`` with ``edit`` applied, every attribute kept."""
+    from rockstudy.core import io
+
+    ds = io.read_netcdf(path)
+    edited = edit(ds)
+    for name in edited.variables:
+        if name in ds.variables:
+            edited[name].attrs = ds[name].attrs
+    edited.attrs = ds.attrs
+    edited.to_netcdf(path)  # as a hand edit would: no check of rockstudy's own
+
+
+def _copy_over(source):
+    return lambda out, target: shutil.copyfile(out / source, out / target)
+
+
+def _times(name, factor):
+    return lambda out, target: _tampered_edit(out / target, lambda ds: ds.assign({name: ds[name] * factor}))
+
+
+def _truncate(out, target):
+    data = (out / target).read_bytes()
+    (out / target).write_bytes(data[: len(data) // 2])
+
+
+TAMPERED = {  # (intermediate, how, the step that reads it, what the refusal says after the file's name)
+    "spectrum copied over another": ("spectra/FS_R005.nc", _copy_over("spectra/CS01_R005.nc"), "table1",
+                                     "control_strategy is 'CS01', expected 'FS'"),
+    "threshold x 1.5, attributes kept": ("spectra/FS_R000.nc", _times("threshold", 1.5), "table1",
+                                         "threshold is not the lowest threshold_realisation"),
+    "a realisation dropped": ("spectra/CS02_R005.nc",
+                              lambda out, target: _tampered_edit(out / target, lambda ds: ds.isel(realisation=[0])),
+                              "table1", "realisation is [0], expected [0, 1]"),
+    "noise of another level": ("noise/R005.nc", _copy_over("noise/R000.nc"), "figure_excitation",
+                               "noise_level is 0.0, expected 0.05"),
+    "sampling time swapped": ("timing/sampling/CS01_R005_Ts0.1.nc",
+                              _copy_over("timing/sampling/CS01_R005_Ts0.01.nc"), "timing_table_sampling",
+                              "control_sampling_time_s is 0.01, expected 0.1"),
+    "history of another realisation": ("histories/FS_R005_k1_w2_a1.4.nc",
+                                       _copy_over("histories/FS_R005_k0_w2_a1.4.nc"), "figure_realisations",
+                                       "noise_realisation is 0, expected 1"),
+    "map of another strategy": ("maps/FS.nc", _copy_over("maps/CS01.nc"), "figure_maps",
+                                "control_strategy is 'CS01', expected 'FS'"),
+    "truncated file": ("convergence/FS_R005.nc", _truncate, "figure_noise_sensitivity", ""),
+    "table swapped": ("tables/table1.nc", _copy_over("tables/timing_sampling.nc"), "claims",
+                      "strategy is ['CS01', 'CS02'], expected ['FS', 'CS01', 'CS02']"),
+}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case", sorted(TAMPERED))
+def test_a_tampered_intermediate_is_refused_naming_the_file(tiny_run, tmp_path, case):
+    """An intermediate of the tiny study swapped, edited or truncated by hand: the step that reads it (run
+    alone, on the tampered copy) stops naming the file and what is wrong, and writes nothing."""
+    ref, _, first = tiny_run
+    assert first.returncode == 0, first.stderr[-3000:]
+    out = tmp_path / "out"
+    shutil.copytree(ref, out, ignore=shutil.ignore_patterns("logs"))
+    target, tamper, rule, says = TAMPERED[case]
+    tamper(out, target)
+    res = snakemake("-j1", *TINY, "--config", f"results_dir={out}", "--allowed-rules", rule, "--forcerun", rule,
+                    "--", rule, workdir=tmp_path)
+    log = res.stdout + res.stderr
+    assert res.returncode != 0, log[-3000:]
+    assert f"{out / target}: {says}" in log if says else str(out / target) in log, log[-3000:]
+    assert f"Error in rule {rule}" in log

@@ -215,7 +215,7 @@ class SourceFingerprint(tuple):
     Parameters
     ----------
     digest : str
-        The fingerprint (:func:`rockstudy.studies.study.source_fingerprint`).
+        The fingerprint (:func:`rockstudy.studies.fingerprints.source_fingerprint`).
     covers : str
         What it covers, e.g. ``"core, model, engine, analysis"``.
     """

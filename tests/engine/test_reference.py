@@ -352,12 +352,12 @@ def test_overturn_criteria():
 # ----------------------------------------------------------------------------- the engine's parts
 def test_every_reference_module_is_outside_the_simulation_fingerprint():
     """The workflow reruns the simulations when a module they run changes; the reference engine is not one."""
-    from rockstudy.studies import study
+    from rockstudy.studies import fingerprints
 
-    hashed = {p.as_posix() for p in study.fingerprint_files()}
+    hashed = {p.as_posix() for p in fingerprints.fingerprint_files()}
     assert "engine/_kernel/engine.py" in hashed and "model/control.py" in hashed
     assert not {name for name in hashed if name.startswith("engine/reference/")}
-    assert any(p.as_posix().startswith("engine/reference/") for p in study.fingerprint_files("engine"))
+    assert any(p.as_posix().startswith("engine/reference/") for p in fingerprints.fingerprint_files("engine"))
 
 
 def test_filippov_stiffness_zeroes_the_acceleration():

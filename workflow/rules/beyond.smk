@@ -56,7 +56,7 @@ if BEYOND:
         log:
             f"{OUT}/logs/probability/{{strategy}}_{{level}}.log",
         params:
-            expect=expect,
+            expect=expect_noise,
             scenario=get_scenario,
             realisations=config["realisations"],
             frequency_grid=PROB["frequency_grid"],
@@ -124,6 +124,8 @@ if BEYOND:
         log:
             f"{OUT}/logs/fragility/{{recordset}}.log",
         params:
+            expect=lambda wildcards, input: expected([input.records], [EXPECT.record_set(
+                wildcards.recordset, RECORD_SETS[wildcards.recordset])]),
             scenario=scenario("FS", FREE),
             strategies=FRAG["strategies"],
             intensity_measure=FRAG["intensity_measure"],
@@ -150,6 +152,8 @@ if BEYOND:
         log:
             f"{OUT}/logs/fragility/summary.log",
         params:
+            expect=expected([f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS],
+                            [EXPECT.fragility(name) for name in RECORD_SETS]),
             library=BOOKKEEPING,
         conda:
             "../envs/rockstudy.yaml"
@@ -168,7 +172,8 @@ if BEYOND:
         log:
             f"{OUT}/logs/figures/probability_overturning.log",
         params:
-            expect=expect,
+            expect=expected(PROBABILITY_FILES, [EXPECT.probability(s, l) for s in PROB["strategies"]
+                                                for l in PROB["noise_levels"]]),
             plotting=PLOTTING,
             a_max0=config["a_max0"],
         conda:
@@ -188,7 +193,7 @@ if BEYOND:
         log:
             f"{OUT}/logs/figures/fragility_{{recordset}}.log",
         params:
-            expect=expect,
+            expect=expect_fragility,
             plotting=PLOTTING,
         conda:
             "../envs/rockstudy.yaml"
@@ -208,6 +213,7 @@ if BEYOND:
         log:
             f"{OUT}/logs/figures/record_thresholds_{{recordset}}.log",
         params:
+            expect=expect_fragility,
             plotting=PLOTTING,
         conda:
             "../envs/rockstudy.yaml"

@@ -1,19 +1,21 @@
 # Names, paths and parameter dictionaries shared by the rules.
 import re
 
+from rockstudy.studies import expectations, fingerprints
+
 OUT = config["results_dir"]
 LEVELS = config["noise_levels"]
 FREE = parameters.noise_free_level(LEVELS)
 NOISY = [name for name in LEVELS if name != FREE]
 # Source fingerprints by layer (rockstudy's subpackages): a job reruns when the code it runs changes.
-LIBRARY = study.source_fingerprint()  # the simulation layers: core, model, engine, analysis
-BOOKKEEPING = study.source_fingerprint("core", "analysis", "studies")  # what assembles datasets and tables
-PLOTTING = study.source_fingerprint("plotting.py")  # redraw the figures when the plotting module changes
+LIBRARY = fingerprints.source_fingerprint()  # the simulation layers: core, model, engine, analysis
+BOOKKEEPING = fingerprints.source_fingerprint("core", "analysis", "studies")  # what assembles datasets and tables
+PLOTTING = fingerprints.source_fingerprint("plotting.py")  # redraw the figures when the plotting module changes
 # The report shows what a fingerprint covers, not its hash (the hash still decides the rerun).
 LIBRARY = report_pages.SourceFingerprint(LIBRARY, "core, model, engine, analysis")
 BOOKKEEPING = report_pages.SourceFingerprint(BOOKKEEPING, "core, analysis, studies")
 PLOTTING = report_pages.SourceFingerprint(PLOTTING, "plotting.py")
-REPORT_CODE = report_pages.SourceFingerprint(study.source_fingerprint("report.py"), "report.py")  # the HTML pages
+REPORT_CODE = report_pages.SourceFingerprint(fingerprints.source_fingerprint("report.py"), "report.py")  # the HTML pages
 COMPILED = f"{OUT}/logs/compile_engine.done"  # the engine compiled once into numba's cache (rule compile_engine)
 SAMPLING = config["sampling_sweep"]
 DELAY = config["delay_sweep"]
@@ -32,17 +34,15 @@ wildcard_constraints:
 
 
 def scenario(strategy, level, ts=0.0, delay=0.0):
-    return {
-        "block": config["block"],
-        "anchorage": config["anchorage"],
-        "control": {"strategy": strategy, "sampling_time": float(ts), "delay": float(delay), **config["control"]},
-        "excitation": config["excitation"],
-        "noise_level": LEVELS[level],
-        "seed": config["seed"],
-        "noise": config["noise"],
-        "overturn_criterion": config["overturn_criterion"],
-        "free_time": config["free_time"],
-    }
+    return expectations.scenario_spec(config, strategy, level, ts, delay)
+
+
+# What every dataset a step reads must say about itself (params `expect` of a rule: {file: attributes}),
+# derived from the job's wildcards and the config by rockstudy.studies.expectations. The step's reader
+# (rockstudy.studies.jobs) compares each input with it and with the dataset's own invariants: a stale,
+# swapped or edited file stops the step, naming the file, instead of becoming a right-looking result.
+EXPECT = expectations.StudyExpectations(config)
+expected = expectations.paired  # {file: expectation} of a rule's input files and their expectations, in order
 
 
 # Resources measured with the default config on one core (the last line of each job's log): a spectrum chunk
@@ -57,7 +57,7 @@ CHUNK_RUNTIME = 5 + int(0.15 * config["realisations_per_job"] * len(parameters.f
 
 
 def chunks(level):
-    return parameters.realisation_chunks(config["realisations"], config["realisations_per_job"], LEVELS[level] > 0)
+    return EXPECT.chunks(level)
 
 
 # A spectrum whose realisations fit in one job (realisations_per_job >= realisations, and always the
@@ -141,18 +141,61 @@ def history_file(strategy, level, k, frequency_ratio, amplitude_ratio):
     return f"{OUT}/histories/{strategy}_{level}_k{k}_w{frequency_ratio:g}_a{amplitude_ratio:g}.nc"
 
 
-SAMPLING_FILES = [f"{OUT}/timing/sampling/{s}_{SAMPLING['noise_level']}_Ts{ts:g}.nc"
-                  for s in SAMPLING["strategies"] for ts in SAMPLING["sampling_times"]]
-DELAY_FILES = [f"{OUT}/timing/delay/{s}_{DELAY['noise_level']}_Ts{DELAY['sampling_time']:g}_d{d:g}.nc"
-               for s in DELAY["strategies"] for d in DELAY["delays"]]
+def spectra_expected(strategies, levels):
+    """The expectations of spectrum_files(strategies, levels), in its order."""
+    return [EXPECT.spectrum(s, l) for s in strategies for l in levels]
+
+
+def sampling_file(strategy, level, ts):
+    return f"{OUT}/timing/sampling/{strategy}_{level}_Ts{ts:g}.nc"
+
+
+# the timing sweeps' spectra: (strategy, level, sampling time[, delay]) of each file
+SAMPLING_KEYS = [(s, SAMPLING["noise_level"], ts) for s in SAMPLING["strategies"] for ts in SAMPLING["sampling_times"]]
+DELAY_KEYS = [(s, DELAY["noise_level"], DELAY["sampling_time"], d) for s in DELAY["strategies"] for d in DELAY["delays"]]
+DELAY_REFERENCE_KEYS = [(s, DELAY["noise_level"], DELAY["sampling_time"]) for s in DELAY["strategies"]]
+SAMPLING_FILES = [sampling_file(*key) for key in SAMPLING_KEYS]
+DELAY_FILES = [f"{OUT}/timing/delay/{s}_{l}_Ts{ts:g}_d{d:g}.nc" for s, l, ts, d in DELAY_KEYS]
+DELAY_REFERENCES = [sampling_file(*key) for key in DELAY_REFERENCE_KEYS]  # sampled, without delay
 EX_HISTORIES = [history_file(EX["strategy"], EX["noise_level"], k, EX["frequency_ratio"], EX["amplitude_ratio"])
                 for k in EX["realisations"]]
+EX_HISTORIES_EXPECTED = [EXPECT.history(EX["strategy"], EX["noise_level"], k, EX["frequency_ratio"],
+                                        EX["amplitude_ratio"]) for k in EX["realisations"]]
 FIG = f"{OUT}/figures/{{name}}.{{ext}}"
 FIGURE_NAMES = ([f"fig{PAPER_FIGURE[s]}_history_{s}" for s in HIST["strategies"]]
                 + ["fig4_excitation", "fig5_realisations", "fig6_noise_sensitivity", "fig7_sampling",
                    "fig8_delay", "maps_overturning"])
 FIGURES = [FIG.format(name=n, ext=e) for n in FIGURE_NAMES for e in ("png", "pdf")]
 TABLES = [f"{OUT}/tables/{t}.{e}" for t in ("table1", "timing_sampling", "timing_delay") for e in ("nc", "csv", "md")]
+
+
+# params `expect` of the rules whose inputs depend on the job's wildcards
+def expect_noise(wildcards, input):
+    """The job's noise file: its level's realisations (rules spectrum*, probability_surface)."""
+    return expected([input.noise], [EXPECT.noise(wildcards.level)])
+
+
+def expect_chunks(wildcards, input):
+    """The chunks of the spectrum a gather job writes, in order (rules gather_*)."""
+    ts, delay = getattr(wildcards, "ts", 0.0), getattr(wildcards, "delay", 0.0)
+    return expected(input, [EXPECT.chunk(wildcards.strategy, wildcards.level, ts, delay, c)
+                            for c in range(len(chunks(wildcards.level)))])
+
+
+def expect_spectrum(wildcards, input):
+    """The job's whole spectrum (rule convergence)."""
+    return expected(input, [EXPECT.spectrum(wildcards.strategy, wildcards.level)])
+
+
+def expect_control_history(wildcards, input):
+    """The noise-free history of Figs. 2-3 (rule figure_history)."""
+    return expected(input, [EXPECT.history(wildcards.strategy, FREE, 0, HIST["frequency_ratio"],
+                                           HIST["amplitude_ratio"])])
+
+
+def expect_fragility(wildcards, input):
+    """The fragility of the job's record set (rules figure_fragility, figure_record_thresholds)."""
+    return expected(input, [EXPECT.fragility(wildcards.recordset)])
 
 
 # Reproducing the paper's numbers: readings study, claims checklist, device calibration.
@@ -177,13 +220,19 @@ def fs_spectra_of_the_study():
     return spectrum_files(["FS"], LEVELS)
 
 
+def reading_spectrum_expected(name, level):
+    """What reading_spectrum_file(name, level) must say about itself."""
+    if name in SAME_AS_STUDY:
+        return EXPECT.spectrum(REPRO["strategy"], level)
+    return EXPECT.reading_spectrum(REPRO["strategy"], name, level)
+
+
 READING_SPECTRA = [reading_spectrum_file(name, level) for name in READINGS for level in NOISY]
+READING_SPECTRA_EXPECTED = [reading_spectrum_expected(name, level) for name in READINGS for level in NOISY]
 
 
 def get_reading_scenario(wildcards):
-    spec = scenario(wildcards.strategy, wildcards.level)
-    spec["noise"] = dict(READINGS[wildcards.reading])  # missing keys: the library defaults
-    return spec
+    return expectations.reading_scenario_spec(config, wildcards.strategy, wildcards.reading, wildcards.level)
 
 
 READINGS_TABLE = [f"{OUT}/reproduction/readings/readings.{e}" for e in ("nc", "csv", "md")]
@@ -193,10 +242,11 @@ CLAIMS = [f"{OUT}/reproduction/{name}" for name in ("claims.md", "claims.nc", "c
 CAL = config["calibration"]
 CAL_DESIGN = {key: CAL[key] for key in ("kappa_max", "damping_ratio", "ultimate_rotation_ratio", "kappa_min_ratio")}
 CAL_ALPHA = parameters.block_from_dict(config["block"]).alpha  # theta_u = ratio * alpha
-CAL_DEVICES = calibration.CalibrationDesign(**CAL_DESIGN).devices(CAL_ALPHA)
+CAL_DEVICES = EXPECT.calibration_devices
 CAL_FS = [f"{OUT}/reproduction/calibration/coarse/FS_{level}.nc" for level in LEVELS]
-CAL_REFINE = [f"{OUT}/reproduction/calibration/refine/c{rank}_{s}_{level}.nc"
-              for rank in range(CAL["candidates"]) for s in ("CS01", "CS02") for level in LEVELS]
+CAL_DEVICE_FILES = [f"{OUT}/reproduction/calibration/coarse/device{i}.nc" for i in range(len(CAL_DEVICES))]
+CAL_REFINE_KEYS = [(rank, s, level) for rank in range(CAL["candidates"]) for s in ("CS01", "CS02") for level in LEVELS]
+CAL_REFINE = [f"{OUT}/reproduction/calibration/refine/c{rank}_{s}_{level}.nc" for rank, s, level in CAL_REFINE_KEYS]
 
 
 def calibration_base():
@@ -208,69 +258,3 @@ def calibration_base():
 def get_device_anchorage(wildcards):
     """The anchorage of the job's calibration device."""
     return CAL_DEVICES[int(wildcards.device)]
-
-
-# What every dataset a step reads must say about itself (rockstudy.core.io.read_checked): the settings its
-# file name and the config imply. A stale, swapped or hand-made file stops the step, naming the file and
-# the attribute that differs, instead of becoming a right-looking result.
-_S, _L, _X = "(?P<strategy>FS|PASSIVE|CS01|CS02)", "(?P<level>[A-Za-z0-9]+)", "[0-9.e+-]+"
-EXPECTED_FILES = [
-    ("noise", rf"noise/{_L}\.nc"),
-    ("chunk", rf"spectra/chunks/{_S}_{_L}_Ts(?P<ts>{_X})_d(?P<delay>{_X})_c(?P<chunk>[0-9]+)\.nc"),
-    ("spectrum", rf"spectra/{_S}_{_L}\.nc"),
-    ("spectrum", rf"timing/sampling/{_S}_{_L}_Ts(?P<ts>{_X})\.nc"),
-    ("spectrum", rf"timing/delay/{_S}_{_L}_Ts(?P<ts>{_X})_d(?P<delay>{_X})\.nc"),
-    ("spectrum", rf"convergence/{_S}_{_L}\.nc"),
-    ("map", rf"maps/{_S}\.nc"),
-    ("history", rf"histories/{_S}_{_L}_k(?P<k>[0-9]+)_w(?P<w>[^_/]+)_a(?P<a>[^/]+)\.nc"),
-    ("reading", rf"reproduction/readings/spectra/{_S}_(?P<reading>[A-Za-z0-9_]+)_{_L}\.nc"),
-    ("study", r"(tables|reproduction/calibration/(coarse|refine))/[^/]+\.nc"),
-]
-
-
-def all_realisations(level):
-    return [k for chunk in chunks(level) for k in chunk]
-
-
-def expected_dataset(path):
-    """The attributes ``path`` (a file of this study) must carry; {} for a file this study does not describe."""
-    import os
-    import re
-
-    from rockstudy.studies import datasets
-    prefix = re.escape(os.path.join(str(OUT), ""))  # the results folder with its separator
-    for kind, pattern in EXPECTED_FILES:
-        m = re.fullmatch(prefix + pattern, str(path))
-        if m is None:
-            continue
-        g = m.groupdict()
-        strategy, level = g.get("strategy", "FS"), g.get("level", FREE)
-        if level not in LEVELS:
-            return {}
-        spec = scenario(strategy, level, g.get("ts") or 0.0, g.get("delay") or 0.0)
-        if kind == "reading":
-            spec = get_reading_scenario(type("W", (), {"strategy": strategy, "level": level, "reading": g["reading"]}))
-        sc = parameters.scenario_from_dict(spec)
-        grids = {"frequency_ratios": parameters.frequency_ratios(config["frequency_grid"]),
-                 "amplitude_grid": config["amplitude_grid"]}
-        if kind == "noise":
-            return datasets.expected_attrs(sc, "noise", realisations=all_realisations(level))
-        if kind == "chunk":
-            return datasets.expected_attrs(sc, realisations=chunks(level)[int(g["chunk"])], **grids)
-        if kind == "spectrum":
-            return datasets.expected_attrs(sc, realisations=all_realisations(level), **grids)
-        if kind == "reading":
-            return datasets.expected_attrs(sc, realisations=list(range(REPRO["realisations"]))
-                                           if LEVELS[level] > 0 else [0], **grids)
-        if kind == "map":
-            return datasets.expected_attrs(sc, "map", **grids)
-        if kind == "history":
-            return datasets.expected_attrs(sc, "history", noise_realisation=int(g["k"]),
-                                           frequency_ratio=float(g["w"]), amplitude_ratio=float(g["a"]))
-        return datasets.expected_attrs(sc, "study")
-    return {}
-
-
-def expect(wildcards, input):
-    """Parameter ``expect`` of a rule: every netCDF input's expected attributes (see expected_dataset)."""
-    return {str(path): expected_dataset(path) for path in input if str(path).endswith(".nc")}

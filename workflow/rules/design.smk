@@ -9,9 +9,10 @@ DESIGN = config.get("design")
 if DESIGN:
     DBLOCKS = DESIGN["blocks"]
     DDEVICES = DESIGN["devices"]
-    DESIGN_BLOCK_FILES = [f"{OUT}/design/blocks/R{R:g}_a{a:g}.nc" for R in DBLOCKS["R"] for a in DBLOCKS["alpha"]]
-    DESIGN_DEVICE_FILES = [f"{OUT}/design/devices/k{k:g}_xi{xi:g}.nc" for k in DDEVICES["kappa_max"]
-                           for xi in DDEVICES["damping_ratio"]]
+    DESIGN_BLOCK_KEYS = [(R, a) for R in DBLOCKS["R"] for a in DBLOCKS["alpha"]]
+    DESIGN_DEVICE_KEYS = [(k, xi) for k in DDEVICES["kappa_max"] for xi in DDEVICES["damping_ratio"]]
+    DESIGN_BLOCK_FILES = [f"{OUT}/design/blocks/R{R:g}_a{a:g}.nc" for R, a in DESIGN_BLOCK_KEYS]
+    DESIGN_DEVICE_FILES = [f"{OUT}/design/devices/k{k:g}_xi{xi:g}.nc" for k, xi in DESIGN_DEVICE_KEYS]
     DESIGN_FIGURES = [f"{OUT}/figures/design_{name}.{ext}" for name in ("jos_maps", "winner", "size_effect",
                                                                       "devices") for ext in ("png", "pdf")]
 
@@ -92,6 +93,8 @@ if DESIGN:
         log:
             f"{OUT}/logs/design/gather.log",
         params:
+            expect={**expected(DESIGN_BLOCK_FILES, [EXPECT.design_block(*key) for key in DESIGN_BLOCK_KEYS]),
+                    **expected(DESIGN_DEVICE_FILES, [EXPECT.design_device(*key) for key in DESIGN_DEVICE_KEYS])},
             target=DDEVICES["target_median_g"],
             block=config["block"],
             library=BOOKKEEPING,
@@ -125,6 +128,8 @@ if DESIGN:
         log:
             f"{OUT}/logs/figures/design.log",
         params:
+            expect=expected([f"{OUT}/design/blocks.nc", f"{OUT}/design/devices.nc"],
+                            [EXPECT.design_blocks(), EXPECT.design_devices()]),
             target=DDEVICES["target_median_g"],
             plotting=PLOTTING,
         conda:

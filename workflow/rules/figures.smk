@@ -1,5 +1,10 @@
 # Figures (PNG for the report, PDF for print), drawn only from the netCDF outputs.
 
+FIG6_PANELS = [s for s in ("FS", "CS01", "CS02") if s in config["strategies"]]  # Fig. 6b-d
+CONVERGENCE_FILE = f"{OUT}/convergence/{config['convergence']['strategy']}_{config['convergence']['noise_level']}.nc"
+CONVERGENCE = {CONVERGENCE_FILE: EXPECT.spectrum(config["convergence"]["strategy"], config["convergence"]["noise_level"])}
+"""The convergence file of Fig. 6a and of the claims, and its expectation."""
+
 
 rule figure_history:
     input:
@@ -12,7 +17,7 @@ rule figure_history:
     log:
         f"{OUT}/logs/figures/fig{{fignum}}_history_{{strategy}}.log",
     params:
-        expect=expect,
+        expect=expect_control_history,
         plotting=PLOTTING,
     conda:
         "../envs/rockstudy.yaml"
@@ -32,7 +37,7 @@ rule figure_excitation:
     log:
         f"{OUT}/logs/figures/fig4_excitation.log",
     params:
-        expect=expect,
+        expect=expected([f"{OUT}/noise/{max(NOISY, key=LEVELS.get)}.nc"], [EXPECT.noise(max(NOISY, key=LEVELS.get))]),
         plotting=PLOTTING,
         noise_level=max(NOISY, key=LEVELS.get),
     conda:
@@ -54,7 +59,9 @@ rule figure_realisations:
     log:
         f"{OUT}/logs/figures/fig5_realisations.log",
     params:
-        expect=expect,
+        expect={**expected(spectrum_files([EX["strategy"]], [EX["noise_level"]]),
+                           spectra_expected([EX["strategy"]], [EX["noise_level"]])),
+                **expected(EX_HISTORIES, EX_HISTORIES_EXPECTED)},
         plotting=PLOTTING,
         point=EX,
         a_max0=config["a_max0"],
@@ -67,8 +74,8 @@ rule figure_realisations:
 
 rule figure_noise_sensitivity:
     input:
-        convergence=f"{OUT}/convergence/{config['convergence']['strategy']}_{config['convergence']['noise_level']}.nc",
-        spectra=spectrum_files([s for s in ("FS", "CS01", "CS02") if s in config["strategies"]], LEVELS),
+        convergence=CONVERGENCE_FILE,
+        spectra=spectrum_files(FIG6_PANELS, LEVELS),
     output:
         png=report(f"{OUT}/figures/fig6_noise_sensitivity.png", caption="../report/fig6.rst", category="Figures",
                    subcategory="Noise (Figs. 4-6)",
@@ -78,9 +85,10 @@ rule figure_noise_sensitivity:
     log:
         f"{OUT}/logs/figures/fig6_noise_sensitivity.log",
     params:
-        expect=expect,
+        expect={**CONVERGENCE,
+                **expected(spectrum_files(FIG6_PANELS, LEVELS), spectra_expected(FIG6_PANELS, LEVELS))},
         plotting=PLOTTING,
-        panels=[s for s in ("FS", "CS01", "CS02") if s in config["strategies"]],
+        panels=FIG6_PANELS,
         a_max0=config["a_max0"],
     conda:
         "../envs/rockstudy.yaml"
@@ -101,7 +109,9 @@ rule figure_sampling:
     log:
         f"{OUT}/logs/figures/fig7_sampling.log",
     params:
-        expect=expect,
+        expect={**expected(SAMPLING_FILES, [EXPECT.spectrum(*key) for key in SAMPLING_KEYS]),
+                **expected(spectrum_files(SAMPLING["strategies"], [SAMPLING["noise_level"]]),
+                           spectra_expected(SAMPLING["strategies"], [SAMPLING["noise_level"]]))},
         plotting=PLOTTING,
         variable="sampling_time",
         paper_figure="7",
@@ -116,8 +126,7 @@ rule figure_sampling:
 rule figure_delay:
     input:
         sweep=DELAY_FILES,
-        references=[f"{OUT}/timing/sampling/{s}_{DELAY['noise_level']}_Ts{DELAY['sampling_time']:g}.nc"
-                    for s in DELAY["strategies"]],
+        references=DELAY_REFERENCES,
     output:
         png=report(f"{OUT}/figures/fig8_delay.png", caption="../report/fig8.rst", category="Figures",
                    subcategory="Timing (Figs. 7-8)",
@@ -126,7 +135,8 @@ rule figure_delay:
     log:
         f"{OUT}/logs/figures/fig8_delay.log",
     params:
-        expect=expect,
+        expect={**expected(DELAY_FILES, [EXPECT.spectrum(*key) for key in DELAY_KEYS]),
+                **expected(DELAY_REFERENCES, [EXPECT.spectrum(*key) for key in DELAY_REFERENCE_KEYS])},
         plotting=PLOTTING,
         variable="delay",
         paper_figure="8",
@@ -149,7 +159,8 @@ rule figure_maps:
     log:
         f"{OUT}/logs/figures/maps_overturning.log",
     params:
-        expect=expect,
+        expect=expected([f"{OUT}/maps/{s}.nc" for s in config["maps"]["strategies"]],
+                        [EXPECT.map(s) for s in config["maps"]["strategies"]]),
         plotting=PLOTTING,
         strategies=config["maps"]["strategies"],
         a_max0=config["a_max0"],

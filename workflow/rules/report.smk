@@ -73,6 +73,8 @@ rule html_claims:
     log:
         f"{OUT}/logs/report/html_claims.log",
     params:
+        expect=expected([f"{OUT}/reproduction/claims.nc", f"{OUT}/reproduction/table1_vs_paper.nc"],
+                        [EXPECT.claims(), EXPECT.table1_comparison()]),
         pages=REPORT_CODE,
     localrule: True
     conda:

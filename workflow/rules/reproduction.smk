@@ -35,8 +35,8 @@ rule claims:
         table1=f"{OUT}/tables/table1.nc",
         sampling=f"{OUT}/tables/timing_sampling.nc",
         delay=f"{OUT}/tables/timing_delay.nc",
-        convergence=f"{OUT}/convergence/{config['convergence']['strategy']}_{config['convergence']['noise_level']}.nc",
-        spectra=spectrum_files([s for s in ("FS", "CS01", "CS02") if s in config["strategies"]], LEVELS),
+        convergence=CONVERGENCE_FILE,
+        spectra=spectrum_files(FIG6_PANELS, LEVELS),
     output:
         md=f"{OUT}/reproduction/claims.md",
         nc=f"{OUT}/reproduction/claims.nc",
@@ -46,7 +46,9 @@ rule claims:
     log:
         f"{OUT}/logs/reproduction/claims.log",
     params:
-        expect=expect,
+        expect={**expected([f"{OUT}/tables/{t}.nc" for t in ("table1", "timing_sampling", "timing_delay")],
+                           [EXPECT.table1(), EXPECT.timing_table("sampling"), EXPECT.timing_table("delay")]),
+                **CONVERGENCE, **expected(spectrum_files(FIG6_PANELS, LEVELS), spectra_expected(FIG6_PANELS, LEVELS))},
         bookkeeping=BOOKKEEPING,
         noise_levels=LEVELS,
         a_max0=config["a_max0"],
@@ -71,7 +73,8 @@ rule readings_table:
     log:
         f"{OUT}/logs/reproduction/readings_table.log",
     params:
-        expect=expect,
+        expect={**expected(READING_SPECTRA, READING_SPECTRA_EXPECTED),
+                **expected([f"{OUT}/spectra/{REPRO['strategy']}_{FREE}.nc"], [EXPECT.spectrum(REPRO["strategy"], FREE)])},
         bookkeeping=BOOKKEEPING,
         spectrum_keys=[(name, level) for name in READINGS for level in NOISY],
         readings=READINGS,
@@ -96,7 +99,7 @@ rule figure_readings:
     log:
         f"{OUT}/logs/reproduction/figure_readings.log",
     params:
-        expect=expect,
+        expect=expected([f"{OUT}/reproduction/readings/readings.nc"], [EXPECT.readings_table()]),
         plotting=PLOTTING,
     conda:
         "../envs/rockstudy.yaml"
@@ -148,7 +151,7 @@ rule calibration_device:
     wildcard_constraints:
         device="[0-9]+",
     params:
-        expect=expect,
+        expect=expected(CAL_FS, [EXPECT.calibration_fs(level) for level in LEVELS]),
         scenario=calibration_base(),
         anchorage=get_device_anchorage,
         levels=LEVELS,
@@ -169,7 +172,7 @@ rule calibration_device:
 
 rule calibration_grid:
     input:
-        [f"{OUT}/reproduction/calibration/coarse/device{i}.nc" for i in range(len(CAL_DEVICES))],
+        CAL_DEVICE_FILES,
     output:
         nc=f"{OUT}/reproduction/calibration/grid.nc",
         png=report(f"{OUT}/reproduction/calibration/fig_calibration.png", caption="../report/calibration.rst",
@@ -179,7 +182,7 @@ rule calibration_grid:
     log:
         f"{OUT}/logs/reproduction/calibration/grid.log",
     params:
-        expect=expect,
+        expect=expected(CAL_DEVICE_FILES, [EXPECT.calibration_device(i) for i in range(len(CAL_DEVICES))]),
         design=CAL_DESIGN,
         alpha=CAL_ALPHA,
         reading=config["noise"],
@@ -203,7 +206,7 @@ rule calibration_refine_spectrum:
     wildcard_constraints:
         rank="[0-9]+",
     params:
-        expect=expect,
+        expect=expected([f"{OUT}/reproduction/calibration/grid.nc"], [EXPECT.calibration_grid()]),
         scenario=calibration_base(),
         noise_level=get_noise_level,
         realisations=config["realisations"],
@@ -231,7 +234,9 @@ rule calibration_refine:
     log:
         f"{OUT}/logs/reproduction/calibration/refine.log",
     params:
-        expect=expect,
+        expect={**expected([f"{OUT}/reproduction/calibration/grid.nc"] + CAL_REFINE,
+                           [EXPECT.calibration_grid()] + [EXPECT.calibration_refined(*key) for key in CAL_REFINE_KEYS]),
+                **expected(fs_spectra_of_the_study(), spectra_expected(["FS"], LEVELS))},
         block=config["block"],
         candidates=CAL["candidates"],
         levels=LEVELS,

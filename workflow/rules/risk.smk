@@ -16,6 +16,14 @@ if RISK and BEYOND:
     RISK_HTML = [f"{OUT}/tables/risk_{name}.html" for name in RECORD_SETS]
     BEYOND_IN_ALL += RISK_FILES + RISK_HTML  # in place: `all` lists BEYOND_IN_ALL
 
+    def expect_risk_fragility(wildcards, input):
+        """The fragility of the job's record set (rule risk_set; the hazard files are text)."""
+        return expected([input.fragility], [EXPECT.fragility(wildcards.recordset)])
+
+    def expect_risk(wildcards, input):
+        """The risk dataset of the job's record set (rule figure_risk)."""
+        return expected(input, [EXPECT.risk(wildcards.recordset)])
+
     localrules:
         risk,
         risk_set,
@@ -38,7 +46,7 @@ if RISK and BEYOND:
         log:
             f"{OUT}/logs/risk/{{recordset}}.log",
         params:
-            expect=expect,
+            expect=expect_risk_fragility,
             years=RISK["years"],
             gmm=RISK["gmm"],
             scenarios=RISK.get("scenarios") or {},
@@ -62,7 +70,7 @@ if RISK and BEYOND:
         log:
             f"{OUT}/logs/figures/risk_{{recordset}}.log",
         params:
-            expect=expect,
+            expect=expect_risk,
             plotting=PLOTTING,
         conda:
             "../envs/rockstudy.yaml"

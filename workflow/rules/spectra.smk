@@ -68,7 +68,7 @@ rule spectrum:
     wildcard_constraints:
         level=one_of(WHOLE_LEVELS),
     params:
-        expect=expect,
+        expect=expect_noise,
         scenario=get_scenario,
         realisations=get_realisations,
         whole=True,  # the whole spectrum, as gathering its one chunk would write it
@@ -92,7 +92,7 @@ use rule spectrum as spectrum_sampling with:
     log:
         f"{OUT}/logs/timing/sampling/{{strategy}}_{{level}}.log",
     params:
-        expect=expect,
+        expect=expect_noise,
         scenario=get_sampling_scenarios,
         realisations=get_realisations,
         whole=True,
@@ -108,7 +108,7 @@ use rule spectrum as spectrum_delay with:
     log:
         f"{OUT}/logs/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}.log",
     params:
-        expect=expect,
+        expect=expect_noise,
         scenario=get_delay_scenarios,
         realisations=get_realisations,
         whole=True,
@@ -133,7 +133,7 @@ if CHUNKED_LEVELS:
         wildcard_constraints:
             level=one_of(CHUNKED_LEVELS),
         params:
-            expect=expect,
+            expect=expect_noise,
             scenario=get_scenario,
             realisations=get_chunk_realisations,
             whole=False,
@@ -149,7 +149,7 @@ if CHUNKED_LEVELS:
         wildcard_constraints:
             level=one_of(CHUNKED_LEVELS),
         params:
-            expect=expect,
+            expect=expect_chunks,
             bookkeeping=BOOKKEEPING,
             realisations=get_realisations,
         conda:
@@ -179,9 +179,8 @@ rule convergence:
     log:
         f"{OUT}/logs/convergence/{{strategy}}_{{level}}.log",
     params:
-        expect=expect,
+        expect=expect_spectrum,
         bookkeeping=BOOKKEEPING,
-        realisations=config["realisations"],
     conda:
         "../envs/rockstudy.yaml"
     threads: 1
@@ -245,7 +244,8 @@ rule table1:
     log:
         f"{OUT}/logs/tables/table1.log",
     params:
-        expect=expect,
+        expect=expected(spectrum_files(config["table1"]["strategies"], LEVELS),
+                        spectra_expected(config["table1"]["strategies"], LEVELS)),
         bookkeeping=BOOKKEEPING,
         strategies=config["table1"]["strategies"],
         noise_levels=LEVELS,
@@ -269,7 +269,13 @@ rule timing_table_sampling:
     log:
         f"{OUT}/logs/tables/timing_sampling.log",
     params:
-        expect=expect,
+        expect={
+            **expected(SAMPLING_FILES, [EXPECT.spectrum(*key) for key in SAMPLING_KEYS]),
+            **expected(spectrum_files(SAMPLING["strategies"], [SAMPLING["noise_level"]]),
+                       spectra_expected(SAMPLING["strategies"], [SAMPLING["noise_level"]])),
+            **expected(spectrum_files(["FS"], [SAMPLING["noise_level"]]),
+                       spectra_expected(["FS"], [SAMPLING["noise_level"]])),
+        },
         bookkeeping=BOOKKEEPING,
         variable="sampling_time",
         reference="continuous_same_noise",
@@ -284,8 +290,7 @@ rule timing_table_sampling:
 rule timing_table_delay:
     input:
         sweep=DELAY_FILES,
-        same_strategy=[f"{OUT}/timing/sampling/{s}_{DELAY['noise_level']}_Ts{DELAY['sampling_time']:g}.nc"
-                       for s in DELAY["strategies"]],
+        same_strategy=DELAY_REFERENCES,
         free_standing=spectrum_files(["FS"], [DELAY["noise_level"]]),
     output:
         nc=f"{OUT}/tables/timing_delay.nc",
@@ -294,7 +299,11 @@ rule timing_table_delay:
     log:
         f"{OUT}/logs/tables/timing_delay.log",
     params:
-        expect=expect,
+        expect={
+            **expected(DELAY_FILES, [EXPECT.spectrum(*key) for key in DELAY_KEYS]),
+            **expected(DELAY_REFERENCES, [EXPECT.spectrum(*key) for key in DELAY_REFERENCE_KEYS]),
+            **expected(spectrum_files(["FS"], [DELAY["noise_level"]]), spectra_expected(["FS"], [DELAY["noise_level"]])),
+        },
         bookkeeping=BOOKKEEPING,
         variable="delay",
         reference="sampled_without_delay_same_noise",

@@ -2,16 +2,20 @@
 from rockstudy import plotting
 from rockstudy.core import io
 from rockstudy.studies import device_calibration as calibration
-from rockstudy.studies import study
+from rockstudy.studies import jobs
 
-read_nc = io.reader(snakemake.params.expect)
 
-study.log_to(snakemake.log[0])
-p = snakemake.params
-design = calibration.CalibrationDesign(**p.design)
-tables = [read_nc(f) for f in snakemake.input]
-attrs = {"compute_time_s": sum(t.attrs["compute_time_s"] for t in tables), "noise_reading": str(p.reading)}
-grid = calibration.grid_dataset(design, tables, p.alpha, attrs)
-io.write_netcdf(grid, snakemake.output.nc)
-best, _ = calibration.best_devices(grid, 1)[0]
-plotting.save_figure(plotting.figure_calibration(grid, best), snakemake.output.png, snakemake.output.pdf)
+def main(snakemake):
+    job = jobs.open_job(snakemake)
+    p = snakemake.params
+    design = calibration.CalibrationDesign(**p.design)
+    tables = job.read_all(snakemake.input)
+    attrs = {"compute_time_s": sum(t.attrs["compute_time_s"] for t in tables), "noise_reading": str(p.reading)}
+    grid = calibration.grid_dataset(design, tables, p.alpha, attrs)
+    io.write_netcdf(grid, snakemake.output.nc)
+    best, _ = calibration.best_devices(grid, 1)[0]
+    plotting.save_figure(plotting.figure_calibration(grid, best), snakemake.output.png, snakemake.output.pdf)
+
+
+if "snakemake" in globals():
+    main(snakemake)

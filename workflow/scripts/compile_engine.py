@@ -6,25 +6,29 @@ compiling it."""
 import dataclasses
 import time
 
-import numba
 import numpy as np
 
 from rockstudy.analysis.record_scan import RecordRun, record_threshold
 from rockstudy.analysis.spectra import AmplitudeGrid, spectrum
 from rockstudy.model.records import Record
-from rockstudy.studies import datasets, parameters, study
+from rockstudy.studies import datasets, jobs, parameters
 
-study.log_to(snakemake.log[0])
-numba.set_num_threads(snakemake.threads)
-start = time.process_time()
-noisy = parameters.scenario_from_dict(snakemake.params.scenario)
-free = dataclasses.replace(noisy, noise_level=0.0)
-grid = AmplitudeGrid(start=1.0, stop=1.2, step=0.1, resolution=0.05)
-spectrum(noisy, [1.0], realisations=[0], grid=grid)
-spectrum(free, [1.0], grid=grid, with_map=True)
-datasets.time_history(noisy, 1.0, 1.1, 0)
-pulse = Record(name="one sine", dt=0.01, acceleration=np.sin(np.linspace(0.0, 2.0 * np.pi, 101)))
-record_threshold(RecordRun(free.block, free.anchorage, noisy.control, pulse), [1.0, 1.5], 0.25)
-seconds = time.process_time() - start
-with open(snakemake.output[0], "w") as f:
-    f.write(f"rockstudy {snakemake.params.library}: compiled in {seconds:.1f} s CPU\n")
+
+def main(snakemake):
+    jobs.open_job(snakemake, compiled=True)
+    start = time.process_time()
+    noisy = parameters.scenario_from_dict(snakemake.params.scenario)
+    free = dataclasses.replace(noisy, noise_level=0.0)
+    grid = AmplitudeGrid(start=1.0, stop=1.2, step=0.1, resolution=0.05)
+    spectrum(noisy, [1.0], realisations=[0], grid=grid)
+    spectrum(free, [1.0], grid=grid, with_map=True)
+    datasets.time_history(noisy, 1.0, 1.1, 0)
+    pulse = Record(name="one sine", dt=0.01, acceleration=np.sin(np.linspace(0.0, 2.0 * np.pi, 101)))
+    record_threshold(RecordRun(free.block, free.anchorage, noisy.control, pulse), [1.0, 1.5], 0.25)
+    seconds = time.process_time() - start
+    with open(snakemake.output[0], "w") as f:
+        f.write(f"rockstudy {snakemake.params.library}: compiled in {seconds:.1f} s CPU\n")
+
+
+if "snakemake" in globals():
+    main(snakemake)

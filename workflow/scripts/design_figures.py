@@ -1,13 +1,19 @@
 """Design charts: J_OS maps, which strategy wins where, the size effect, and the device sweep."""
 from rockstudy import plotting
-from rockstudy.core import io
-from rockstudy.studies import study
+from rockstudy.studies import jobs
 
-study.log_to(snakemake.log[0])
-blocks = io.read_netcdf(snakemake.input.blocks)
-devices = io.read_netcdf(snakemake.input.devices)
-out = snakemake.output
-plotting.save_figure(plotting.figure_design_jos_maps(blocks, ("CS01", "CS02")), out.jos, out.jos_pdf)
-plotting.save_figure(plotting.figure_design_winner(blocks), out.winner, out.winner_pdf)
-plotting.save_figure(plotting.figure_design_size_effect(blocks), out.size, out.size_pdf)
-plotting.save_figure(plotting.figure_design_devices(devices, snakemake.params.target), out.devices, out.devices_pdf)
+
+def main(snakemake):
+    job = jobs.open_job(snakemake)
+    blocks = job.read(snakemake.input.blocks)
+    devices = job.read(snakemake.input.devices)
+    out = snakemake.output
+    plotting.save_figure(plotting.figure_design_jos_maps(blocks, ("CS01", "CS02")), out.jos, out.jos_pdf)
+    plotting.save_figure(plotting.figure_design_winner(blocks), out.winner, out.winner_pdf)
+    plotting.save_figure(plotting.figure_design_size_effect(blocks), out.size, out.size_pdf)
+    plotting.save_figure(plotting.figure_design_devices(devices, snakemake.params.target), out.devices,
+                         out.devices_pdf)
+
+
+if "snakemake" in globals():
+    main(snakemake)

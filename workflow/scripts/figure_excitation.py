@@ -1,10 +1,13 @@
 """Fig. 4: baseline Eq. 23 excitation and the same contaminated with noise."""
 from rockstudy import plotting
-from rockstudy.core import io
-from rockstudy.studies import study
+from rockstudy.studies import jobs
 
-read_nc = io.reader(snakemake.params.expect)
 
-study.log_to(snakemake.log[0])
-fig = plotting.figure_excitation(read_nc(snakemake.input[0]))
-plotting.save_figure(fig, snakemake.output.png, snakemake.output.pdf)
+def main(snakemake):
+    job = jobs.open_job(snakemake)
+    fig = plotting.figure_excitation(job.read(snakemake.input[0]))
+    plotting.save_figure(fig, snakemake.output.png, snakemake.output.pdf)
+
+
+if "snakemake" in globals():
+    main(snakemake)

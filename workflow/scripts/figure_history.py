@@ -1,10 +1,13 @@
 """Figs. 2-3: normalised time history of the controlled block and the stiffness K."""
 from rockstudy import plotting
-from rockstudy.core import io
-from rockstudy.studies import study
+from rockstudy.studies import jobs
 
-read_nc = io.reader(snakemake.params.expect)
 
-study.log_to(snakemake.log[0])
-fig = plotting.figure_control_history(read_nc(snakemake.input[0]), snakemake.wildcards.fignum)
-plotting.save_figure(fig, snakemake.output.png, snakemake.output.pdf)
+def main(snakemake):
+    job = jobs.open_job(snakemake)
+    fig = plotting.figure_control_history(job.read(snakemake.input[0]), snakemake.wildcards.fignum)
+    plotting.save_figure(fig, snakemake.output.png, snakemake.output.pdf)
+
+
+if "snakemake" in globals():
+    main(snakemake)

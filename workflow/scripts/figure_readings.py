@@ -1,10 +1,13 @@
 """Figure of the readings study: FS J_OS against noise level per reading, the paper's values as markers."""
 from rockstudy import plotting
-from rockstudy.core import io
-from rockstudy.studies import study
+from rockstudy.studies import jobs
 
-read_nc = io.reader(snakemake.params.expect)
 
-study.log_to(snakemake.log[0])
-plotting.save_figure(plotting.figure_readings(read_nc(snakemake.input[0])), snakemake.output.png,
-                     snakemake.output.pdf)
+def main(snakemake):
+    job = jobs.open_job(snakemake)
+    plotting.save_figure(plotting.figure_readings(job.read(snakemake.input[0])), snakemake.output.png,
+                         snakemake.output.pdf)
+
+
+if "snakemake" in globals():
+    main(snakemake)

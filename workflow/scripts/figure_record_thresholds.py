@@ -1,8 +1,13 @@
 """Every record's threshold per strategy: which records overturn the block with which device."""
 from rockstudy import plotting
-from rockstudy.core import io
-from rockstudy.studies import study
+from rockstudy.studies import jobs
 
-study.log_to(snakemake.log[0])
-plotting.save_figure(plotting.figure_record_thresholds(io.read_netcdf(snakemake.input[0])), snakemake.output.png,
-                     snakemake.output.pdf)
+
+def main(snakemake):
+    job = jobs.open_job(snakemake)
+    plotting.save_figure(plotting.figure_record_thresholds(job.read(snakemake.input[0])), snakemake.output.png,
+                         snakemake.output.pdf)
+
+
+if "snakemake" in globals():
+    main(snakemake)

@@ -2,12 +2,17 @@
 import numpy as np
 
 from rockstudy.core import io
-from rockstudy.studies import datasets, study
+from rockstudy.studies import datasets, jobs
 
-read_nc = io.reader(snakemake.params.expect)
 
-study.log_to(snakemake.log[0])
-ds = datasets.gather_spectra([read_nc(path) for path in snakemake.input])
-if list(ds["realisation"].values) != list(np.sort(snakemake.params.realisations)):
-    raise ValueError(f"chunks hold realisations {ds['realisation'].values}, expected {snakemake.params.realisations}")
-io.write_netcdf(ds, snakemake.output[0])
+def main(snakemake):
+    job = jobs.open_job(snakemake)
+    ds = datasets.gather_spectra(job.read_all(snakemake.input))
+    if list(ds["realisation"].values) != list(np.sort(snakemake.params.realisations)):
+        raise ValueError(f"chunks hold realisations {ds['realisation'].values}, expected "
+                         f"{snakemake.params.realisations}")
+    io.write_netcdf(ds, snakemake.output[0])
+
+
+if "snakemake" in globals():
+    main(snakemake)

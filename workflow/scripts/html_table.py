@@ -3,5 +3,14 @@ from pathlib import Path
 
 from rockstudy import report as report_pages
 from rockstudy.core import io
+from rockstudy.studies import jobs
 
-io.write_text(report_pages.markdown_page(Path(snakemake.input[0]).read_text(encoding="utf-8")), snakemake.output[0])
+
+def main(snakemake):
+    jobs.open_job(snakemake)
+    text = Path(snakemake.input[0]).read_text(encoding="utf-8")
+    io.write_text(report_pages.markdown_page(text), snakemake.output[0])
+
+
+if "snakemake" in globals():
+    main(snakemake)

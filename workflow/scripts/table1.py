@@ -1,12 +1,16 @@
 """Table 1: J_OS at each noise level against the noise-free strategy and against FS (Eqs. 18-22)."""
 from rockstudy.core import io
-from rockstudy.studies import study, tables
+from rockstudy.studies import jobs, tables
 
-read_nc = io.reader(snakemake.params.expect)
 
-study.log_to(snakemake.log[0])
-p = snakemake.params
-table = tables.table1([read_nc(path) for path in snakemake.input], p.strategies, dict(p.noise_levels), p.a_max0)
-io.write_netcdf(table, snakemake.output.nc)
-io.write_text(tables.table_csv(table), snakemake.output.csv)
-io.write_text(tables.table_markdown(table), snakemake.output.md)
+def main(snakemake):
+    job = jobs.open_job(snakemake)
+    p = snakemake.params
+    table = tables.table1(job.read_all(snakemake.input), p.strategies, dict(p.noise_levels), p.a_max0)
+    io.write_netcdf(table, snakemake.output.nc)
+    io.write_text(tables.table_csv(table), snakemake.output.csv)
+    io.write_text(tables.table_markdown(table), snakemake.output.md)
+
+
+if "snakemake" in globals():
+    main(snakemake)

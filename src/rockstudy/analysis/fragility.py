@@ -35,7 +35,7 @@ from rockstudy.engine.simulate import DEFAULT_FREE_TIME
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
 from rockstudy.model.record_suites import peak_ground_velocity
-from rockstudy.model.records import STANDARD_GRAVITY, Record
+from rockstudy.model.records import STANDARD_GRAVITY, STANDARD_GRAVITY_UNITS, Record, unit_label
 
 INTENSITY_MEASURES = {
     "pga_ratio": "PGA/(g tan(alpha))",
@@ -326,20 +326,21 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
                                                             "safe below the threshold"})
     ds["threshold_scale"] = (dims2, threshold_scale, {"units": "1", "long_name": "smallest factor on the "
                                                       "as-recorded motion that overturns the block"})
-    ds["threshold_pga"] = (dims2, threshold_scale * pga_g[None, :], {"units": "g", "long_name": "PGA of the record "
-                                                                    "at its threshold scale (standard gravity)"})
+    ds["threshold_pga"] = (dims2, threshold_scale * pga_g[None, :], {
+        "units": STANDARD_GRAVITY_UNITS, "long_name": "PGA of the record at its threshold scale (standard gravity)"})
     ds["n_simulations"] = (dims2, runs["n_simulations"], {"units": "1", "long_name": "runs of the stripes and "
                                                           "the threshold scan"})
     # the median in physical units: PGA [g] = ratio * g tan(alpha) / g_n; PGV [m/s] = ratio * g tan(alpha) / p
     unit_factor = (block.uplift_acceleration / STANDARD_GRAVITY if measure == "pga_ratio"
                    else block.uplift_acceleration / block.p)
-    unit = "g" if measure == "pga_ratio" else "m/s"
+    unit = STANDARD_GRAVITY_UNITS if measure == "pga_ratio" else "m/s"
     physical = "PGA" if measure == "pga_ratio" else "PGV"
     for name, source in (("fragility_median_physical", "fragility_median"), ("median_low_physical", "median_low"),
                          ("median_high_physical", "median_high")):
         ds[name] = ds[source] * unit_factor
         ds[name].attrs = {"units": unit, "long_name": f"{ds[source].attrs.get('long_name', source)}, as {physical} "
-                          f"[{unit}]"}
+                          f"[{unit_label(unit)}]", "comment": f"from the block's g = {block.gravity:g} m s-2 "
+                          f"(block_gravity); PGA in units of standard gravity g_n = {STANDARD_GRAVITY:g} m s-2"}
     # the other measure, from the same runs
     other = OTHER_MEASURE[measure]
     ratio_other = np.array([intensity(r, block, other) for r in records]) / base
@@ -363,8 +364,8 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
         "record_pga": pga_g, "record_pgv": [i.pgv for i in infos], "record_pulse": [i.pulse for i in infos],
         "record_other_intensity": base * ratio_other,
     }
-    units = {"record_distance": "km", "record_pga": "g", "record_pgv": "m/s", "record_magnitude": "1",
-             "record_other_intensity": "1"}
+    units = {"record_distance": "km", "record_pga": STANDARD_GRAVITY_UNITS, "record_pgv": "m/s",
+             "record_magnitude": "1", "record_other_intensity": "1"}
     names = {"record_suite_name": "record suite", "record_id": "id within the suite", "record_event": "earthquake",
              "record_station": "recording station (component)",
              "record_year": "year of the event (0: not applicable)", "record_magnitude": "moment magnitude",
@@ -399,7 +400,7 @@ def suite_summary(datasets) -> "list[dict]":
                          "median_physical": float(d.fragility_median_physical),
                          "median_physical_low": float(d.median_low_physical),
                          "median_physical_high": float(d.median_high_physical),
-                         "physical_unit": ds["fragility_median_physical"].attrs["units"],
+                         "physical_unit": unit_label(ds["fragility_median_physical"].attrs["units"]),
                          "dispersion": float(d.fragility_dispersion), "dispersion_se": float(d.dispersion_se),
                          "other_measure": ds.attrs["other_intensity_measure"],
                          "median_other": float(d.fragility_median_other),

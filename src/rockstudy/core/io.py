@@ -173,7 +173,8 @@ def write_text(text: str, path) -> Path:
 
 
 # --- "is this the dataset the step expects?" ------------------------------------------------------
-COORDINATE_EXPECTATIONS = ("realisation", "frequency_ratio")
+COORDINATE_EXPECTATIONS = ("realisation", "frequency_ratio", "strategy", "sampling_time", "delay", "reading", "R",
+                           "alpha", "kappa_max", "damping_ratio")
 """Expectation keys compared with a coordinate's values (a list) instead of an attribute."""
 
 

@@ -48,6 +48,20 @@ def excitation_duration(kind: str, omega: float) -> float:
     raise ValueError(f"excitation must be one of {', '.join(EXCITATIONS)}, got {kind!r}")
 
 
+def sample_count(duration: float, dt: float) -> int:
+    """n = ceil(duration / dt): the index of the last sample of an excitation lasting ``duration`` [s]
+    sampled every ``dt`` [s] (its record has n + 1 samples). [-]
+
+    A quotient within 1e-9 (relative) of an integer is taken as that integer, so that
+    floating-point error in ``duration / dt`` does not add a trailing sample.
+    """
+    q = duration / dt
+    nearest = round(q)
+    if abs(q - nearest) <= 1e-9 * max(1.0, abs(q)):
+        return int(nearest)
+    return int(math.ceil(q))
+
+
 @njit(cache=True)
 def one_sine_acceleration(t, amplitude, omega):
     """One-sine pulse a_p·sin(ω_p t), for 0 <= t <= 2π/ω_p (the caller checks the range). [m/s^2]

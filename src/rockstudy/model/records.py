@@ -47,6 +47,16 @@ from rockstudy.model.excitation import GroundMotion
 STANDARD_GRAVITY = 9.80665
 """Standard gravity g_n, the unit "g" of record files. [m/s^2]"""
 
+STANDARD_GRAVITY_UNITS = "9.80665 m s-2"
+"""The ``units`` attribute of an acceleration given in units of standard gravity g_n (a PGA "in g"): UDUNITS
+and cf-units read ``"g"`` as gram, so netCDF files write g_n itself. The block's model uses its own
+``Block.gravity`` (9.81 m/s^2 by default), stated as the ``block_gravity`` attribute where it enters."""
+
+
+def unit_label(units: str) -> str:
+    """The short label of a ``units`` attribute for tables and figures: "g" for :data:`STANDARD_GRAVITY_UNITS`."""
+    return "g" if units == STANDARD_GRAVITY_UNITS else units
+
 UNITS = {"g": STANDARD_GRAVITY, "m/s^2": 1.0, "m/s2": 1.0, "cm/s^2": 0.01, "cm/s2": 0.01, "gal": 0.01,
          "mm/s^2": 0.001, "mm/s2": 0.001}
 """Acceleration units a record file may use, with their value in m/s^2."""

@@ -37,8 +37,7 @@ import numpy as np
 
 from rockstudy.core import validation
 from rockstudy.core.constants import NOISE_DT
-from rockstudy.model.excitation import EXCITATIONS, GroundMotion, analytic
-from rockstudy.model.noise import sample_count
+from rockstudy.model.excitation import EXCITATIONS, GroundMotion, analytic, sample_count
 
 SENSOR_STEP = NOISE_DT
 """Sampling step at which an analytic excitation is read by the sensor (the noisy records' step). [s]"""

@@ -433,6 +433,10 @@ def claims_dataset(results: list[ClaimResult], attrs: dict | None = None) -> xr.
                "range_slack_percent": RANGE_SLACK, **(attrs or {})})
 
 
+COMPARISON_TITLE = "Table 1: paper vs this run"
+"""The title of :func:`table1_comparison`'s dataset."""
+
+
 def table1_comparison(table1: xr.Dataset) -> xr.Dataset:
     """Table 1 side by side: the paper's J_OS, ours and ours − paper per cell [%] (NaN where absent)."""
     keys = list(PAPER_TABLE1)
@@ -457,7 +461,7 @@ def table1_comparison(table1: xr.Dataset) -> xr.Dataset:
         coords={"row": ("row", [f"{s} vs {ref}" for ref, s in keys]),
                 "reference": ("row", [ref for ref, _ in keys]), "strategy": ("row", [s for _, s in keys]),
                 "noise_level": ("noise_level", list(PAPER_LEVELS))},
-        attrs={"title": "Table 1: paper vs this run", "paper": PAPER, "rockstudy_version": __version__})
+        attrs={"title": COMPARISON_TITLE, "paper": PAPER, "rockstudy_version": __version__})
 
 
 def comparison_markdown(comp: xr.Dataset) -> str:

@@ -214,3 +214,114 @@ def expected_attrs(scenario: Scenario, kind: str = "spectrum", *, realisations=N
         out.update({f"grid_amplitude_{k}": float(grid[k]) for k in ("start", "stop", "step", "resolution")})
     out.update(extra)
     return out
+
+
+# --- what a dataset says about itself -----------------------------------------------------------
+class InconsistentDataset(ValueError):
+    """A dataset contradicts itself (an edited or damaged file); the message names the file and the rule broken."""
+
+    def __init__(self, path, rule: str):
+        super().__init__(f"{path}: {rule}: this file contradicts itself (an edited or damaged file); delete it "
+                         "and rerun to rebuild it")
+        self.path, self.rule = str(path), rule
+
+
+def _close(a, b) -> bool:
+    return bool(np.allclose(a, b, rtol=1e-12, atol=0.0, equal_nan=True))
+
+
+def _spectrum_problems(ds: xr.Dataset) -> list[str]:
+    """The rules a spectrum (whole or a chunk), a convergence or a probability surface keeps."""
+    problems = []
+    if "threshold_realisation" not in ds or "realisation" not in ds["threshold_realisation"].dims:
+        return problems
+    per_realisation = ds["threshold_realisation"]
+    n = per_realisation.sizes["realisation"]
+    if "n_realisations" in ds.attrs and int(ds.attrs["n_realisations"]) != n:
+        problems.append(f"n_realisations is {ds.attrs['n_realisations']} but the file holds {n} realisations")
+    lowest = per_realisation.min("realisation", skipna=True)
+    if "threshold" in ds and not np.array_equal(ds["threshold"].values, lowest.values, equal_nan=True):
+        problems.append("threshold is not the lowest threshold_realisation over the realisations (a_min,OVER)")
+    if "threshold_mean" in ds and not _close(ds["threshold_mean"], per_realisation.mean("realisation", skipna=True)):
+        problems.append("threshold_mean is not the mean of threshold_realisation")
+    if "threshold_convergence" in ds and not np.array_equal(
+            ds["threshold_convergence"].isel({ds["threshold_convergence"].dims[0]: -1}).values, lowest.values,
+            equal_nan=True):
+        problems.append("threshold_convergence over all realisations is not the lowest threshold_realisation")
+    stop, resolution = ds.attrs.get("grid_amplitude_stop"), ds.attrs.get("grid_amplitude_resolution")
+    values = per_realisation.values
+    if stop is not None and np.any(values[np.isfinite(values)] > stop * (1 + 1e-12)):
+        problems.append(f"a threshold_realisation lies above the scan's top grid_amplitude_stop = {stop:g}")
+    if np.any(values[np.isfinite(values)] <= 0):
+        problems.append("a threshold_realisation is not positive")
+    if "last_safe" in ds and resolution is not None:
+        gap = (per_realisation - ds["last_safe"]).values
+        bad = np.isfinite(gap) & ((gap < 0) | (gap > resolution * (1 + 1e-9) + 1e-12))
+        if np.any(bad):
+            problems.append(f"a threshold_realisation is not within grid_amplitude_resolution = {resolution:g} above "
+                            "its last_safe amplitude (the bisection's bracket)")
+    return problems
+
+
+def _probability_problems(ds: xr.Dataset) -> list[str]:
+    if "probability" not in ds or "n_overturned" not in ds or "n_realisations" not in ds.coords:
+        return []
+    n = int(ds["n_realisations"])
+    if not _close(ds["probability"], ds["n_overturned"] / n):
+        return [f"probability is not n_overturned / n_realisations ({n})"]
+    return []
+
+
+def _fragility_problems(ds: xr.Dataset) -> list[str]:
+    problems = []
+    if "overturned" not in ds or "record" not in ds.dims:
+        return problems
+    if "n_records" in ds.attrs and int(ds.attrs["n_records"]) != ds.sizes["record"]:
+        problems.append(f"n_records is {ds.attrs['n_records']} but the file holds {ds.sizes['record']} records")
+    if "fraction" in ds and not _close(ds["fraction"], ds["overturned"].mean("record")):
+        problems.append("fraction is not the share of the records that overturn (overturned)")
+    resolution = ds.attrs.get("threshold_resolution")
+    if resolution is not None and "threshold_intensity" in ds and "last_safe_intensity" in ds:
+        gap = (ds["threshold_intensity"] - ds["last_safe_intensity"]).values
+        if np.any(np.isfinite(gap) & ((gap < 0) | (gap > resolution * (1 + 1e-9) + 1e-12))):
+            problems.append(f"a threshold_intensity is not within threshold_resolution = {resolution:g} above its "
+                            "last_safe_intensity")
+    return problems
+
+
+def _record_set_problems(ds: xr.Dataset) -> list[str]:
+    if "acceleration" not in ds or "npts" not in ds or "pga" not in ds:
+        return []
+    from rockstudy.model.records import STANDARD_GRAVITY
+
+    acc, npts = ds["acceleration"].values, ds["npts"].values.astype(int)
+    if np.any(npts < 1) or np.any(npts > acc.shape[1]):
+        return ["npts is not between 1 and the length of the sample dimension"]
+    peaks = np.array([np.max(np.abs(row[:n])) for row, n in zip(acc, npts)]) / STANDARD_GRAVITY
+    if not np.allclose(peaks, ds["pga"].values, rtol=1e-9, atol=0.0):
+        return ["pga is not the peak of |acceleration| over each record's npts samples"]
+    return []
+
+
+def check_invariants(ds: xr.Dataset, path) -> xr.Dataset:
+    """``ds`` (read from ``path``) keeps the rules its own variables imply; returns ``ds``.
+
+    A spectrum's ``threshold`` is the lowest ``threshold_realisation`` (the paper's a_min,OVER) and
+    ``threshold_mean`` their mean; every threshold lies inside the file's stated scan (positive, at most
+    ``grid_amplitude_stop``) and within ``grid_amplitude_resolution`` above its ``last_safe`` amplitude;
+    ``n_realisations`` counts the realisations. A probability surface's ``probability`` is
+    ``n_overturned / n_realisations``. A fragility's ``fraction`` is the share of its records that
+    overturn, ``n_records`` counts them, and each record's threshold lies within
+    ``threshold_resolution`` above its last safe intensity. A record set's ``pga`` is the peak of each
+    record's samples.
+
+    Raises
+    ------
+    InconsistentDataset
+        Naming the file and the first rule it breaks.
+    """
+    for problems in (_spectrum_problems, _probability_problems, _fragility_problems, _record_set_problems):
+        found = problems(ds)
+        if found:
+            raise InconsistentDataset(path, found[0])
+    return ds

@@ -37,7 +37,14 @@ from rockstudy.engine.simulate import DEFAULT_FREE_TIME
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
 from rockstudy.model.control import Control
-from rockstudy.model.records import STANDARD_GRAVITY
+from rockstudy.model.records import STANDARD_GRAVITY, STANDARD_GRAVITY_UNITS
+
+
+def gravity_comment(block: Block) -> str:
+    """Both values of g a design point uses: the PGA levels are in units of standard gravity (the records'),
+    the block's uplift acceleration g·tan(alpha) uses the block's own g."""
+    return (f"PGA in units of standard gravity g_n = {STANDARD_GRAVITY:g} m s-2 (the records' g); the block's "
+            f"model uses g = {block.gravity:g} m s-2 (block_gravity)")
 
 
 def pga_levels(start: float = 0.05, stop: float = 3.0, count: int = 30) -> np.ndarray:
@@ -125,7 +132,9 @@ def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, freque
                        {"units": "1", "long_name": "minimum overturning amplitude ratio a_p/(g tan(alpha)), "
                         "noise-free; NaN: none up to the scan's end (one step above a_max,0)"}),
          "jos": ("strategy", jos, {"units": "percent", "long_name": "utility index J_OS over FS (Eqs. 18-22)"}),
-         "fragility_median": ("strategy", medians, {"units": "g", "long_name": f"fragility median PGA on {suite}"}),
+         "fragility_median": ("strategy", medians, {
+             "units": STANDARD_GRAVITY_UNITS, "long_name": f"fragility median PGA on {suite}",
+             "comment": gravity_comment(block)}),
          "fragility_dispersion": ("strategy", betas, {"units": "1", "long_name": "fragility dispersion beta"}),
          "fit_status": ("strategy", status, {"long_name": "see rockstudy.analysis.fragility.FragilityFit"})},
         coords={"strategy": ("strategy", list(strategies)),
@@ -152,7 +161,9 @@ def device_point(block: Block, kappa_max: float, damping_ratio: float, strategie
                                                     levels_g, overturn_criterion=overturn_criterion,
                                                     free_time=free_time)
     ds = xr.Dataset(
-        {"fragility_median": ("strategy", medians, {"units": "g", "long_name": f"fragility median PGA on {suite}"}),
+        {"fragility_median": ("strategy", medians, {
+             "units": STANDARD_GRAVITY_UNITS, "long_name": f"fragility median PGA on {suite}",
+             "comment": gravity_comment(block)}),
          "fragility_dispersion": ("strategy", betas, {"units": "1", "long_name": "fragility dispersion beta"}),
          "fit_status": ("strategy", status, {"long_name": "see rockstudy.analysis.fragility.FragilityFit"})},
         coords={"strategy": ("strategy", list(strategies)),

@@ -1,26 +1,14 @@
-"""The edge between the workflow and the library: the one check of a whole study config
-(:func:`check_study`, which calls each section's own check), the source fingerprints that make
-Snakemake rerun what a code change affects, and job logging (paper §4–5).
+"""The study config's one check before any job runs (:func:`check_study`, which calls each section's
+own check, and :func:`check_sizes`) (paper §4–5).
 
 It takes plain ``dict``/``list`` values, never a config file name; the parsers from dicts to the
 library's dataclasses are in :mod:`rockstudy.studies.parameters`, the labelled datasets in
-:mod:`rockstudy.studies.datasets`, the J_OS tables in :mod:`rockstudy.studies.tables`. Amplitudes are
-ratios a_p/(g·tanα), frequencies ratios ω_p/p; a_max,0 is given in units of g.
+:mod:`rockstudy.studies.datasets`, the J_OS tables in :mod:`rockstudy.studies.tables`; the source
+fingerprints are in :mod:`rockstudy.studies.fingerprints` and a workflow job's log, checked reader and
+stamp in :mod:`rockstudy.studies.jobs`. Amplitudes are ratios a_p/(g·tanα), frequencies ratios ω_p/p;
+a_max,0 is given in units of g.
 """
 from __future__ import annotations
-
-import atexit
-import hashlib
-import logging
-import math
-import os
-import time
-from pathlib import Path
-
-try:
-    import resource
-except ImportError:  # not on Windows: the resources line then gives the run time only
-    resource = None
 
 from rockstudy.core import validation
 from rockstudy.studies.parameters import (
@@ -31,90 +19,6 @@ from rockstudy.studies.parameters import (
     noise_free_level,
     scenario_from_dict,
 )
-
-SIMULATION_LAYERS = ("core", "model", "engine", "analysis")
-"""The subpackages whose code can change a simulated number: the workflow reruns every simulation when
-one of them changes (the study's bookkeeping, the figures and the CLI are fingerprinted on their own)."""
-
-NOT_SIMULATED = ("engine/reference",)
-"""Folders inside :data:`SIMULATION_LAYERS` that no study result runs: the scipy reference engine, which
-the tests compare with the fast engine."""
-
-
-def fingerprint_files(*parts: str) -> list[Path]:
-    """The source files :func:`source_fingerprint` hashes, relative to the package, in a fixed order."""
-    root = Path(__file__).resolve().parents[1]
-    files = []
-    for part in parts or SIMULATION_LAYERS:
-        target = root / part
-        if not target.exists():
-            raise ValueError(f"source_fingerprint: {part!r} is not a folder or module of rockstudy")
-        for path in sorted(target.rglob("*.py")) if target.is_dir() else [target]:
-            name = path.relative_to(root).as_posix()
-            if parts or not any(name.startswith(f"{skip}/") for skip in NOT_SIMULATED):
-                files.append(Path(name))
-    return files
-
-
-def source_fingerprint(*parts: str) -> str:
-    """SHA-256 of the package's sources under ``parts``: subpackage folders (``"engine"``) or module files
-    (``"plotting.py"``), relative to the package; none given: :data:`SIMULATION_LAYERS` without
-    :data:`NOT_SIMULATED`.
-
-    Snakemake passes it to a rule as a parameter, so the rule reruns when that code changes. Folders,
-    not file lists: a new module is covered by its layer's fingerprint without editing the workflow."""
-    root = Path(__file__).resolve().parents[1]
-    digest = hashlib.sha256()
-    for name in fingerprint_files(*parts):
-        digest.update(name.as_posix().encode())
-        digest.update((root / name).read_bytes())
-    return digest.hexdigest()
-
-
-def log_to(path) -> logging.Logger:
-    """Send the "rockstudy" logger (progress, ETA) to ``path``; when the job's process ends, its last
-    line gives the job's resources (:func:`resources`: run time, CPU time, peak memory)."""
-    handler = logging.FileHandler(path, mode="w")
-    handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s"))
-    logger = logging.getLogger("rockstudy")
-    logger.addHandler(handler)
-    logger.setLevel(logging.INFO)
-    atexit.unregister(_log_resources)  # one resources line, however often a job calls log_to
-    atexit.register(_log_resources, logger)
-    return logger
-
-
-def resources() -> dict:
-    """What this process has used so far, from the operating system's own accounts (nothing sampled):
-    ``wall_s`` since it started, ``cpu_s`` (user + system; ``user_s``, ``system_s``) and ``max_rss_mb``,
-    its peak resident memory. [s, MB]"""
-    if resource is None:
-        return {"wall_s": _process_age(), "cpu_s": time.process_time(), "user_s": math.nan, "system_s": math.nan,
-                "max_rss_mb": math.nan}
-    usage = resource.getrusage(resource.RUSAGE_SELF)
-    return {"wall_s": _process_age(), "cpu_s": usage.ru_utime + usage.ru_stime, "user_s": usage.ru_utime,
-            "system_s": usage.ru_stime, "max_rss_mb": usage.ru_maxrss / 1024.0}  # ru_maxrss: kB on Linux
-
-
-_STARTED = time.monotonic()
-
-
-def _process_age() -> float:
-    """Seconds since this process started (Linux: from /proc; elsewhere since rockstudy was imported)."""
-    try:
-        with open("/proc/self/stat") as f:
-            start_ticks = int(f.read().rsplit(")", 1)[1].split()[19])  # field 22, starttime
-        with open("/proc/uptime") as f:
-            uptime = float(f.read().split()[0])
-        return max(0.0, uptime - start_ticks / os.sysconf("SC_CLK_TCK"))
-    except (OSError, ValueError, IndexError):
-        return time.monotonic() - _STARTED
-
-
-def _log_resources(logger: logging.Logger) -> None:
-    r = resources()
-    logger.info("resources: %.1f s run time, %.1f s CPU (user %.1f, system %.1f), peak memory %.0f MB",
-                r["wall_s"], r["cpu_s"], r["user_s"], r["system_s"], r["max_rss_mb"])
 
 
 def check_sizes(config: dict) -> None:
