@@ -52,7 +52,7 @@ from scipy import optimize, special
 from rockstudy.analysis.hazard import EXTENSIONS, HazardCurve
 from rockstudy.core import validation
 from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, RISK_INPUTS
-from rockstudy.model.records import STANDARD_GRAVITY_UNITS
+from rockstudy.model.records import STANDARD_GRAVITY_UNITS as G_N  # PGA in units of standard gravity
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -440,18 +440,18 @@ def risk_dataset(fragility: xr.Dataset, *, scenarios=None, hazard_curves=None, y
     nan = math.nan
     ds = xr.Dataset(coords={"strategy": ("strategy", strategies, {"long_name": "control strategy"})})
     ds["fragility_median"] = ("strategy", [f.median_g if f else nan for f in fits.values()], {
-        "units": STANDARD_GRAVITY_UNITS, "long_name": "fragility median PGA used: the stripes' lognormal fit (MLE of P(overturn) at "
+        "units": G_N, "long_name": "fragility median PGA used: the stripes' lognormal fit (MLE of P(overturn) at "
                                   "each stripe level)"})
     ds["fragility_dispersion"] = ("strategy", [f.dispersion if f else nan for f in fits.values()],
                                   {"units": "1", "long_name": "fragility dispersion beta used (the stripes' fit)"})
     for name in ("median_low_physical", "median_high_physical"):
         if name in fragility:
             ds[name.removesuffix("_physical")] = ("strategy", fragility[name].values.astype(float), {
-                "units": STANDARD_GRAVITY_UNITS, "long_name": f"95 % Wald interval of the median, {name.split('_')[1]}"})
+                "units": G_N, "long_name": f"95 % Wald interval of the median, {name.split('_')[1]}"})
     if "threshold_pga" in fragility and "record_pga" in fragility.coords:
         thr = [threshold_fit(fragility, s) for s in strategies]
         ds["threshold_fit_median"] = ("strategy", [f.median for f in thr], {
-            "units": STANDARD_GRAVITY_UNITS, "long_name": "median of the records' threshold PGA (lognormal MLE, censored where a record "
+            "units": G_N, "long_name": "median of the records' threshold PGA (lognormal MLE, censored where a record "
                                        "does not overturn the block up to the last level); not used by the risk"})
         ds["threshold_fit_dispersion"] = ("strategy", [f.dispersion for f in thr], {
             "units": "1", "long_name": "dispersion of the records' threshold PGA (lognormal MLE)"})
@@ -463,7 +463,7 @@ def risk_dataset(fragility: xr.Dataset, *, scenarios=None, hazard_curves=None, y
         ds = ds.assign_coords(scenario=("scenario", names, {"long_name": "earthquake scenario"}))
         ds["scenario_values"] = ("scenario", [json.dumps(g[2], sort_keys=True) for g in ground],
                                  {"long_name": f"every scenario value {gmm} used (JSON), defaults included"})
-        ds["median_pga"] = ("scenario", [g[0] for g in ground], {"units": STANDARD_GRAVITY_UNITS, "long_name": f"median PGA ({gmm})"})
+        ds["median_pga"] = ("scenario", [g[0] for g in ground], {"units": G_N, "long_name": f"median PGA ({gmm})"})
         ds["ln_std_pga"] = ("scenario", [g[1] for g in ground],
                             {"units": "1", "long_name": f"standard deviation of ln PGA ({gmm})"})
         ds["scenario_probability"] = (("strategy", "scenario"), p, {
@@ -492,9 +492,9 @@ def risk_dataset(fragility: xr.Dataset, *, scenarios=None, hazard_curves=None, y
                 rate[i, j], tail[i, j], bands[i, j] = result.annual_rate, result.tail_share, result.band_share
         edges = np.array((0.0,) + BAND_EDGES_G + (np.inf,))
         ds = ds.assign_coords(hazard=("hazard", names, {"long_name": "hazard curve"}),
-                              pga_band_low=("pga_band", edges[:-1], {"units": STANDARD_GRAVITY_UNITS, "long_name": "PGA band, low"}),
-                              pga_band_high=("pga_band", edges[1:], {"units": STANDARD_GRAVITY_UNITS, "long_name": "PGA band, high"}))
-        ds["hazard_pga"] = (("hazard", "hazard_point"), points[:, 0], {"units": STANDARD_GRAVITY_UNITS, "long_name": "PGA of the "
+                              pga_band_low=("pga_band", edges[:-1], {"units": G_N, "long_name": "PGA band, low"}),
+                              pga_band_high=("pga_band", edges[1:], {"units": G_N, "long_name": "PGA band, high"}))
+        ds["hazard_pga"] = (("hazard", "hazard_point"), points[:, 0], {"units": G_N, "long_name": "PGA of the "
                             "hazard curve's points (NaN: padding)"})
         ds["hazard_rate"] = (("hazard", "hazard_point"), points[:, 1], {"units": "1/yr", "long_name": "annual rate "
                              "of exceedance of the hazard curve's points (NaN: padding)"})
