@@ -198,6 +198,16 @@ def expect_fragility(wildcards, input):
     return expected(input, [EXPECT.fragility(wildcards.recordset)])
 
 
+def expect_risk_fragility(wildcards, input):
+    """The fragility of the job's record set (rule risk_set; its hazard files are text)."""
+    return expected([input.fragility], [EXPECT.fragility(wildcards.recordset)])
+
+
+def expect_risk(wildcards, input):
+    """The risk dataset of the job's record set (rule figure_risk)."""
+    return expected(input, [EXPECT.risk(wildcards.recordset)])
+
+
 # Reproducing the paper's numbers: readings study, claims checklist, device calibration.
 REPRO = config["reproduction"]
 READINGS = REPRO["readings"]

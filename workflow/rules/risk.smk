@@ -16,14 +16,6 @@ if RISK and BEYOND:
     RISK_HTML = [f"{OUT}/tables/risk_{name}.html" for name in RECORD_SETS]
     BEYOND_IN_ALL += RISK_FILES + RISK_HTML  # in place: `all` lists BEYOND_IN_ALL
 
-    def expect_risk_fragility(wildcards, input):
-        """The fragility of the job's record set (rule risk_set; the hazard files are text)."""
-        return expected([input.fragility], [EXPECT.fragility(wildcards.recordset)])
-
-    def expect_risk(wildcards, input):
-        """The risk dataset of the job's record set (rule figure_risk)."""
-        return expected(input, [EXPECT.risk(wildcards.recordset)])
-
     localrules:
         risk,
         risk_set,
