@@ -8,11 +8,11 @@ NOISY = [name for name in LEVELS if name != FREE]
 # Source fingerprints by layer (rockstudy's subpackages): a job reruns when the code it runs changes.
 LIBRARY = study.source_fingerprint()  # the simulation layers: core, model, engine, analysis
 BOOKKEEPING = study.source_fingerprint("core", "analysis", "studies")  # what assembles datasets and tables
-PLOTTING = study.source_fingerprint("plotting.py")  # redraw the figures when the plotting module changes
+PLOTTING = study.source_fingerprint("plotting")  # redraw the figures when the plotting package changes
 # The report shows what a fingerprint covers, not its hash (the hash still decides the rerun).
 LIBRARY = report_pages.SourceFingerprint(LIBRARY, "core, model, engine, analysis")
 BOOKKEEPING = report_pages.SourceFingerprint(BOOKKEEPING, "core, analysis, studies")
-PLOTTING = report_pages.SourceFingerprint(PLOTTING, "plotting.py")
+PLOTTING = report_pages.SourceFingerprint(PLOTTING, "plotting")
 REPORT_CODE = report_pages.SourceFingerprint(study.source_fingerprint("report.py"), "report.py")  # the HTML pages
 COMPILED = f"{OUT}/logs/compile_engine.done"  # the engine compiled once into numba's cache (rule compile_engine)
 SAMPLING = config["sampling_sweep"]

@@ -58,7 +58,7 @@ def fingerprint_files(*parts: str) -> list[Path]:
 
 def source_fingerprint(*parts: str) -> str:
     """SHA-256 of the package's sources under ``parts``: subpackage folders (``"engine"``) or module files
-    (``"plotting.py"``), relative to the package; none given: :data:`SIMULATION_LAYERS` without
+    (``"report.py"``), relative to the package; none given: :data:`SIMULATION_LAYERS` without
     :data:`NOT_SIMULATED`.
 
     Snakemake passes it to a rule as a parameter, so the rule reruns when that code changes. Folders,
