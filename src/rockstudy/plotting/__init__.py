@@ -30,6 +30,7 @@ from rockstudy.plotting.style import (  # noqa: I001  (the style module selects 
     STRATEGY_MARKERS,
     STYLE,
     level_label,
+    plain_text,
     styled,
 )
 from rockstudy.plotting.calibration import figure_calibration, figure_readings, plot_readings
@@ -80,8 +81,8 @@ __all__ = [
     "figure_design_size_effect", "figure_design_winner", "figure_excitation", "figure_fragility", "figure_maps",
     "figure_noise_sensitivity", "figure_probability", "figure_readings", "figure_realisations",
     "figure_record_thresholds", "figure_spectrum", "figure_timing", "group_same_curves", "level_label",
-    "pga_in_g_axis", "plot_a_max0", "plot_design_map", "plot_excitation", "plot_fragility", "plot_history",
-    "plot_median_shift", "plot_outcome_map", "plot_probability", "plot_readings", "plot_record_thresholds",
-    "plot_stiffness", "plot_threshold", "plot_threshold_family", "same_curve", "save_figure", "spectrum_axes",
-    "spectrum_legend", "styled", "velocity_with_impacts",
+    "pga_in_g_axis", "plain_text", "plot_a_max0", "plot_design_map", "plot_excitation", "plot_fragility",
+    "plot_history", "plot_median_shift", "plot_outcome_map", "plot_probability", "plot_readings",
+    "plot_record_thresholds", "plot_stiffness", "plot_threshold", "plot_threshold_family", "same_curve",
+    "save_figure", "spectrum_axes", "spectrum_legend", "styled", "velocity_with_impacts"
 ]

@@ -5,10 +5,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from rockstudy.plotting.style import (
+    BURST_SHADE,
     GUIDE_LINE,
     HISTORY_STYLES,
+    NOTE_FONT,
     ZERO_LINE,
     level_label,
+    plain_text,
     styled,
 )
 
@@ -55,6 +58,41 @@ def plot_excitation(ax, time, values, **kwargs):
     return line
 
 
+def switch_bursts(time, stiffness, end: float, min_switches: int = 20, gap_fraction: float = 0.005):
+    """Stretches of ``time`` up to ``end`` in which the stiffness switches so often that its step
+    line fills a solid band: at least ``min_switches`` switches, each within ``gap_fraction`` of
+    ``end`` of the previous one. Returns a list of (first switch, last switch, number of switches) [s].
+    """
+    time, stiffness = np.asarray(time, float), np.asarray(stiffness, float)
+    switches = time[1:][np.diff(stiffness) != 0]
+    switches = switches[switches <= end]
+    if switches.size < min_switches:
+        return []
+    breaks = np.flatnonzero(np.diff(switches) > gap_fraction * end)
+    starts, stops = np.r_[0, breaks + 1], np.r_[breaks, switches.size - 1]
+    return [(float(switches[i]), float(switches[j]), int(j - i + 1)) for i, j in zip(starts, stops)
+            if j - i + 1 >= min_switches]
+
+
+def mark_switch_burst(ax, axk, hist, end: float):
+    """Shade the stretch of ``hist`` where K switches most densely (:func:`switch_bursts`) on both
+    panels and say why in a note under the figure: there the block makes many ever-smaller rocks,
+    one impact each, and the law switches K with every one (e.g. CS01, Eq. 16: K_max moving
+    outward, K_min coming back). Returns the note's text, or None when there is no such stretch."""
+    bursts = switch_bursts(hist["t"].values, hist["stiffness_ratio"].values, end)
+    if not bursts:
+        return None
+    t0, t1, n = max(bursts, key=lambda b: b[2])
+    for a in (ax, axk):
+        a.axvspan(t0, t1, **BURST_SHADE)
+    impacts = hist["impact_time"].values if "impact_time" in hist.variables else np.array([])
+    rocks = int(np.sum((impacts >= t0) & (impacts <= t1)))
+    why = (f"the block makes {rocks} ever-smaller rocks (one impact each) and the control law switches K "
+           "with each" if rocks else "the control law switches K back and forth")
+    return ax.figure.text(0.01, 0.01, f"Shaded, t = {t0:.2f}–{t1:.2f} s: K switches {n} times; {why}.",
+                          fontsize=NOTE_FONT, ha="left", va="bottom", wrap=True)
+
+
 @styled
 def figure_control_history(hist, paper_figure: str):
     """Figs. 2–3: normalised time history of a controlled block and its stiffness K (``paper_figure``
@@ -69,10 +107,12 @@ def figure_control_history(hist, paper_figure: str):
     end = min(float(hist["t"][-1]), 1.3 * hist.attrs["excitation_end_s"])
     axk.set_xlim(0, end)
     a = hist.attrs
-    ax.set_title(f"Response of the block under {a['control_strategy']} control and the anchorage stiffness it "
-                 f"sets\n$\\omega_p/p$ = {a['frequency_ratio']:g}, $a_p/(g\\tan\\alpha)$ = {a['amplitude_ratio']:g}, "
-                 f"{level_label(float(a.get('noise_level', 0.0)))}; the run ends: {a['status']}")
-    fig.tight_layout()
+    ax.set_title(f"Response of the block under {plain_text(a['control_strategy'])} control and the anchorage "
+                 f"stiffness it sets\n$\\omega_p/p$ = {a['frequency_ratio']:g}, "
+                 f"$a_p/(g\\tan\\alpha)$ = {a['amplitude_ratio']:g}, "
+                 f"{level_label(float(a.get('noise_level', 0.0)))}; the run ends: {plain_text(a['status'])}")
+    note = mark_switch_burst(ax, axk, hist, end)
+    fig.tight_layout(rect=(0, 0.04, 1, 1) if note else None)
     return fig
 
 

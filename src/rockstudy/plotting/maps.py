@@ -10,6 +10,8 @@ from rockstudy.plotting.spectra import plot_a_max0, plot_threshold, spectrum_axe
 from rockstudy.plotting.style import (
     ENVELOPE_STYLE,
     HALF_CONTOUR_STYLE,
+    MAP_COLUMNS,
+    MAP_PANEL_SIZE,
     MAP_THRESHOLD_STYLE,
     OUTCOME_COLOURS,
     PROBABILITY_CMAP,
@@ -33,8 +35,14 @@ def plot_outcome_map(ax, ds, realisation: int = 0):
 
 @styled
 def figure_maps(maps, a_max0: float):
-    """Overturning maps (outcome per grid point) of the noise-free strategies, threshold on top."""
-    fig, axes = plt.subplots(1, len(maps), figsize=(4.2 * len(maps), 4.4), sharey=True, squeeze=False)
+    """Overturning maps (outcome per grid point) of the noise-free strategies, threshold on top;
+    :data:`MAP_COLUMNS` panels a row (four maps: a 2 × 2 grid, readable printed a page wide)."""
+    ncols = min(len(maps), MAP_COLUMNS)
+    nrows = -(-len(maps) // ncols)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(MAP_PANEL_SIZE[0] * ncols, MAP_PANEL_SIZE[1] * nrows + 0.9),
+                             sharex=True, sharey=True, squeeze=False)
+    for ax in axes.flat[len(maps):]:
+        ax.remove()
     handles = []
     for ax, ds in zip(axes.flat, maps):
         _, handles = plot_outcome_map(ax, ds)
@@ -48,7 +56,7 @@ def figure_maps(maps, a_max0: float):
     handles = handles + [Line2D([], [], **MAP_THRESHOLD_STYLE, label=r"lower threshold $a_{min,OVER}$")]
     fig.legend(handles=handles, loc="lower center", ncol=3, frameon=False)
     fig.suptitle("Outcome of every run of the amplitude scan, without noise")
-    fig.tight_layout(rect=(0, 0.1, 1, 1))
+    fig.tight_layout(rect=(0, 0.6 / fig.get_figheight(), 1, 1))
     return fig
 
 

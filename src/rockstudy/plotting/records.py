@@ -12,9 +12,13 @@ from rockstudy.plotting.style import (
     MARKER_SIZE,
     PANEL_TITLE_FONT,
     RECORD_BAR_COLOUR,
+    RECORD_LABEL_FONT,
+    RECORD_ROW_HEIGHT,
+    RECORD_ROW_SPREAD,
     SMALL_FONT,
     STRATEGY_COLOURS,
     STRATEGY_MARKERS,
+    plain_text,
     styled,
 )
 
@@ -90,36 +94,46 @@ def figure_fragility(ds):
     return fig
 
 
+def record_row_offsets(n: int) -> np.ndarray:
+    """Offsets of ``n`` strategies' markers within a record's row (rows are 1 apart), spread over
+    :data:`RECORD_ROW_SPREAD` so that markers at the same PGA sit one above the other, not on top."""
+    return np.linspace(-0.5, 0.5, n) * RECORD_ROW_SPREAD if n > 1 else np.zeros(1)
+
+
 def plot_record_thresholds(ax, ds):
-    """Threshold PGA [g] of every record (rows, sorted by FS's threshold) for each strategy (markers), and
-    the record's own PGA (grey bar): a marker left of the bar's end means the record as recorded
-    overturns the block with that strategy. Returns the markers' artists."""
+    """Threshold PGA [g] of every record (rows, sorted by FS's threshold) for each strategy (markers,
+    each strategy at its own height within the row: :func:`record_row_offsets`), and the record's own
+    PGA (grey bar): a marker left of the bar's end means the record as recorded overturns the block
+    with that strategy. Returns the markers' artists."""
     fs = ds["threshold_pga"].sel(strategy="FS").values if "FS" in ds.strategy.values else None
     order = np.argsort(np.where(np.isfinite(fs), fs, np.inf)) if fs is not None else np.arange(ds.sizes["record"])
     y = np.arange(order.size)
-    ax.barh(y, ds["record_pga"].values[order], color=RECORD_BAR_COLOUR, height=0.7, label="PGA as recorded")
+    ax.barh(y, ds["record_pga"].values[order], color=RECORD_BAR_COLOUR, height=0.8, label="PGA as recorded")
     artists = []
-    for s in ds.strategy.values:
-        s = str(s)
+    strategies = [str(s) for s in ds.strategy.values]
+    for s, dy in zip(strategies, record_row_offsets(len(strategies))):
         x = ds["threshold_pga"].sel(strategy=s).values[order]
-        artists.append(ax.plot(x, y, ls="none", marker=STRATEGY_MARKERS.get(s, "o"), ms=MARKER_SIZE,
+        artists.append(ax.plot(x, y + dy, ls="none", marker=STRATEGY_MARKERS.get(s, "o"), ms=MARKER_SIZE,
                                color=STRATEGY_COLOURS.get(s, None), label=s)[0])
-    labels = [f"{ds.record_id.values[k]} {str(ds.record_event.values[k])[:22]}" for k in order]
-    ax.set_yticks(y, labels, fontsize=6)
+    labels = [plain_text(f"{ds.record_id.values[k]} {str(ds.record_event.values[k])[:22]}") for k in order]
+    ax.set_yticks(y, labels, fontsize=RECORD_LABEL_FONT)
     ax.set_ylim(-0.7, order.size - 0.3)
     ax.invert_yaxis()
     ax.set_xlabel("smallest PGA that overturns the block [g]")
     ax.grid(True, axis="x", **LIGHT_GRID)
+    ax.grid(False, axis="y")
     return artists
 
 
+@styled
 def figure_record_thresholds(ds):
-    """Every record's threshold per strategy over one record set (see :func:`plot_record_thresholds`)."""
+    """Every record's threshold per strategy over one record set (see :func:`plot_record_thresholds`),
+    :data:`RECORD_ROW_HEIGHT` per record."""
     n = ds.sizes["record"]
-    fig, ax = plt.subplots(figsize=(7.5, 1.2 + 0.16 * n))
+    fig, ax = plt.subplots(figsize=(7.5, 1.4 + RECORD_ROW_HEIGHT * n))
     plot_record_thresholds(ax, ds)
     beaten = {str(s): int(np.sum(ds["threshold_scale"].sel(strategy=s).values <= 1.0)) for s in ds.strategy.values}
-    ax.set_title(f"{ds.attrs.get('record_suite', '')}: records that overturn the block as recorded\n"
+    ax.set_title(f"{plain_text(ds.attrs.get('record_suite', ''))}: records that overturn the block as recorded\n"
                  + ", ".join(f"{s} {k}/{n}" for s, k in beaten.items()), fontsize=PANEL_TITLE_FONT, pad=22)
     ax.legend(fontsize=SMALL_FONT, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=len(beaten) + 1, frameon=False)
     fig.tight_layout()

@@ -4,20 +4,22 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
+from rockstudy.plotting.layout import label_clear_of_lines, limits_of
 from rockstudy.plotting.style import (
     A_MAX0_STYLE,
     ABOVE_MARKER,
     AMPLITUDE_LABEL,
     CURVE_COLOURS,
     CURVE_DASHES,
-    CURVE_WIDTH,
     FREQUENCY_LABEL,
     GUIDE_LINE,
     HISTORY_WIDTH,
     PAPER_MARKER,
     REFERENCE_STYLE,
     ZERO_LINE,
+    curve_widths,
     level_label,
+    plain_text,
     styled,
 )
 
@@ -103,12 +105,14 @@ def plot_threshold_family(ax, curves, prefix: str = "", reference=None, suffix: 
     ----------
     curves : list of (str, DataArray)
         Name (e.g. ``"2.5 ms"``) and threshold of each compared curve, in legend order; coloured
-        from :data:`CURVE_COLOURS` and drawn :data:`CURVE_WIDTH` wide.
+        from :data:`CURVE_COLOURS`, the first drawn widest and each next one narrower
+        (:func:`~rockstudy.plotting.style.curve_widths`), so that curves that nearly coincide show
+        as nested bands.
     prefix : str
         Put before the names in the legend (e.g. ``"$T_s$ = "``).
     reference : (str, DataArray), optional
-        The reference (continuous control, no delay, no noise), drawn last, on top, in
-        :data:`REFERENCE_STYLE`, and named ``prefix + name + suffix``.
+        The reference (continuous control, no delay, no noise), drawn last, on top, thin and
+        dashed (:data:`REFERENCE_STYLE`), and named ``prefix + name + suffix``.
     suffix : str
         Put after the reference's names in the legend (e.g. ``", reference"``).
     reference_last : bool
@@ -126,15 +130,17 @@ def plot_threshold_family(ax, curves, prefix: str = "", reference=None, suffix: 
     ref = [reference] if reference is not None else []
     every = list(curves) + ref if reference_last else ref + list(curves)
     groups = group_same_curves(every)
-    lines, ref_line, colour = [], None, 0
+    compared, ref_line = [], None
     for names, thr in groups:
         label = prefix + " = ".join(names)
         if reference is not None and reference[0] in names and same_curve(thr, reference[1]):
             ref_line = (label + suffix, thr)
-            continue
+        else:
+            compared.append((label, thr))
+    lines = []
+    for colour, ((label, thr), width) in enumerate(zip(compared, curve_widths(len(compared)))):
         style = {"color": CURVE_COLOURS[colour % len(CURVE_COLOURS)],
-                 "ls": CURVE_DASHES[colour % len(CURVE_DASHES)], "lw": CURVE_WIDTH}
-        colour += 1
+                 "ls": CURVE_DASHES[colour % len(CURVE_DASHES)], "lw": width}
         lines.append(plot_threshold(ax, thr, label=label, **style))
     if ref_line is not None:
         lines.append(plot_threshold(ax, ref_line[1], label=ref_line[0], **REFERENCE_STYLE))
@@ -161,12 +167,11 @@ def figure_realisations(spectrum, histories, point: dict):
                               for name, h in zip(names, histories)], prefix="noise realisation ")
     for i, (name, hist) in enumerate(zip(names, histories)):
         b.plot(hist["t"], hist["rotation_ratio"], color=CURVE_COLOURS[i % len(CURVE_COLOURS)],
-               ls=CURVE_DASHES[i % len(CURVE_DASHES)], lw=HISTORY_WIDTH, label=f"{name}: {hist.attrs['status']}")
+               ls=CURVE_DASHES[i % len(CURVE_DASHES)], lw=HISTORY_WIDTH,
+               label=f"{name}: {plain_text(hist.attrs['status'])}")
     plot_a_max0(a, point["a_max0_ratio"])
-    a.plot(point["frequency_ratio"], point["amplitude_ratio"], **{**PAPER_MARKER, "ms": 11},
-           label=point["label"])
-    a.annotate(point["label"], (point["frequency_ratio"], point["amplitude_ratio"]), xytext=(6, 6),
-               textcoords="offset points")
+    label = plain_text(point["label"])
+    a.plot(point["frequency_ratio"], point["amplitude_ratio"], **{**PAPER_MARKER, "ms": 11}, label=label)
     spectrum_axes(a, f"(a) {spectrum['strategy'].item()}, {level_label(float(spectrum['noise_level']))}")
     spectrum_legend(a, loc="upper left")
     b.axhline(0, **ZERO_LINE)
@@ -174,13 +179,15 @@ def figure_realisations(spectrum, histories, point: dict):
         b.axhline(s, **GUIDE_LINE)
     b.set_xlabel("time $t$ [s]")
     b.set_ylabel(r"$\theta/\alpha$ [-]")
-    b.set_xlim(0, 1.3 * histories[0].attrs["excitation_end_s"])
-    b.set_ylim(-7, 7)
-    b.set_title(f"(b) rotation at {point['label']}")
-    b.legend(loc="upper left")
+    end = 1.3 * histories[0].attrs["excitation_end_s"]
+    b.set_xlim(0, end)
+    b.set_ylim(*limits_of([h["rotation_ratio"].where(h["t"] <= end) for h in histories], include=(-1.0, 1.0)))
+    b.set_title(f"(b) rotation at {label}")
+    b.legend(loc="best")
     fig.suptitle("Lower threshold of the overturning region for single noise realisations, and the rotation "
-                 f"at point {point['label']}")
+                 f"at point {label}")
     fig.tight_layout()
+    label_clear_of_lines(a, (point["frequency_ratio"], point["amplitude_ratio"]), label)
     return fig
 
 

@@ -34,7 +34,26 @@ CURVE_DASHES = ("-", "--", "-.", ":", (0, (5, 1, 1, 1, 1, 1)), (0, (1, 1)), (0, 
 """Line styles paired with :data:`CURVE_COLOURS`, so that curves also differ in grey-scale print."""
 
 
-REFERENCE_STYLE = {"color": OKABE_ITO["black"], "lw": 1.2, "ls": "-", "marker": "o", "ms": 3.0, "zorder": 5}
+REFERENCE_STYLE = {"color": OKABE_ITO["black"], "lw": 1.0, "ls": (0, (4, 2)), "marker": "o", "ms": 3.0,
+                   "zorder": 5}
+"""A reference curve (continuous control, no delay, no noise, the decisive N): black, dashed, thin,
+with dots, drawn on top of the wider coloured curves, which show through its gaps and on either side."""
+
+CURVE_WIDTH = 1.6
+"""Line width of the last (narrowest, topmost) of the compared curves. [pt]"""
+
+CURVE_WIDTH_STEP = 1.4
+"""How much wider each compared curve is than the one drawn after it: curves that (nearly) coincide
+show as nested bands, every one visible, instead of the last hiding the others. [pt]"""
+
+
+def curve_widths(n: int) -> list[float]:
+    """Line widths of ``n`` compared curves in drawing order: the first widest, each next one
+    :data:`CURVE_WIDTH_STEP` narrower, the last :data:`CURVE_WIDTH` wide. [pt]"""
+    return [CURVE_WIDTH + CURVE_WIDTH_STEP * (n - 1 - i) for i in range(n)]
+
+
+STYLE = {"color": OKABE_ITO["black"], "lw": 1.2, "ls": "-", "marker": "o", "ms": 3.0, "zorder": 5}
 """A reference curve (continuous control, no delay, no noise, the decisive N): black, thin, with
 dots, drawn on top of the thicker coloured curves so that both stay visible where they overlap."""
 
@@ -127,6 +146,34 @@ PANEL_TITLE_FONT = 9
 LIGHT_GRID = {"lw": 0.3, "alpha": 0.5}
 """The grid of figures drawn without :data:`STYLE`."""
 
+LABEL_BOX = {"boxstyle": "round,pad=0.2", "fc": "w", "ec": "0.6", "lw": 0.5, "alpha": 0.9}
+"""The box behind a point's label, so that the label reads over a grid or a curve."""
+
+LABEL_ARROW = {"arrowstyle": "-", "color": "0.3", "lw": 0.6, "shrinkA": 0, "shrinkB": 4}
+"""The thin line from a point's label to the point."""
+
+BURST_SHADE = {"color": OKABE_ITO["yellow"], "alpha": 0.25, "lw": 0, "zorder": 0}
+"""The shading of a stretch where the anchorage stiffness switches densely (Figs. 2–3)."""
+
+NOTE_FONT = 8
+"""Font size of a figure's note under its axes (what a shaded stretch is). [pt]"""
+
+RECORD_LABEL_FONT = 8
+"""Font size of the record names in front of each row of a record-threshold chart. [pt]"""
+
+RECORD_ROW_HEIGHT = 0.3
+"""Height of one record's row in a record-threshold chart: with :data:`RECORD_ROW_SPREAD`, the
+strategies' markers of one row stand one marker apart. [in]"""
+
+RECORD_ROW_SPREAD = 0.6
+"""Span of the strategies' marker heights within a row (rows are 1 apart)."""
+
+MAP_COLUMNS = 2
+"""Panels per row of a figure of maps. [-]"""
+
+MAP_PANEL_SIZE = (4.2, 3.9)
+"""Width and height of one map panel. [in]"""
+
 
 def styled(figure_function):
     """Draw ``figure_function``'s figure in the study's :data:`STYLE`."""
@@ -139,3 +186,10 @@ def styled(figure_function):
 
 def level_label(level: float) -> str:
     return "no noise (R000)" if level == 0 else f"R{round(level * 100):03d} ({level:.0%} noise)"
+
+
+def plain_text(text) -> str:
+    """``text`` (a name from a file or a configuration: a record's event, a status) escaped for
+    matplotlib, so that a ``$`` in it is drawn as a dollar sign instead of starting mathtext (an
+    unbalanced one would fail the whole figure)."""
+    return str(text).replace("$", r"\$")
