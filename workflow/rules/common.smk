@@ -273,4 +273,5 @@ def expected_dataset(path):
 
 def expect(wildcards, input):
     """Parameter ``expect`` of a rule: every netCDF input's expected attributes (see expected_dataset)."""
-    return {str(path): expected_dataset(path) for path in input if str(path).endswith(".nc")}
+    return report_pages.ExpectedAttributes({str(path): expected_dataset(path) for path in input
+                                           if str(path).endswith(".nc")})

@@ -15,10 +15,6 @@ HTML_TABLES = {
                         "J_OS under sampled control, each sampling time T_s", "§5.2, Fig. 7"),
     "timing_delay": (f"{OUT}/tables/timing_delay.md", "timing_delay.rst", "Tables", "J_OS",
                      "J_OS under delayed control, each delay", "§5.2, Fig. 8"),
-    "readings": (f"{OUT}/reproduction/readings/readings.md", "readings.rst", "Reproduction", "Noise readings",
-                 "FS row of Table 1 under each reading of the noise model", "§5, Table 1"),
-    "calibration": (f"{OUT}/reproduction/calibration/calibration.md", "calibration_table.rst", "Reproduction",
-                    "Device calibration", "Device calibration: every screened anchorage and the best", "Table 1"),
 }
 if BEYOND:
     HTML_TABLES["fragility_summary"] = (f"{OUT}/tables/fragility_summary.md", "fragility_summary.rst", "Tables",
@@ -30,18 +26,31 @@ if BEYOND:
         HTML_TABLES[f"record_thresholds_{name}"] = (
             f"{OUT}/tables/record_thresholds_{name}.md", "record_thresholds_table.rst", "Tables", "Fragility",
             f"Smallest overturning scale of each record of {name}, per strategy", "")
+# Pages of the studies outside `all` (targets `reproduction`, `calibration`): one rule each, so that
+# `all` does not ask for them.
+EXTRA_HTML_TABLES = {
+    "readings": (f"{OUT}/reproduction/readings/readings.md", "readings.rst", "Reproduction", "Noise readings",
+                 "FS row of Table 1 under each reading of the noise model", "§5, Table 1"),
+    "calibration": (f"{OUT}/reproduction/calibration/calibration.md", "calibration_table.rst", "Reproduction",
+                    "Device calibration", "Device calibration: every screened anchorage and the best", "Table 1"),
+}
 
 
-for key, (md, caption, category, subcategory, shows, paper) in HTML_TABLES.items():
+def html_page(md, caption, category, subcategory, shows, paper):
+    """The report entry of the HTML page made from the Markdown table ``md``."""
+    return report(md.removesuffix(".md") + ".html", caption=f"../report/{caption}", category=category,
+                  subcategory=subcategory, labels=report_pages.labels(shows, paper))
+
+
+for key, entry in EXTRA_HTML_TABLES.items():
 
     rule:
         name:
             f"html_{key}"
         input:
-            md,
+            entry[0],
         output:
-            report(md.removesuffix(".md") + ".html", caption=f"../report/{caption}", category=category,
-                   subcategory=subcategory, labels=report_pages.labels(shows, paper)),
+            html_page(*entry),
         log:
             f"{OUT}/logs/report/html_{key}.log",
         params:
@@ -54,14 +63,17 @@ for key, (md, caption, category, subcategory, shows, paper) in HTML_TABLES.items
             "../scripts/html_table.py"
 
 
-HTML_IN_ALL = [HTML_TABLES[k][0].removesuffix(".md") + ".html"
-               for k in HTML_TABLES if k not in ("readings", "calibration")]
+OVERVIEW_BEYOND = f"{REPORT_DIR}/overview_beyond.html"
+"""The headline numbers of the studies beyond the paper in `all` (the fragility medians), for the overview page."""
 
 
-rule html_claims:
+# One rule makes every page of `all` (one node of the rule graph instead of one per page).
+rule report_pages:
     input:
         claims=f"{OUT}/reproduction/claims.nc",
         comparison=f"{OUT}/reproduction/table1_vs_paper.nc",
+        tables=[entry[0] for entry in HTML_TABLES.values()],
+        fragility=[f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS] if BEYOND else [],
     output:
         claims=report(f"{OUT}/reproduction/claims.html", caption="../report/claims.rst", category="Reproduction",
                       subcategory="Claims and Table 1",
@@ -70,8 +82,10 @@ rule html_claims:
                           category="Reproduction", subcategory="Claims and Table 1",
                           labels=report_pages.labels("Table 1 of this run beside the paper's, cell by cell", "Table 1")),
         overview=OVERVIEW,
+        overview_beyond=OVERVIEW_BEYOND,
+        tables=[html_page(*entry) for entry in HTML_TABLES.values()],
     log:
-        f"{OUT}/logs/report/html_claims.log",
+        f"{OUT}/logs/report/report_pages.log",
     params:
         pages=REPORT_CODE,
     localrule: True
@@ -79,7 +93,9 @@ rule html_claims:
         "../envs/rockstudy.yaml"
     threads: 1
     script:
-        "../scripts/html_claims.py"
+        "../scripts/report_pages.py"
 
 
-REPORT_PAGES = HTML_IN_ALL + [f"{OUT}/reproduction/claims.html", f"{OUT}/reproduction/table1_vs_paper.html", OVERVIEW]
+REPORT_PAGES = ([entry[0].removesuffix(".md") + ".html" for entry in HTML_TABLES.values()]
+                + [f"{OUT}/reproduction/claims.html", f"{OUT}/reproduction/table1_vs_paper.html", OVERVIEW,
+                   OVERVIEW_BEYOND])

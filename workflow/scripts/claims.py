@@ -1,4 +1,5 @@
 """The claims checklist of §5 and the Conclusions, and Table 1 side by side with the paper."""
+from rockstudy import report
 from rockstudy.core import io
 from rockstudy.studies import claims, study
 
@@ -12,7 +13,8 @@ results = claims.evaluate_run(table1, read(i.spectra), dict(p.noise_levels), p.a
                               convergence=read_nc(i.convergence), sampling=read_nc(i.sampling),
                               delay=read_nc(i.delay))
 comparison = claims.table1_comparison(table1)
-header = f"Noise reading: {p.reading}. Anchorage: {p.anchorage}. Realisations: {p.realisations}."
+header = (f"Noise reading: {report.settings_text(p.reading)}. Anchorage: {report.settings_text(p.anchorage)}. "
+          f"Realisations: {p.realisations}.")
 io.write_netcdf(claims.claims_dataset(results, {"noise_reading": p.reading, "anchorage": str(p.anchorage)}),
                 snakemake.output.nc)
 io.write_text(claims.claims_markdown(results, comparison, header), snakemake.output.md)
