@@ -23,6 +23,7 @@ from rockstudy._version import __version__
 from rockstudy.analysis.scenario import DEFAULT_BLOCK, DEFAULT_EXCITATION, DEFAULT_OVERTURN_CRITERION
 from rockstudy.analysis.spectra import DEFAULT_FREQUENCY_GRID, AmplitudeGrid
 from rockstudy.analysis.utility_index import DEFAULT_A_MAX0
+from rockstudy.cli import records as records_cli
 from rockstudy.core import validation
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME, ENGINES, OVERTURN_CRITERIA
 from rockstudy.model.anchorage import Anchorage
@@ -366,6 +367,7 @@ def build_parser() -> argparse.ArgumentParser:
     pr = sub.add_parser("records", help="list the record suites and their records (id, event, year, magnitude, "
                         "station, distance, site class, PGA, PGV, pulse)")
     pr.add_argument("--suite", help="list only this suite's records (default: every suite)")
+    records_cli.add_export_arguments(pr)
     pj = sub.add_parser("jos", help="utility index J_OS (Eqs. 18-22) of two spectrum files")
     pj.add_argument("--reference", required=True, help="spectrum netCDF of the reference system")
     pj.add_argument("--system", required=True, help="spectrum netCDF of the investigated system")
@@ -577,6 +579,8 @@ def _cmd_threshold_record(args, parser):
 
 def _cmd_records(args, parser):
     """``records``: the suites and their records."""
+    if args.export is not None:
+        return records_cli.run_export(args, parser)
     from rockstudy.model import record_suites
     suites = record_suites.suite_names()
     if args.suite is not None:
