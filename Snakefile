@@ -36,6 +36,7 @@ include: "workflow/rules/reproduction.smk"
 include: "workflow/rules/beyond.smk"
 include: "workflow/rules/report.smk"
 include: "workflow/rules/design.smk"
+include: "workflow/rules/docs.smk"
 
 
 localrules:

@@ -248,6 +248,24 @@ def beyond_overview_html(fragility: list) -> str:
     return scrolling(_styled(table), style=INLINE["scroll"])
 
 
+
+RUN_NUMBERS = {"median": "fragility_median", "median_physical": "fragility_median_physical",
+               "median_physical_low": "median_low_physical", "median_physical_high": "median_high_physical",
+               "dispersion": "fragility_dispersion", "median_shift_percent": "median_shift_percent"}
+"""Columns of ``docs/figures/run_numbers.csv`` (the fragility numbers the docs quote) and the variables
+of a fragility dataset they come from."""
+
+
+def run_numbers_csv(fragility: list) -> str:
+    """The fragility numbers the docs quote, one row per (record set, strategy), at full precision,
+    from the run's ``fragility/<record set>.nc`` datasets."""
+    lines = [",".join(["suite", "strategy", "n_records", *RUN_NUMBERS])]
+    for ds in fragility:
+        for s in ds["strategy"].values:
+            values = [repr(float(ds[var].sel(strategy=s))) for var in RUN_NUMBERS.values()]
+            lines.append(",".join([str(ds.attrs["record_suite"]), str(s), str(int(ds.attrs["n_records"])), *values]))
+    return "\n".join(lines) + "\n"
+
 class SourceFingerprint(tuple):
     """A source fingerprint as a workflow parameter: compared by its hash, shown by what it covers.
 

@@ -39,10 +39,10 @@ REFERENCE_STYLE = {"color": OKABE_ITO["black"], "lw": 1.0, "ls": (0, (4, 2)), "m
 """A reference curve (continuous control, no delay, no noise, the decisive N): black, dashed, thin,
 with dots, drawn on top of the wider coloured curves, which show through its gaps and on either side."""
 
-CURVE_WIDTH = 1.6
+CURVE_WIDTH = 1.4
 """Line width of the last (narrowest, topmost) of the compared curves. [pt]"""
 
-CURVE_WIDTH_STEP = 1.4
+CURVE_WIDTH_STEP = 1.0
 """How much wider each compared curve is than the one drawn after it: curves that (nearly) coincide
 show as nested bands, every one visible, instead of the last hiding the others. [pt]"""
 
@@ -51,15 +51,6 @@ def curve_widths(n: int) -> list[float]:
     """Line widths of ``n`` compared curves in drawing order: the first widest, each next one
     :data:`CURVE_WIDTH_STEP` narrower, the last :data:`CURVE_WIDTH` wide. [pt]"""
     return [CURVE_WIDTH + CURVE_WIDTH_STEP * (n - 1 - i) for i in range(n)]
-
-
-STYLE = {"color": OKABE_ITO["black"], "lw": 1.2, "ls": "-", "marker": "o", "ms": 3.0, "zorder": 5}
-"""A reference curve (continuous control, no delay, no noise, the decisive N): black, thin, with
-dots, drawn on top of the thicker coloured curves so that both stay visible where they overlap."""
-
-
-CURVE_WIDTH = 2.4
-"""Line width of the compared curves (wider than the reference drawn on top of them). [pt]"""
 
 
 STYLE = {"font.size": 9.0, "axes.titlesize": 10.0, "axes.labelsize": 9.0, "legend.fontsize": 8.0,
