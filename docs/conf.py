@@ -29,6 +29,7 @@ extensions = [
 source_suffix = {".md": "markdown"}
 root_doc = "index"
 exclude_patterns = ["_build", "figures/*.md"]
+templates_path = []
 
 myst_enable_extensions = ["dollarmath"]
 myst_heading_anchors = 3            # links to a page's sections (model.md#noise-readings-...)
@@ -44,9 +45,10 @@ numpydoc_xref_param_type = False
 # References from a list item leaves the renamed target "not referenced": not a broken link.
 suppress_warnings = ["ref.citation"]
 
-html_theme = "alabaster"
+html_theme = "pydata_sphinx_theme"  # the theme of pvlib, xarray, numpy and scipy's documentation
 html_title = f"rockstudy {release}"
 html_static_path = []
+html_theme_options = {"navigation_depth": 2, "show_toc_level": 2, "secondary_sidebar_items": ["page-toc"]}
 autosummary_generate = False        # the tables link to the pages of api/, no stub files
 
 
@@ -79,5 +81,37 @@ def _plain_text_docstring(app, what, name, obj, options, lines):
     lines[:] = text.split("\n")
 
 
+# --- one API page per module ----------------------------------------------------------------------
+# Written at every build from the package itself (api/modules/<module>.md), so that a new module gets
+# its page and a removed one loses it without editing the docs; each layer's page lists its modules.
+import importlib  # noqa: E402
+import pkgutil  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+MODULE_PAGES = Path(__file__).parent / "api" / "modules"
+
+
+def public_modules() -> list[str]:
+    """Every module of rockstudy whose dotted name has no private part (``_kernel``, ``_version``)."""
+    names = [m.name for m in pkgutil.walk_packages(rockstudy.__path__, "rockstudy.")]
+    return sorted(n for n in names if not any(part.startswith("_") for part in n.split(".")))
+
+
+def _write_module_pages(app):
+    MODULE_PAGES.mkdir(exist_ok=True)
+    wanted = {}
+    for name in public_modules():
+        summary = (importlib.import_module(name).__doc__ or "").strip().split("\n", 1)[0]
+        wanted[f"{name}.md"] = (f"# `{name}`\n\n{summary}\n\n```{{eval-rst}}\n.. automodule:: {name}\n```\n")
+    for page in MODULE_PAGES.glob("*.md"):
+        if page.name not in wanted:
+            page.unlink()
+    for page, text in wanted.items():  # rewritten only when changed: Sphinx rereads only what changed
+        path = MODULE_PAGES / page
+        if not path.exists() or path.read_text(encoding="utf-8") != text:
+            path.write_text(text, encoding="utf-8")
+
+
 def setup(app):
     app.connect("autodoc-process-docstring", _plain_text_docstring, priority=100)
+    app.connect("builder-inited", _write_module_pages)

@@ -48,9 +48,9 @@ def test_record_series_puts_each_record_on_its_own_time_axis():
     ds = record_suites.suite_dataset(entries)
     for info, record in entries:
         series = record_suites.record_series(ds, info.name)
-        assert series.sizes["time"] == record.acceleration.size and not np.isnan(series.values).any()
+        assert series.sizes["t"] == record.acceleration.size and not np.isnan(series.values).any()
         np.testing.assert_array_equal(series.values, record.acceleration)
-        assert series["time"].attrs["units"] == "s"
-        assert series["time"].values[-1] == pytest.approx((record.acceleration.size - 1) * record.dt)
+        assert series["t"].attrs["units"] == "s"
+        assert series["t"].values[-1] == pytest.approx((record.acceleration.size - 1) * record.dt)
     with pytest.raises(record_suites.RecordSuiteError, match="not in this record set"):
         record_suites.record_series(ds, "synthetic:SYN999")

@@ -456,7 +456,8 @@ def record_time(record: Record) -> np.ndarray:
 
 def record_series(ds, name: str):
     """One record of a record-set dataset (:func:`suite_dataset`) as a :class:`xarray.DataArray` of
-    its ``npts`` samples over a ``time`` coordinate [s]: the accessor for the padded
+    its ``npts`` samples over a time coordinate ``t`` [s] (named as every time axis of rockstudy's
+    files): the accessor for the padded
     ``acceleration(record, sample)`` array, whose sample k of a record lies at ``k * dt`` of that
     record (the steps differ between records, so the dataset has no shared time axis).
 
@@ -474,7 +475,7 @@ def record_series(ds, name: str):
                                f"{', '.join(map(str, ds['record'].values))}")
     d = ds.sel(record=name)
     npts, dt = int(d["npts"]), float(d["dt"])
-    time = xr.Variable("time", np.arange(npts) * dt, {"units": "s", "long_name": "time since the record's start"})
-    return xr.DataArray(d["acceleration"].values[:npts], dims="time", coords={"time": time}, name="acceleration",
+    t = xr.Variable("t", np.arange(npts) * dt, {"units": "s", "long_name": "time since the record's start"})
+    return xr.DataArray(d["acceleration"].values[:npts], dims="t", coords={"t": t}, name="acceleration",
                         attrs={**d["acceleration"].attrs, "long_name": "horizontal ground acceleration",
                                "record": name, "dt": dt})
