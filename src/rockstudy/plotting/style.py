@@ -5,11 +5,13 @@ from the others and a change of style is one edit. :func:`styled` draws a figure
 """
 from __future__ import annotations
 
+import sys
 from functools import wraps
 
 import matplotlib
 
-matplotlib.use("Agg")
+if "ipykernel" not in sys.modules:  # files, not windows; a notebook keeps its inline backend
+    matplotlib.use("Agg")
 
 FREQUENCY_LABEL = r"$\omega_p/p$ [-]"
 
