@@ -36,10 +36,12 @@ EXTRA_HTML_TABLES = {
 }
 
 
-def html_page(md, caption, category, subcategory, shows, paper):
-    """The report entry of the HTML page made from the Markdown table ``md``."""
-    return report(md.removesuffix(".md") + ".html", caption=f"../report/{caption}", category=category,
-                  subcategory=subcategory, labels=report_pages.labels(shows, paper))
+# The report entry of each HTML page made from a Markdown table: (markdown, caption, category, subcategory,
+# what it shows, paper) -> report(<markdown>.html, ...)
+HTML_PAGES = {key: report(md.removesuffix(".md") + ".html", caption=f"../report/{caption}", category=category,
+                          subcategory=subcategory, labels=report_pages.labels(shows, paper))
+              for key, (md, caption, category, subcategory, shows, paper)
+              in {**HTML_TABLES, **EXTRA_HTML_TABLES}.items()}
 
 
 for key, entry in EXTRA_HTML_TABLES.items():
@@ -50,7 +52,7 @@ for key, entry in EXTRA_HTML_TABLES.items():
         input:
             entry[0],
         output:
-            html_page(*entry),
+            HTML_PAGES[key],
         log:
             f"{OUT}/logs/report/html_{key}.log",
         params:
@@ -83,7 +85,7 @@ rule report_pages:
                           labels=report_pages.labels("Table 1 of this run beside the paper's, cell by cell", "Table 1")),
         overview=OVERVIEW,
         overview_beyond=OVERVIEW_BEYOND,
-        tables=[html_page(*entry) for entry in HTML_TABLES.values()],
+        tables=[HTML_PAGES[key] for key in HTML_TABLES],
     log:
         f"{OUT}/logs/report/report_pages.log",
     params:
