@@ -169,3 +169,22 @@ def test_simulate_plot_with_a_dollar_in_the_record_name(tmp_path, capsys):
     assert record_files.read_at2(path).name == "Quake $_$ 1"
     main(["simulate", "--strategy", "CS01", "--record", str(path), "--plot", str(tmp_path / "q.png")])
     assert (tmp_path / "q.png").stat().st_size > 1000
+
+
+def test_design_charts_build_and_draw_a_dollar_in_the_suite_name_as_text(tmp_path):
+    strategies, R, alpha = ["FS", "CS01", "CS02"], [0.5, 1.0], [0.2, 0.3]
+    rng = np.random.default_rng(1)
+    blocks = xr.Dataset({"jos": (("strategy", "R", "alpha"), rng.uniform(0, 80, (3, 2, 2))),
+                         "fragility_median": (("strategy", "R", "alpha"),
+                                              np.array([0.4, 0.8, 0.9])[:, None, None] + rng.uniform(0, 0.2, (3, 2, 2)))},
+                        coords={"strategy": strategies, "R": R, "alpha": alpha},
+                        attrs={"record_suite": "suite $_$ x"})  # "$_$": bad mathtext unless escaped
+    devices = xr.Dataset({"fragility_median": (("strategy", "kappa_max", "damping_ratio"),
+                                               rng.uniform(0.3, 1.5, (3, 2, 2)))},
+                         coords={"strategy": strategies, "kappa_max": [0.5, 1.0], "damping_ratio": [0.02, 0.05]},
+                         attrs={"record_suite": "suite $_$ x"})
+    figures = [plotting.figure_design_jos_maps(blocks), plotting.figure_design_winner(blocks),
+               plotting.figure_design_size_effect(blocks), plotting.figure_design_devices(devices, 1.0)]
+    for i, fig in enumerate(figures):
+        plotting.save_figure(fig, tmp_path / f"d{i}.png")
+        assert (tmp_path / f"d{i}.png").stat().st_size > 1000

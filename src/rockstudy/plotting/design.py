@@ -13,6 +13,7 @@ from rockstudy.plotting.style import (
     SMALL_FONT,
     STRATEGY_COLOURS,
     STRATEGY_MARKERS,
+    plain_text,
 )
 
 
@@ -34,6 +35,7 @@ def plot_design_map(ax, values, R, alpha, cmap="viridis", vmin=None, vmax=None, 
 def figure_design_jos_maps(blocks, strategies=("CS01", "CS02")):
     """J_OS over FS (noise-free Eq. 23) and the fragility median shift over FS, over (R, alpha)."""
     R, alpha = blocks.R.values, blocks.alpha.values
+    suite = plain_text(blocks.attrs["record_suite"])
     fig, axes = plt.subplots(2, len(strategies), figsize=(4.6 * len(strategies), 7.6), squeeze=False)
     fs = blocks.fragility_median.sel(strategy="FS").values
     for k, s in enumerate(strategies):
@@ -42,7 +44,7 @@ def figure_design_jos_maps(blocks, strategies=("CS01", "CS02")):
         fig.colorbar(mesh, ax=axes[0, k])
         shift = 100 * (blocks.fragility_median.sel(strategy=s).values / fs - 1)
         mesh = plot_design_map(axes[1, k], shift, R, alpha, cmap="magma", vmin=0)
-        axes[1, k].set_title(f"{s}: median over FS, {blocks.attrs['record_suite']} [%]", fontsize=PANEL_TITLE_FONT)
+        axes[1, k].set_title(f"{s}: median over FS, {suite} [%]", fontsize=PANEL_TITLE_FONT)
         fig.colorbar(mesh, ax=axes[1, k])
     fig.tight_layout()
     return fig
@@ -51,11 +53,12 @@ def figure_design_jos_maps(blocks, strategies=("CS01", "CS02")):
 def figure_design_winner(blocks):
     """Which strategy wins where: the highest J_OS (left) and the highest fragility median (right) over (R, alpha)."""
     R, alpha = blocks.R.values, blocks.alpha.values
+    suite = plain_text(blocks.attrs["record_suite"])
     strategies = [str(s) for s in blocks.strategy.values if str(s) != "FS"]
     cmap = ListedColormap([STRATEGY_COLOURS.get(s, "0.5") for s in strategies])
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
     for ax, var, title in ((axes[0], "jos", "highest J_OS (Eq. 23, no noise)"),
-                           (axes[1], "fragility_median", f"highest median on {blocks.attrs['record_suite']}")):
+                           (axes[1], "fragility_median", f"highest median on {suite}")):
         values = blocks[var].sel(strategy=strategies).values
         best = np.argmax(np.nan_to_num(values, nan=-np.inf), axis=0).astype(float)
         plot_design_map(ax, best, R, alpha, cmap=cmap, vmin=-0.5, vmax=len(strategies) - 0.5, fmt="")
@@ -87,7 +90,7 @@ def _median_panels(ds, panel, x, xlabel, title, panel_size, target_g=None):
         ax.set_xlabel(xlabel)
         ax.set_title(title.format(v), fontsize=PANEL_TITLE_FONT)
         ax.grid(True, **LIGHT_GRID)
-    axes[0, 0].set_ylabel(f"fragility median PGA [g], {ds.attrs['record_suite']}")
+    axes[0, 0].set_ylabel(f"fragility median PGA [g], {plain_text(ds.attrs['record_suite'])}")
     axes[0, 0].legend(fontsize=SMALL_FONT)
     fig.tight_layout()
     return fig

@@ -77,7 +77,7 @@ def figure_fragility(ds):
     for s in ds["strategy"].values:
         plot_fragility(ax, ds, str(s))
     measure = ds.attrs["intensity_measure"]
-    ax.set_xlabel(INTENSITY_LABELS.get(measure, f"{ds.attrs['intensity_measure_definition']} [-]"))
+    ax.set_xlabel(INTENSITY_LABELS.get(measure, f"{plain_text(ds.attrs['intensity_measure_definition'])} [-]"))
     ax.set_ylabel("fraction of records that overturn the block [-]")
     ax.set_ylim(-0.02, 1.02)
     ax.legend(loc="lower right")
