@@ -174,9 +174,9 @@ def test_simulate_plot_with_a_dollar_in_the_record_name(tmp_path, capsys):
 def test_design_charts_build_and_draw_a_dollar_in_the_suite_name_as_text(tmp_path):
     strategies, R, alpha = ["FS", "CS01", "CS02"], [0.5, 1.0], [0.2, 0.3]
     rng = np.random.default_rng(1)
+    medians = np.array([0.4, 0.8, 0.9])[:, None, None] + rng.uniform(0, 0.2, (3, 2, 2))  # FS lowest
     blocks = xr.Dataset({"jos": (("strategy", "R", "alpha"), rng.uniform(0, 80, (3, 2, 2))),
-                         "fragility_median": (("strategy", "R", "alpha"),
-                                              np.array([0.4, 0.8, 0.9])[:, None, None] + rng.uniform(0, 0.2, (3, 2, 2)))},
+                         "fragility_median": (("strategy", "R", "alpha"), medians)},
                         coords={"strategy": strategies, "R": R, "alpha": alpha},
                         attrs={"record_suite": "suite $_$ x"})  # "$_$": bad mathtext unless escaped
     devices = xr.Dataset({"fragility_median": (("strategy", "kappa_max", "damping_ratio"),
