@@ -52,6 +52,7 @@ include: "workflow/rules/beyond.smk"
 include: "workflow/rules/risk.smk"
 include: "workflow/rules/report.smk"
 include: "workflow/rules/design.smk"
+include: "workflow/rules/docs.smk"
 
 
 localrules:

@@ -11,7 +11,11 @@ Fails (exit 1, naming what is missing) unless the rendered page shows, as visibl
   row of the claims checklist, and the PASS / FAIL counts;
 * the report's items listed by what they show (labels), not by file names: the Reproduction category
   lists "Table 1 of this run beside the paper's" and "Claims of §5 ...";
-* no source hash among the job parameters the report shows for its items.
+* no source hash among the job parameters the report shows for its items, and no parameter dump
+  (more than :data:`MAX_PARAMS` characters, or a Python dict);
+* at two window widths (:data:`WIDTHS`), nothing of the overview page under the rule graph, and no
+  table cut off on the right, there or on any table page: a table wider than its column must sit in
+  a box that scrolls sideways.
 
 Chromium is Debian's (/usr/bin/chromium) driven by Playwright; a fresh profile folder every run.
 """
@@ -27,9 +31,95 @@ from pathlib import Path
 import xarray as xr
 from playwright.sync_api import sync_playwright
 
+from rockstudy.report import in_paper_words
+
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
          "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 VERDICT = {1: "PASS", 0: "FAIL", -1: "n/a"}
+WIDTHS = (1280, 1920)
+"""Window widths [px] at which the layout is checked (a laptop, a desktop screen)."""
+MAX_PARAMS = 400
+"""Longest job-parameter text an item may show [characters]: a summary, not a dump."""
+NESTED_DICT = re.compile(r"{'[^{}]*{")
+"""A Python dict of dicts in the parameters shown: a dump, whatever its length."""
+
+# Boxes of the page as (what, left, right, top, bottom) in CSS pixels; "cut" lists tables whose right
+# edge passes their column's (or the page's) with no box that scrolls sideways between them.
+LAYOUT_JS = """() => {
+  const box = el => { const r = el.getBoundingClientRect(); return [r.left, r.right, r.top, r.bottom]; };
+  const scrolls = el => { for (let a = el.parentElement; a; a = a.parentElement) {
+      const s = getComputedStyle(a).overflowX; if (s === 'auto' || s === 'scroll') return a; } return null; };
+  const doc = document.querySelector('.document') || document.body;
+  const graph = document.querySelector('.vega-embed');
+  const column = doc.getBoundingClientRect();
+  const edge = Math.min(column.right, document.documentElement.clientWidth);
+  const cut = [], under = [];
+  for (const t of doc.querySelectorAll('table')) {
+    const r = t.getBoundingClientRect(), s = scrolls(t);
+    const inner = s && s !== document.documentElement && s !== document.body;
+    const right = inner ? s.getBoundingClientRect().right : r.right;
+    const label = (t.caption ? t.caption.innerText : t.innerText).slice(0, 60);
+    if (right > edge + 1) cut.push([label, Math.round(right), Math.round(edge)]);
+  }
+  if (graph) {
+    const g = graph.getBoundingClientRect();
+    for (const el of doc.querySelectorAll(':scope > *, .scroll, table, p, ul')) {
+      const r = el.getBoundingClientRect(), s = scrolls(el);
+      const right = s && doc.contains(s) ? Math.min(r.right, s.getBoundingClientRect().right) : r.right;
+      if (r.width > 0 && right > g.left + 1 && r.left < g.right && r.bottom > g.top && r.top < g.bottom)
+        under.push([el.tagName + ': ' + el.innerText.slice(0, 50), Math.round(right - g.left)]);
+    }
+  }
+  return {cut: cut, under: under};
+}"""
+
+
+def open_report(page, url: str):
+    page.goto(url)
+    page.wait_for_load_state("networkidle")
+    page.wait_for_timeout(1000)
+
+
+def item_width(page) -> int | None:
+    """Width [px] of the frame in which the report shows an HTML item at the current window width: the
+    first page of the Tables category opened (through its first subcategory, if it has any)."""
+    page.get_by_text("Tables", exact=True).first.click()
+    page.wait_for_timeout(800)
+    eye = page.locator("a[iconname=eye]")
+    if not eye.count():  # the category lists subcategories first
+        page.locator("div.p-3 li a").first.click()
+        page.wait_for_timeout(800)
+    if not eye.count():
+        return None
+    eye.first.click()
+    page.wait_for_timeout(1000)
+    frame = page.locator("iframe").first
+    return round(frame.bounding_box()["width"]) if frame.count() else None
+
+
+def layout_problems(page, url: str, width: int, tables: list[tuple[str, str]]) -> list[str]:
+    """Overlap and clipping at window ``width``: the overview page, then each page of ``tables``
+    ((label, data URL) of the report's HTML items) at the width the report gives an open item."""
+    problems = []
+    page.set_viewport_size({"width": width, "height": 1000})
+    open_report(page, url)
+    found = page.evaluate(LAYOUT_JS)
+    problems += [f"{width} px, overview: {what!r} runs {px} px under the rule graph" for what, px in found["under"]]
+    problems += [f"{width} px, overview: table {what!r} is cut off at {right} px (its column ends at {edge} px)"
+                 for what, right, edge in found["cut"]]
+    page_width = item_width(page)
+    if page_width is None:
+        return problems + [f"{width} px: no table page opens from the Tables category"]
+    viewer = page.context.new_page()
+    viewer.set_viewport_size({"width": page_width, "height": 1000})
+    for label, data in tables:
+        viewer.goto(data)
+        found = viewer.evaluate(LAYOUT_JS)
+        problems += [f"{width} px, {label!r}: table {what!r} is cut off at {right} px (the page is {edge} px wide)"
+                     for what, right, edge in found["cut"]]
+    viewer.close()
+    print(f"report_check: layout at {width} px: the overview and {len(tables)} pages")
+    return problems
 
 
 def number(value: float) -> str | None:
@@ -43,7 +133,7 @@ def expected_table1(results: Path) -> dict[str, list[str]]:
     for row in ds["row"].values:
         cells = [number(float(ds[name].sel(row=row, noise_level=lv))) for lv in ds["noise_level"].values
                  for name in ("ours", "paper")]
-        rows[str(row)] = [c for c in cells if c is not None]
+        rows[in_paper_words(str(row))] = [c for c in cells if c is not None]
     n_ours = int(ds["ours"].notnull().sum())
     if n_ours == 0:
         sys.exit("report_check: table1_vs_paper.nc has no number of this run: nothing to look for")
@@ -105,6 +195,8 @@ def main() -> int:
         shown = page.evaluate("Object.values(results).map(r => [r.name, r.job_properties.params])")
         problems += [f"{name}: the parameters a reader sees show a source hash: {params[:120]!r}"
                      for name, params in shown if re.search(r"[0-9a-f]{40,}", params or "")]
+        problems += [f"{name}: the parameters a reader sees are a dump of {len(params)} characters: {params[:120]!r}"
+                     for name, params in shown if len(params or "") > MAX_PARAMS or NESTED_DICT.search(params or "")]
         if args.screenshot:  # the landing page from its top (the report scrolls inside its main panel)
             page.evaluate("document.querySelectorAll('*').forEach(el => { el.scrollTop = 0; })")
             page.set_viewport_size({"width": 1400, "height": 2400})
@@ -122,6 +214,12 @@ def main() -> int:
                 problems.append(f"Reproduction category: the item {label!r} is not listed by its label")
         if args.screenshot:
             page.screenshot(path=str(Path(args.screenshot).with_name(Path(args.screenshot).stem + "-reproduction.png")))
+        tables = page.evaluate("Object.values(results).filter(r => (r.mime_type || r.mime) === 'text/html')"
+                               ".map(r => [r.labels ? Object.values(r.labels).join(' ') : r.name, r.data_uri])")
+        if not tables:
+            problems.append("no HTML page among the report's items: nothing to check for clipping")
+        for width in WIDTHS:
+            problems += layout_problems(page, Path(args.report).resolve().as_uri(), width, tables)
         browser.close()
     if problems:
         print("report_check: FAILED\n  " + "\n  ".join(problems))

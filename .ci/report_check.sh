@@ -6,8 +6,9 @@
 # Runs the tiny study (.test/config.yaml) into a fresh folder, builds its Snakemake report, opens it in
 # headless Chromium (Debian's package, installed here when missing; driven by Playwright) and fails
 # unless Table 1's numbers and every claim's PASS / FAIL are visible text of the rendered page, the
-# items are listed by what they show, and no source hash is among the parameters shown
-# (.ci/report_check.py). Leaves the report and screenshots in the folder it prints.
+# items are listed by what they show, no source hash and no dump is among the parameters shown, and,
+# at 1280 and 1920 px, nothing of the overview runs under the rule graph and no table is cut off on the
+# right (.ci/report_check.py). Leaves the report and screenshots in the folder it prints.
 #
 # Environment:
 #   REPORT_CHECK_DIR   where results, report and screenshots go (wiped first) [a new temporary folder]

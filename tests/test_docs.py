@@ -57,6 +57,7 @@ def test_docs_build_without_warnings(tmp_path):
     pytest.importorskip("sphinx")
     pytest.importorskip("myst_parser")
     pytest.importorskip("numpydoc")
+    pytest.importorskip("myst_nb")  # runs docs/tutorial.md, the notebook
     # -W: a warning (broken reference, malformed docstring, missing image) is an error; dummy: read and
     # resolve everything as the html builder does, without writing pages
     run = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-E", "-b", "dummy",

@@ -36,7 +36,7 @@ def claims() -> xr.Dataset:
 
 def test_table1_shows_ours_and_the_paper_in_each_row():
     html = report.table1_beside_paper_html(comparison())
-    fs_row = re.search(r"<tr><th>FS vs no_noise</th>(.*?)</tr>", html).group(1)
+    fs_row = re.search(r"<tr><th>FS vs. no noise</th>(.*?)</tr>", html).group(1)
     assert "-2.01" in fs_row and "-0.44" in fs_row and "+4.99" in fs_row and "40.83" not in fs_row
     assert fs_row.count("–") == 4  # R001 and R010: no number of this run, no difference
     compact = report.table1_compact_html(comparison())
@@ -114,6 +114,7 @@ def test_overview_page_renders_without_warnings(tmp_path, config):
     cfg["results_dir"] = str(tmp_path)
     (tmp_path / "report").mkdir()
     (tmp_path / "report" / "overview.html").write_text(report.overview_html(comparison(), claims()))
+    (tmp_path / "report" / "overview_beyond.html").write_text(report.beyond_overview_html([]))
 
     class Snakemake:
         config = cfg

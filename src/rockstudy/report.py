@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import html
 import math
+import re
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -33,8 +34,10 @@ td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
 .fail { color: #b45309; font-weight: 600; }
 .na { color: #595959; }
 caption { caption-side: top; text-align: left; font-weight: 600; padding-bottom: 0.3em; }
+div.scroll { overflow-x: auto; max-width: 100%; }
 """
-"""CSS of the pages: plain tables, right-aligned numbers, blue PASS and orange FAIL (Okabe–Ito-like hues)."""
+"""CSS of the pages: plain tables, right-aligned numbers, blue PASS and orange FAIL (Okabe–Ito-like hues);
+a table wider than the page scrolls inside its own box (:func:`scrolling`) instead of being cut off."""
 
 VERDICT_CLASS = {"PASS": "pass", "FAIL": "fail", "n/a": "na"}
 VERDICT_MARK = {"PASS": "✓ PASS", "FAIL": "✗ FAIL", "n/a": "n/a"}
@@ -45,11 +48,19 @@ def verdict_html(word: str) -> str:
     return f'<span class="{VERDICT_CLASS.get(word, "na")}">{html.escape(VERDICT_MARK.get(word, word))}</span>'
 
 
+def scrolling(fragment: str, style: str = "") -> str:
+    """``fragment`` with every table wrapped in a box that scrolls sideways when the table is wider
+    than the column it sits in (``style``: the box's inline style, where no style sheet applies)."""
+    box = f'<div class="scroll" style="{style}">' if style else '<div class="scroll">'
+    return re.sub(r"<table\b", lambda m: box + m[0], fragment).replace("</table>", "</table></div>")
+
+
 def document(title: str, body: str) -> str:
-    """A complete HTML page: ``title`` as its title and first heading, ``body`` (HTML) below."""
+    """A complete HTML page: ``title`` as its title and first heading, ``body`` (HTML) below, its
+    tables in boxes that scroll sideways (:func:`scrolling`)."""
     return ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
             f"<title>{html.escape(title)}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n"
-            f"{body}\n</body>\n</html>\n")
+            f"{scrolling(body)}\n</body>\n</html>\n")
 
 
 def markdown_html(text: str) -> str:
@@ -73,7 +84,7 @@ def markdown_page(text: str, title: str | None = None) -> str:
         Page title; default: the first line of ``text`` without its ``#`` marks.
     """
     first = next((line for line in text.splitlines() if line.strip()), "rockstudy table")
-    return document(title or first.lstrip("# ").strip(), markdown_html(text))
+    return document(title or first.lstrip("# ").strip(), markdown_html(in_paper_words(text)))
 
 
 def _number(value: float, signed: bool = True) -> str:
@@ -100,7 +111,7 @@ def table1_beside_paper_html(comparison: xr.Dataset) -> str:
         for lv in levels:
             point = comparison.sel(row=row, noise_level=lv)
             cells += [f'<td class="num">{_number(point[name].item())}</td>' for name in ("paper", "ours", "difference")]
-        rows.append(f"<tr><th>{html.escape(str(row))}</th>{''.join(cells)}</tr>")
+        rows.append(f"<tr><th>{html.escape(in_paper_words(str(row)))}</th>{''.join(cells)}</tr>")
     return ('<table class="table1">\n<caption>Table 1: J_OS (Eq. 21) of this run beside the paper [%]; '
             "diff = ours − paper; – where the run has no such noise level</caption>\n"
             f'<thead><tr><th rowspan="2">strategy vs reference</th>{head}</tr><tr>{sub}</tr></thead>\n'
@@ -150,7 +161,7 @@ INLINE = {"table": "border-collapse: collapse; margin: 0.6em 0 1.2em 0; font-siz
           "num": "border: 1px solid #c8c8c8; padding: 0.2em 0.5em; text-align: right; white-space: nowrap;",
           "caption": "caption-side: top; text-align: left; font-weight: 600; padding-bottom: 0.3em;",
           "pass": "color: #0b5394; font-weight: 600;", "fail": "color: #b45309; font-weight: 600;",
-          "na": "color: #595959;"}
+          "na": "color: #595959;", "scroll": "overflow-x: auto; max-width: 100%;"}
 """Inline styles of the overview fragment: it sits inside the Snakemake report's page, whose style sheet
 would otherwise strip the tables of borders and the verdicts of their colour."""
 
@@ -174,7 +185,7 @@ def table1_compact_html(comparison: xr.Dataset) -> str:
         cells = "".join(
             f'<td class="num">{_number(comparison.sel(row=row, noise_level=lv)["ours"].item())} '
             f'({_number(comparison.sel(row=row, noise_level=lv)["paper"].item())})</td>' for lv in levels)
-        rows.append(f"<tr><th>{html.escape(str(row))}</th>{cells}</tr>")
+        rows.append(f"<tr><th>{html.escape(in_paper_words(str(row)))}</th>{cells}</tr>")
     return ("<table>\n<caption>Table 1: J_OS (Eq. 21) of this run and, in brackets, the paper's [%]</caption>\n"
             f"<thead><tr><th>strategy vs reference</th>{head}</tr></thead>\n<tbody>\n{chr(10).join(rows)}\n"
             "</tbody>\n</table>")
@@ -199,8 +210,91 @@ def claims_compact_html(claims: xr.Dataset) -> str:
 def overview_html(comparison: xr.Dataset, claims: xr.Dataset) -> str:
     """The headline results for the report's overview page: Table 1 beside the paper, then the claims
     (compact forms of :func:`table1_beside_paper_html` and :func:`claims_html`, styled inline)."""
-    return _styled(table1_compact_html(comparison) + "\n" + claims_compact_html(claims))
+    return scrolling(_styled(table1_compact_html(comparison) + "\n" + claims_compact_html(claims)),
+                     style=INLINE["scroll"])
 
+
+
+def beyond_overview_html(fragility: list, risk: list = ()) -> str:
+    """The headline of the studies beyond the paper for the report's overview page: per record set, the
+    fragility median of every strategy as PGA [g] and its shift over the free-standing block; with a
+    risk study, the probability of overturning of every strategy at each site.
+
+    Parameters
+    ----------
+    fragility : list of xarray.Dataset
+        ``fragility/<record set>.nc`` of the run (``fragility_median_physical`` [g] and
+        ``median_shift_percent`` over ``strategy``); empty when the run has no fragility study.
+    risk : list of xarray.Dataset
+        ``risk/<record set>.nc`` of the run (:func:`rockstudy.analysis.risk.risk_dataset`); empty when
+        the run has no risk study.
+    """
+    if not fragility:
+        return "<!-- this run has no study beyond the paper in its default target -->\n"
+    strategies = list(dict.fromkeys(str(s) for ds in fragility for s in ds["strategy"].values))
+    head = "".join(f'<th class="num">{html.escape(s)}</th>' for s in strategies)
+    rows = []
+    for ds in fragility:
+        cells = []
+        for s in strategies:
+            if s not in ds["strategy"].values:
+                cells.append('<td class="num">–</td>')
+                continue
+            median = float(ds["fragility_median_physical"].sel(strategy=s))
+            shift = float(ds["median_shift_percent"].sel(strategy=s))
+            text = f"{median:.3f} g" + ("" if s == "FS" or not math.isfinite(shift) else f" ({shift:+.0f} %)")
+            cells.append(f'<td class="num">{html.escape(text)}</td>')
+        name = f"{ds.attrs.get('record_suite', '')} ({int(ds.attrs.get('n_records', 0))} records)"
+        rows.append(f"<tr><th>{html.escape(name)}</th>{''.join(cells)}</tr>")
+    table = ("<table>\n<caption>Fragility: the median PGA that overturns the block, each strategy "
+             "(in brackets, the shift over FS)</caption>\n"
+             f"<thead><tr><th>record set</th>{head}</tr></thead>\n<tbody>\n{chr(10).join(rows)}\n</tbody>\n</table>")
+    return scrolling(_styled(table), style=INLINE["scroll"]) + "".join(_risk_overview(ds) for ds in risk)
+
+
+def _risk_overview(ds) -> str:
+    """One record set's risk for the overview: per site (scenario or hazard curve) and strategy, the
+    probability of overturning, and in brackets its reduction over FS."""
+    strategies = [str(s) for s in ds["strategy"].values]
+    rows = []
+    sites = [("scenario", "scenario_probability", "scenario_reduction_percent", "P(overturn | {})"),
+             ("hazard", "probability", "reduction_percent", "P(overturn in {years:g} years), {}")]
+    for dim, prob, reduction, label in sites:
+        for j, name in enumerate(ds[dim].values if dim in ds.coords else []):
+            cells = []
+            for i, s in enumerate(strategies):
+                p, r = float(ds[prob].values[i, j]), float(ds[reduction].values[i, j])
+                text = f"{p:.2%}" + ("" if s == "FS" or not math.isfinite(r) else f" (−{r:.0f} %)" if r >= 0
+                                     else f" (+{-r:.0f} %)")
+                cells.append(f'<td class="num">{html.escape(text)}</td>')
+            title = label.format(name, years=float(ds.attrs.get("years", 50.0)))
+            rows.append(f"<tr><th>{html.escape(title)}</th>{''.join(cells)}</tr>")
+    if not rows:
+        return ""
+    head = "".join(f'<th class="num">{html.escape(s)}</th>' for s in strategies)
+    table = (f"<table>\n<caption>Risk on {html.escape(str(ds.attrs.get('record_suite', '')))}: the probability of "
+             "overturning of each strategy (in brackets, the change over FS), from the stripes' fragility</caption>\n"
+             f"<thead><tr><th>site</th>{head}</tr></thead>\n<tbody>\n{chr(10).join(rows)}\n</tbody>\n</table>")
+    return scrolling(_styled(table), style=INLINE["scroll"])
+
+
+
+RUN_NUMBERS = {"median": "fragility_median", "median_physical": "fragility_median_physical",
+               "median_physical_low": "median_low_physical", "median_physical_high": "median_high_physical",
+               "dispersion": "fragility_dispersion", "median_shift_percent": "median_shift_percent"}
+"""Columns of ``docs/figures/run_numbers.csv`` (the fragility numbers the docs quote) and the variables
+of a fragility dataset they come from."""
+
+
+def run_numbers_csv(fragility: list) -> str:
+    """The fragility numbers the docs quote, one row per (record set, strategy), at full precision,
+    from the run's ``fragility/<record set>.nc`` datasets."""
+    lines = [",".join(["suite", "strategy", "n_records", *RUN_NUMBERS])]
+    for ds in fragility:
+        for s in ds["strategy"].values:
+            values = [repr(float(ds[var].sel(strategy=s))) for var in RUN_NUMBERS.values()]
+            lines.append(",".join([str(ds.attrs["record_suite"]), str(s), str(int(ds.attrs["n_records"])), *values]))
+    return "\n".join(lines) + "\n"
 
 class SourceFingerprint(tuple):
     """A source fingerprint as a workflow parameter: compared by its hash, shown by what it covers.
@@ -248,6 +342,59 @@ class SourceFingerprint(tuple):
 
     def __reduce__(self):
         return (SourceFingerprint, (self[0], self.covers))
+
+
+
+REFERENCE_WORDS = {"no_noise": "no noise", "fs_same_noise": "FS at the same noise",
+                   "continuous_same_noise": "continuous control", "sampled_without_delay_same_noise": "no delay"}
+"""The references of J_OS (the code's keys) in the paper's words: Table 1's, and those of the timing
+tables (§5.2), always at the same noise level."""
+
+SWEEP_WORDS = {"J_OS against sampling_time": "J_OS against the sampling time T_s [s]",
+               "J_OS against delay": "J_OS against the actuation delay Δτ [s]"}
+"""The timing tables' titles in words."""
+
+
+def in_paper_words(text: str) -> str:
+    """Table headers and row names with the references of Table 1 in words: ``"no_noise: R005"``
+    becomes ``"R005: J_OS vs. no noise"`` (the same strategy without noise) and ``"CS01 vs
+    fs_same_noise"`` becomes ``"CS01 vs. FS at the same noise"``."""
+    for code, words in SWEEP_WORDS.items():
+        text = text.replace(code, words)
+    keys = "|".join(sorted(REFERENCE_WORDS, key=len, reverse=True))
+    text = re.sub(rf"\b({keys}): ([\w.%-]+)", lambda m: f"{m[2]}: J_OS vs. {REFERENCE_WORDS[m[1]]}", text)
+    return re.sub(rf"\bvs\.? ({keys})\b", lambda m: f"vs. {REFERENCE_WORDS[m[1]]}", text)
+
+
+def settings_text(settings) -> str:
+    """A mapping of settings as plain words (``"step 0.0025, rescale energy, band none"``), for a
+    page or a table's header; anything else as ``str``."""
+    if not isinstance(settings, dict):
+        return str(settings)
+    return ", ".join(f"{key.replace('_', ' ')} {'none' if value is None else value}" for key, value in settings.items())
+
+
+class ExpectedAttributes(dict):
+    """The ``expect`` parameter of a rule (each netCDF input's path -> the attributes it must carry)
+    as the report shows it: which inputs are checked, not every attribute.
+
+    A ``dict`` in every other way: ``repr`` (what Snakemake compares to decide a rerun) and what a
+    script reads are the plain dictionary's, while formatting (``f"{name}={value}"``, how the report
+    lists a job's parameters) gives :attr:`description`, a line instead of thousands of characters.
+    """
+
+    @property
+    def description(self) -> str:
+        """The checked inputs by file name (folder and name), at most three of them named."""
+        names = ["/".join(str(path).replace("\\", "/").split("/")[-2:]) for path in self]
+        shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+        return f"attributes of {shown or 'no input'} checked against this job's settings"
+
+    def __format__(self, spec: str) -> str:
+        return format(self.description, spec)
+
+    def __reduce__(self):
+        return (ExpectedAttributes, (dict(self),))
 
 
 def labels(result: str, paper: str = "") -> dict:

@@ -10,11 +10,11 @@ NOISY = [name for name in LEVELS if name != FREE]
 # Source fingerprints by layer (rockstudy's subpackages): a job reruns when the code it runs changes.
 LIBRARY = fingerprints.source_fingerprint()  # the simulation layers: core, model, engine, analysis
 BOOKKEEPING = fingerprints.source_fingerprint("core", "analysis", "studies")  # what assembles datasets and tables
-PLOTTING = fingerprints.source_fingerprint("plotting.py")  # redraw the figures when the plotting module changes
+PLOTTING = fingerprints.source_fingerprint("plotting")  # redraw the figures when the plotting package changes
 # The report shows what a fingerprint covers, not its hash (the hash still decides the rerun).
 LIBRARY = report_pages.SourceFingerprint(LIBRARY, "core, model, engine, analysis")
 BOOKKEEPING = report_pages.SourceFingerprint(BOOKKEEPING, "core, analysis, studies")
-PLOTTING = report_pages.SourceFingerprint(PLOTTING, "plotting.py")
+PLOTTING = report_pages.SourceFingerprint(PLOTTING, "plotting")
 REPORT_CODE = report_pages.SourceFingerprint(fingerprints.source_fingerprint("report.py"), "report.py")  # the HTML pages
 COMPILED = f"{OUT}/logs/compile_engine.done"  # the engine compiled once into numba's cache (rule compile_engine)
 SAMPLING = config["sampling_sweep"]
@@ -42,7 +42,12 @@ def scenario(strategy, level, ts=0.0, delay=0.0):
 # (rockstudy.studies.jobs) compares each input with it and with the dataset's own invariants: a stale,
 # swapped or edited file stops the step, naming the file, instead of becoming a right-looking result.
 EXPECT = expectations.StudyExpectations(config)
-expected = expectations.paired  # {file: expectation} of a rule's input files and their expectations, in order
+
+
+def expected(paths, expectations_in_order):
+    """Parameter ``expect`` of a rule: {file: expectation} of its input files and their expectations, in order
+    (shown in the report as one line, see rockstudy.report.ExpectedAttributes)."""
+    return report_pages.ExpectedAttributes(expectations.paired(paths, expectations_in_order))
 
 
 # Resources measured with the default config on one core (the last line of each job's log): a spectrum chunk

@@ -15,10 +15,6 @@ HTML_TABLES = {
                         "J_OS under sampled control, each sampling time T_s", "§5.2, Fig. 7"),
     "timing_delay": (f"{OUT}/tables/timing_delay.md", "timing_delay.rst", "Tables", "J_OS",
                      "J_OS under delayed control, each delay", "§5.2, Fig. 8"),
-    "readings": (f"{OUT}/reproduction/readings/readings.md", "readings.rst", "Reproduction", "Noise readings",
-                 "FS row of Table 1 under each reading of the noise model", "§5, Table 1"),
-    "calibration": (f"{OUT}/reproduction/calibration/calibration.md", "calibration_table.rst", "Reproduction",
-                    "Device calibration", "Device calibration: every screened anchorage and the best", "Table 1"),
 }
 if BEYOND:
     HTML_TABLES["fragility_summary"] = (f"{OUT}/tables/fragility_summary.md", "fragility_summary.rst", "Tables",
@@ -30,18 +26,37 @@ if BEYOND:
         HTML_TABLES[f"record_thresholds_{name}"] = (
             f"{OUT}/tables/record_thresholds_{name}.md", "record_thresholds_table.rst", "Tables", "Fragility",
             f"Smallest overturning scale of each record of {name}, per strategy", "")
+if BEYOND and config.get("risk"):
+    for name in RECORD_SETS:
+        HTML_TABLES[f"risk_{name}"] = (f"{OUT}/tables/risk_{name}.md", "risk_table.rst", "Tables", "Risk",
+                                       f"Risk of overturning per strategy at a site, {name}", "")
+# Pages of the studies outside `all` (targets `reproduction`, `calibration`): one rule each, so that
+# `all` does not ask for them.
+EXTRA_HTML_TABLES = {
+    "readings": (f"{OUT}/reproduction/readings/readings.md", "readings.rst", "Reproduction", "Noise readings",
+                 "FS row of Table 1 under each reading of the noise model", "§5, Table 1"),
+    "calibration": (f"{OUT}/reproduction/calibration/calibration.md", "calibration_table.rst", "Reproduction",
+                    "Device calibration", "Device calibration: every screened anchorage and the best", "Table 1"),
+}
 
 
-for key, (md, caption, category, subcategory, shows, paper) in HTML_TABLES.items():
+# The report entry of each HTML page made from a Markdown table: (markdown, caption, category, subcategory,
+# what it shows, paper) -> report(<markdown>.html, ...)
+HTML_PAGES = {key: report(md.removesuffix(".md") + ".html", caption=f"../report/{caption}", category=category,
+                          subcategory=subcategory, labels=report_pages.labels(shows, paper))
+              for key, (md, caption, category, subcategory, shows, paper)
+              in {**HTML_TABLES, **EXTRA_HTML_TABLES}.items()}
+
+
+for key, entry in EXTRA_HTML_TABLES.items():
 
     rule:
         name:
             f"html_{key}"
         input:
-            md,
+            entry[0],
         output:
-            report(md.removesuffix(".md") + ".html", caption=f"../report/{caption}", category=category,
-                   subcategory=subcategory, labels=report_pages.labels(shows, paper)),
+            HTML_PAGES[key],
         log:
             f"{OUT}/logs/report/html_{key}.log",
         params:
@@ -54,14 +69,18 @@ for key, (md, caption, category, subcategory, shows, paper) in HTML_TABLES.items
             "../scripts/html_table.py"
 
 
-HTML_IN_ALL = [HTML_TABLES[k][0].removesuffix(".md") + ".html"
-               for k in HTML_TABLES if k not in ("readings", "calibration")]
+OVERVIEW_BEYOND = f"{REPORT_DIR}/overview_beyond.html"
+"""The headline numbers of the studies beyond the paper in `all` (the fragility medians), for the overview page."""
 
 
-rule html_claims:
+# One rule makes every page of `all` (one node of the rule graph instead of one per page).
+rule report_pages:
     input:
         claims=f"{OUT}/reproduction/claims.nc",
         comparison=f"{OUT}/reproduction/table1_vs_paper.nc",
+        tables=[entry[0] for entry in HTML_TABLES.values()],
+        fragility=[f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS] if BEYOND else [],
+        risk=[f"{OUT}/risk/{name}.nc" for name in RECORD_SETS] if BEYOND and config.get("risk") else [],
     output:
         claims=report(f"{OUT}/reproduction/claims.html", caption="../report/claims.rst", category="Reproduction",
                       subcategory="Claims and Table 1",
@@ -70,18 +89,26 @@ rule html_claims:
                           category="Reproduction", subcategory="Claims and Table 1",
                           labels=report_pages.labels("Table 1 of this run beside the paper's, cell by cell", "Table 1")),
         overview=OVERVIEW,
+        overview_beyond=OVERVIEW_BEYOND,
+        tables=[HTML_PAGES[key] for key in HTML_TABLES],
     log:
-        f"{OUT}/logs/report/html_claims.log",
+        f"{OUT}/logs/report/report_pages.log",
     params:
-        expect=expected([f"{OUT}/reproduction/claims.nc", f"{OUT}/reproduction/table1_vs_paper.nc"],
-                        [EXPECT.claims(), EXPECT.table1_comparison()]),
+        expect=expected([f"{OUT}/reproduction/claims.nc", f"{OUT}/reproduction/table1_vs_paper.nc"]
+                        + [f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS] * bool(BEYOND)
+                        + [f"{OUT}/risk/{name}.nc" for name in RECORD_SETS] * bool(BEYOND and config.get("risk")),
+                        [EXPECT.claims(), EXPECT.table1_comparison()]
+                        + [EXPECT.fragility(name) for name in RECORD_SETS] * bool(BEYOND)
+                        + [EXPECT.risk(name) for name in RECORD_SETS] * bool(BEYOND and config.get("risk"))),
         pages=REPORT_CODE,
     localrule: True
     conda:
         "../envs/rockstudy.yaml"
     threads: 1
     script:
-        "../scripts/html_claims.py"
+        "../scripts/report_pages.py"
 
 
-REPORT_PAGES = HTML_IN_ALL + [f"{OUT}/reproduction/claims.html", f"{OUT}/reproduction/table1_vs_paper.html", OVERVIEW]
+REPORT_PAGES = ([entry[0].removesuffix(".md") + ".html" for entry in HTML_TABLES.values()]
+                + [f"{OUT}/reproduction/claims.html", f"{OUT}/reproduction/table1_vs_paper.html", OVERVIEW,
+                   OVERVIEW_BEYOND])

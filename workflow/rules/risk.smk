@@ -13,19 +13,16 @@ if RISK and BEYOND:
         + [f"{OUT}/tables/risk_{name}.{e}" for name in RECORD_SETS for e in ("csv", "md")]
         + [f"{OUT}/figures/risk_{name}.{e}" for name in RECORD_SETS for e in ("png", "pdf")]
     )
-    RISK_HTML = [f"{OUT}/tables/risk_{name}.html" for name in RECORD_SETS]
-    BEYOND_IN_ALL += RISK_FILES + RISK_HTML  # in place: `all` lists BEYOND_IN_ALL
+    BEYOND_IN_ALL += RISK_FILES  # in place: `all` lists BEYOND_IN_ALL (its HTML pages come with report_pages)
 
     localrules:
         risk,
         risk_set,
         figure_risk,
-        html_risk,
 
     rule risk:
         input:
             RISK_FILES,
-            RISK_HTML,
 
     rule risk_set:
         input:
@@ -69,19 +66,3 @@ if RISK and BEYOND:
         threads: 1
         script:
             "../scripts/figure_risk.py"
-
-    rule html_risk:
-        input:
-            f"{OUT}/tables/risk_{{recordset}}.md",
-        output:
-            report(f"{OUT}/tables/risk_{{recordset}}.html", caption="../report/risk_table.rst", category="Tables",
-                   subcategory="Risk", labels=report_pages.labels("Risk of overturning per strategy at a site")),
-        log:
-            f"{OUT}/logs/report/html_risk_{{recordset}}.log",
-        params:
-            pages=REPORT_CODE,
-        conda:
-            "../envs/rockstudy.yaml"
-        threads: 1
-        script:
-            "../scripts/html_table.py"

@@ -1,4 +1,5 @@
 """The claims checklist of §5 and the Conclusions, and Table 1 side by side with the paper."""
+from rockstudy import report
 from rockstudy.core import io
 from rockstudy.studies import claims, jobs
 
@@ -11,7 +12,8 @@ def main(snakemake):
                                   convergence=job.read(i.convergence), sampling=job.read(i.sampling),
                                   delay=job.read(i.delay))
     comparison = claims.table1_comparison(table1)
-    header = f"Noise reading: {p.reading}. Anchorage: {p.anchorage}. Realisations: {p.realisations}."
+    header = (f"Noise reading: {report.settings_text(p.reading)}. Anchorage: {report.settings_text(p.anchorage)}. "
+              f"Realisations: {p.realisations}.")
     io.write_netcdf(claims.claims_dataset(results, {"noise_reading": p.reading, "anchorage": str(p.anchorage)}),
                     snakemake.output.nc)
     io.write_text(claims.claims_markdown(results, comparison, header), snakemake.output.md)

@@ -173,15 +173,38 @@ class ThresholdResult:
 def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 0,
               grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast",
               energy_bound: bool = True) -> ThresholdResult:
-    """Minimum overturning amplitude ratio a_p/(g·tanα) at one frequency ratio.
+    """Minimum overturning amplitude ratio a_p/(g·tanα) at one frequency ratio: one point of an
+    overturning spectrum (§4 of the paper), found by an upward scan of the amplitude grid (every
+    lower level shown safe) and a bisection to the grid's resolution.
 
-    ``energy_bound`` (fast engine) ends each run once it provably cannot overturn any more
-    (docs/engine.md, "Early stops"); it never changes an outcome, only the time spent (False: integrate every run
-    to rest or the time limit, as before).
+    Parameters
+    ----------
+    scenario : Scenario
+        The block, anchorage, control, excitation and noise level.
+    frequency_ratio : float
+        ω_p/p of the excitation (Eq. 23). [-]
+    realisation : int, default 0
+        The noise realisation (its seed is derived from the scenario's seed and this number).
+    grid : AmplitudeGrid, optional
+        The amplitudes a_p/(g·tanα) scanned and the bisection's resolution. [-]
+    engine : {"fast", "reference"}, default "fast"
+        The compiled engine, or the pure-Python reference (slow; for checks).
+    energy_bound : bool, default True
+        Fast engine: end each run once it provably cannot overturn any more (docs/engine.md,
+        "Early stops"); it
+        never changes an outcome, only the time spent (False: integrate every run to rest or the
+        time limit).
 
-    Returns a :class:`ThresholdResult`: ``amplitude_ratio`` (None when nothing on the grid
-    overturns), ``last_safe_amplitude_ratio``, ``n_simulations``, the bound scanned, and the noise
-    record's energy and PGA ratios.
+    Returns
+    -------
+    ThresholdResult
+        ``amplitude_ratio`` (None when nothing on the grid overturns), ``last_safe_amplitude_ratio``,
+        ``n_simulations``, the bound scanned, and the noise record's energy and PGA ratios.
+
+    Raises
+    ------
+    rockstudy.core.validation.InputError
+        When an argument is out of its declared range.
     """
     _check_call(scenario, grid)
     frequency_ratio = validation.check_positive("frequency_ratio", frequency_ratio, high=validation.MAX_FREQUENCY_RATIO)

@@ -147,9 +147,9 @@ def _cmd_simulate_record(args, parser):
             write_output(ds, args.output, "time history")
             out["output"] = args.output
         if args.plot:
-            from rockstudy.plotting import figure_control_history, save_figure
+            from rockstudy.plotting import figure_control_history, plain_text, save_figure
             fig = figure_control_history(ds, "record")
-            fig.axes[0].set_title(f"{args.strategy}, record {record.name} x {args.record_scale:g}, "
+            fig.axes[0].set_title(f"{args.strategy}, record {plain_text(record.name)} x {args.record_scale:g}, "
                                   f"PGA/(g tan(alpha)) = {pga_ratio:.3g} ({res.status})", fontsize=10)
             save_figure(fig, args.plot)
             out["plot"] = args.plot

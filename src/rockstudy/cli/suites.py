@@ -1,7 +1,17 @@
-"""``rockstudy records``: the record suites and their records."""
+"""``rockstudy records``: the record suites and their records, and ``records --export SUITE:ID``, one record of a
+suite as a file other tools read.
+
+``--format one-column`` writes one acceleration sample a line, the layout OpenSees'
+``timeSeries Path -dt DT -filePath FILE`` reads (and SAP2000, SeismoStruct and most others);
+``two-column`` writes time and acceleration; ``at2`` the PEER NGA layout. The samples keep the
+record's unit (g for the FEMA P695 sets); the summary printed as JSON gives the step ``dt``, the
+number of samples, the unit, the factor to m/s² and the OpenSees line that reads the file.
+"""
 from __future__ import annotations
 
+import json
 import sys
+from pathlib import Path
 
 from rockstudy.cli import COMMANDS
 
@@ -10,11 +20,14 @@ def register(sub) -> None:
     """Add ``records`` to the subparsers ``sub``."""
     pr = sub.add_parser("records", help=COMMANDS["records"].help)
     pr.add_argument("--suite", help="list only this suite's records (default: every suite)")
+    add_export_arguments(pr)
     pr.set_defaults(run=_cmd_records)
 
 
 def _cmd_records(args, parser):
-    """``records``: the suites and their records."""
+    """``records``: the suites and their records (``--export``: one record to a file)."""
+    if args.export is not None:
+        return run_export(args, parser)
     from rockstudy.model import record_suites
     suites = record_suites.suite_names()
     if args.suite is not None:
@@ -33,3 +46,55 @@ def _cmd_records(args, parser):
     sys.stdout.flush()
 
 
+FORMATS = ("one-column", "two-column", "at2")
+"""What ``--format`` accepts."""
+
+
+def add_export_arguments(parser) -> None:
+    """Add ``--export``, ``--format`` and ``--output`` to the ``records`` subparser."""
+    parser.add_argument("--export", metavar="SUITE:ID",
+                        help="write this record to a file (--format, --output) and print its dt as JSON")
+    parser.add_argument("--format", choices=FORMATS, default="one-column",
+                        help="one-column: one sample a line (OpenSees timeSeries Path); two-column: time and "
+                             "acceleration; at2: PEER NGA [default: one-column]")
+    parser.add_argument("--output", help="file to write [default: SUITE_ID.txt, or .AT2 with --format at2]")
+
+
+def export_text(times, acceleration, fmt: str) -> str:
+    """The samples as text: one a line (``one-column``) or time and sample a line (``two-column``)."""
+    import numpy as np
+
+    acceleration = np.asarray(acceleration, dtype=float)
+    if fmt == "one-column":
+        return "".join(f"{a:.9e}\n" for a in acceleration)
+    if fmt == "two-column":
+        return "".join(f"{t:.6f} {a:.9e}\n" for t, a in zip(np.asarray(times, float), acceleration))
+    raise ValueError(f"format: {fmt!r} is not one of {', '.join(FORMATS)}")
+
+
+def run_export(args, parser) -> dict:
+    """``records --export``: write the record and print (and return) the summary."""
+    from rockstudy.core.io import write_text
+    from rockstudy.model import record_suites
+    from rockstudy.model.records import unit_factor, write_at2
+
+    try:
+        info, record = record_suites.load_record(args.export, "--export")
+    except record_suites.RecordSuiteError as exc:
+        parser.error(f"argument {exc}")
+    default = f"{info.suite}_{info.id}" + (".AT2" if args.format == "at2" else ".txt")
+    path = Path(args.output or default)
+    times = record_suites.record_time(record)
+    if args.format == "at2":
+        write_at2(record, path, title=f"{info.name} {info.event} {info.station}")
+    else:
+        write_text(export_text(times, record.acceleration, args.format), path)
+    factor = unit_factor(record.unit)
+    summary = {"record": info.name, "event": info.event, "station": info.station, "file": str(path),
+               "format": args.format, "dt_s": record.dt, "npts": int(record.acceleration.size),
+               "duration_s": float(times[-1]) if times.size else 0.0, "unit": record.unit,
+               "to_m_per_s2": factor,
+               "opensees": f"timeSeries Path 1 -dt {record.dt:g} -filePath {path} -factor {factor:g}"
+                           if args.format == "one-column" else None}
+    print(json.dumps(summary, indent=2))
+    return summary

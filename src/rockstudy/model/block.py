@@ -132,3 +132,6 @@ BLOCK_PRESETS: dict[str, Block] = {
     # giving R = 0.82 m, H/B = 4, p = 3.0 rad/s and e = 31/34.
     "BLC06": Block(width=0.40, height=1.60, depth=0.47),
 }
+"""Named blocks, by the name a configuration or the command line uses (``block: {preset: BLC06}``,
+``--block BLC06``): ``"BLC06"`` is the paper's benchmark block (§5), B × H × B_y = 0.40 × 1.60 × 0.47 m
+of density 2700 kg/m³, so that R = 0.82 m, α = 0.245 rad (H/B = 4), p = 3.0 rad/s and e = 31/34."""

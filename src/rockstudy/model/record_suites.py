@@ -447,3 +447,35 @@ def read_entries(items, key: str = "records"):
         else:
             out.append(load_record(item, key))
     return out
+
+
+def record_time(record: Record) -> np.ndarray:
+    """Times of a record's samples, ``k * dt`` for k = 0 .. npts - 1. [s]"""
+    return np.arange(record.acceleration.size) * float(record.dt)
+
+
+def record_series(ds, name: str):
+    """One record of a record-set dataset (:func:`suite_dataset`) as a :class:`xarray.DataArray` of
+    its ``npts`` samples over a time coordinate ``t`` [s] (named as every time axis of rockstudy's
+    files): the accessor for the padded
+    ``acceleration(record, sample)`` array, whose sample k of a record lies at ``k * dt`` of that
+    record (the steps differ between records, so the dataset has no shared time axis).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A record set (``records/sets/<name>.nc`` of the workflow, or :func:`suite_dataset`).
+    name : str
+        The record, ``SUITE:ID`` (the ``record`` coordinate).
+    """
+    import xarray as xr
+
+    if name not in ds["record"].values:
+        raise RecordSuiteError(f"record: {name!r} is not in this record set; it holds "
+                               f"{', '.join(map(str, ds['record'].values))}")
+    d = ds.sel(record=name)
+    npts, dt = int(d["npts"]), float(d["dt"])
+    t = xr.Variable("t", np.arange(npts) * dt, {"units": "s", "long_name": "time since the record's start"})
+    return xr.DataArray(d["acceleration"].values[:npts], dims="t", coords={"t": t}, name="acceleration",
+                        attrs={**d["acceleration"].attrs, "long_name": "horizontal ground acceleration",
+                               "record": name, "dt": dt})
