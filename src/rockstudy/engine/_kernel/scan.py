@@ -6,7 +6,7 @@ the threshold, so that the outcomes that decide it are Dormand–Prince runs, as
 the Taylor step. The study's scan, :func:`threshold_kernel`, does not hand over: it costs more than
 the study's speed allows (docs/model.md, "The stepper that decides a threshold").
 
-:func:`scan_amplitude` / :func:`scan_update` are the scan as a small state machine on a 4-slot
+:func:`scan_amplitude` / :func:`scan_update` are the scan as a small state machine on a 5-slot
 array, so that the compiled :func:`threshold_kernel` and the reference engine's Python loop
 (:func:`rockstudy.analysis.spectra.threshold`) drive the very same decisions.
 """
@@ -21,15 +21,22 @@ from rockstudy.engine._kernel.engine import simulate_kernel, takes_taylor_steps
 from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, I_TAYLOR, ST_ELIMIT, ST_OVER
 from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, SAFE, UNDETERMINED
 
-# ---- the scan's state: [phase, j, lo, hi] ------------------------------------------------
-S_PHASE, S_J, S_LO, S_HI = 0, 1, 2, 3
+# ---- the scan's state: [phase, j, lo, hi, halvings] ---------------------------------------
+S_PHASE, S_J, S_LO, S_HI, S_HALVINGS = 0, 1, 2, 3, 4
 SCANNING, BISECTING, DONE = 0.0, 1.0, 2.0
+
+SPACING_FLOOR = 4.0
+"""The bisection stops once its bracket is at most this many float spacings of its upper end wide,
+whatever the resolution asked for: below a float spacing the midpoint is one of the ends. [-]"""
+MAX_HALVINGS = 200
+"""Cap on the bisection's halvings: a bracket [0, hi] reaches the float spacing of hi in 52 halvings,
+and any bracket whose width is within 2^140 of its upper end within 200. [-]"""
 
 
 @njit(cache=True)
 def scan_start():
     """A new scan at the first grid point."""
-    state = np.zeros(4)
+    state = np.zeros(5)
     state[S_PHASE] = SCANNING
     return state
 
@@ -43,12 +50,22 @@ def scan_amplitude(state, grid):
 
 
 @njit(cache=True)
+def bracket_closed(lo, hi, resolution):
+    """True when the bracket [lo, hi] needs no more halving: at most ``resolution`` wide, or at most
+    :data:`SPACING_FLOOR` float spacings of ``hi`` (so the bisection ends for any resolution)."""
+    width = hi - lo
+    return not (width > resolution) or width <= SPACING_FLOOR * np.spacing(abs(hi))
+
+
+@njit(cache=True)
 def scan_update(state, grid, resolution, lower, overturned):
     """Advance the scan with the outcome at :func:`scan_amplitude`; True when it is done.
 
     ``lower`` is the amplitude ratio below which nothing can uplift (the bracket's floor).
     When done, ``state[S_HI]`` is the threshold (NaN: nothing on the grid overturns) and
-    ``state[S_LO]`` the highest amplitude shown safe below it.
+    ``state[S_LO]`` the highest amplitude shown safe below it. The bisection ends at ``resolution``,
+    at a few float spacings of the bracket (:func:`bracket_closed`), or after :data:`MAX_HALVINGS`
+    halvings, whichever comes first.
     """
     if state[S_PHASE] == SCANNING:
         j = int(state[S_J])
@@ -59,7 +76,7 @@ def scan_update(state, grid, resolution, lower, overturned):
                 lo = lower
             state[S_LO] = lo
             state[S_HI] = hi
-            state[S_PHASE] = BISECTING if hi - lo > resolution else DONE
+            state[S_PHASE] = DONE if bracket_closed(lo, hi, resolution) else BISECTING
         elif j + 1 >= grid.shape[0]:
             state[S_LO] = grid[grid.shape[0] - 1]
             state[S_HI] = np.nan
@@ -72,7 +89,8 @@ def scan_update(state, grid, resolution, lower, overturned):
             state[S_HI] = mid
         else:
             state[S_LO] = mid
-        if not (state[S_HI] - state[S_LO] > resolution):
+        state[S_HALVINGS] += 1
+        if bracket_closed(state[S_LO], state[S_HI], resolution) or state[S_HALVINGS] >= MAX_HALVINGS:
             state[S_PHASE] = DONE
     return state[S_PHASE] == DONE
 
