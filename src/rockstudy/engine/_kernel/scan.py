@@ -173,7 +173,8 @@ def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
     """Lowest overturning amplitude ratio on ``grid`` refined to ``resolution``.
 
     Returns (threshold, lower_safe, n_simulations, n_undetermined); threshold = NaN when nothing
-    on the grid overturns. An undetermined run (event cap) counts as not overturned and is counted.
+    on the grid overturns. An undetermined run (event cap or step budget) counts as not
+    overturned and is counted.
     """
     return threshold_scan(P, rec, vert, grid, resolution, unit_peak, -1)
 
