@@ -1,10 +1,9 @@
 """The threshold scan, written once: an upward scan of the amplitude grid, then a bisection between
 the last safe and the first overturning grid point down to the resolution.
 
-:func:`threshold_scan` can also hand a scan of Taylor-step runs over to Dormand–Prince runs near
-the threshold, so that the outcomes that decide it are Dormand–Prince runs, as in the engine before
-the Taylor step. The study's scan, :func:`threshold_kernel`, does not hand over: it costs more than
-the study's speed allows (docs/model.md, "The stepper that decides a threshold").
+Every run of a scan takes the stepper of its parameters (Taylor steps between a record's knots unless
+``stepper="dopri"``); ``benchmarks/threshold_steppers.py`` measures scans that hand over to
+Dormand–Prince runs near the threshold, built from :func:`run_scan`.
 
 :func:`scan_amplitude` / :func:`scan_update` are the scan as a small state machine on a 5-slot
 array, so that the compiled :func:`threshold_kernel` and the reference engine's Python loop
@@ -17,8 +16,8 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from rockstudy.engine._kernel.engine import simulate_kernel, takes_taylor_steps
-from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, I_TAYLOR, ST_ELIMIT, ST_OVER
+from rockstudy.engine._kernel.engine import simulate_kernel
+from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, ST_ELIMIT, ST_OVER
 from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, SAFE, UNDETERMINED
 
 # ---- the scan's state: [phase, j, lo, hi, halvings] ---------------------------------------
@@ -130,42 +129,18 @@ def outcome_kernel(P, rec, vert, amplitude_ratio, unit_peak):
 
 
 @njit(cache=True)
-def _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, upward_only, counts):
-    """Advance ``state`` with the outcomes of runs of ``P`` until the scan is done, or with
-    ``upward_only`` until its upward part stops (at the first grid point that overturns, or the
-    last); ``counts`` += (simulations, undetermined runs)."""
+def run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, counts):
+    """Advance ``state`` with the outcomes of runs of ``P`` until the scan is done; ``counts`` +=
+    (simulations, undetermined runs). With ``resolution`` = inf the scan stops at the first grid
+    point that overturns (or the last), ``state[S_J]``, without bisecting."""
     done = state[S_PHASE] == DONE
-    while not done and not (upward_only and state[S_PHASE] != SCANNING):
+    while not done:
         o = outcome_kernel(P, rec, vert, scan_amplitude(state, grid), unit_peak)
         if o != NO_UPLIFT:
             counts[0] += 1
         if o == UNDETERMINED:
             counts[1] += 1
         done = scan_update(state, grid, resolution, lower, is_overturned(o))
-
-
-@njit(cache=True)
-def threshold_scan(P, rec, vert, grid, resolution, unit_peak, handover):
-    """:func:`threshold_kernel`, with the choice of stepper near the threshold.
-
-    ``handover`` < 0: every run takes the stepper of ``P`` (the study's scan). ``handover`` = k >= 0,
-    when the runs of ``P`` take Taylor steps: they scan upward only to the first grid point they
-    overturn at (the last grid point if none); from k grid points below it Dormand–Prince runs scan
-    on, so that point, any above it and every bisection point are Dormand–Prince outcomes. Every run
-    is counted, the Taylor runs the hand-over repeats included.
-    """
-    counts = np.zeros(2, dtype=np.int64)
-    lower = uplift_floor(vert, unit_peak)
-    state = scan_start()
-    if handover >= 0 and takes_taylor_steps(P, vert.shape[0]):
-        _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, True, counts)
-        j = max(int(state[S_J]) - handover, 0)
-        state = scan_start()
-        state[S_J] = j
-        P = P.copy()
-        P[I_TAYLOR] = 0.0
-    _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, False, counts)
-    return state[S_HI], state[S_LO], counts[0], counts[1]
 
 
 @njit(cache=True)
@@ -176,7 +151,10 @@ def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
     on the grid overturns. An undetermined run (event cap or step budget) counts as not
     overturned and is counted.
     """
-    return threshold_scan(P, rec, vert, grid, resolution, unit_peak, -1)
+    counts = np.zeros(2, dtype=np.int64)
+    state = scan_start()
+    run_scan(P, rec, vert, grid, resolution, unit_peak, uplift_floor(vert, unit_peak), state, counts)
+    return state[S_HI], state[S_LO], counts[0], counts[1]
 
 
 @njit(cache=True, inline="always")
