@@ -125,3 +125,25 @@ def test_compiled_scans_and_the_suite_fragility_end_below_the_float_spacing():
         print(int(nsim), float(ds.threshold_intensity.values[0, 0]))
     """)
     assert len(out.split()) == 2
+
+
+def test_a_run_of_a_billion_controller_samples_ends_within_the_step_budget():
+    """A controller sampled every nanosecond over 31 s of motion (3·10^10 passes of the driver's loop,
+    half an hour of compiled code that Ctrl-C cannot stop) ends as undetermined once it has spent
+    ``MAX_STEPS``: at the time the budget's samples reach, within seconds."""
+    out = _in_subprocess("""
+        import math
+        import numpy as np
+        from rockstudy import BLOCK_PRESETS, Anchorage, Control
+        from rockstudy.engine import _kernel as kn
+        from rockstudy.engine.simulate import pack_parameters
+        from rockstudy.model.excitation import GroundMotion
+        b = BLOCK_PRESETS["BLC06"]
+        motion = GroundMotion("one-sine", 0.5 * b.uplift_acceleration, 2 * b.p, math.pi / b.p)
+        P = pack_parameters(b, Anchorage(), Control("CS01", sampling_time=1e-9), motion)
+        r = kn.simulate_kernel(P, np.zeros(0), np.zeros(0), False, False)
+        print(r.status, r.end_time)
+    """)
+    status, end_time = out.split()
+    assert int(status) == kn.ST_ELIMIT
+    assert float(end_time) == pytest.approx(kn.MAX_STEPS * 1e-9, rel=1e-3)
