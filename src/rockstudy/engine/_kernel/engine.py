@@ -8,8 +8,11 @@ once (:func:`setup`, ``C_*``) and the state record ``S`` (:func:`initial_state`,
 Taylor steps between the knots of a record or Dormand–Prince steps (:func:`integrate`); each
 accepted step is searched for state events, the earliest is located
 and its map applied (:func:`state_event`); the known-time events are applied by
-:func:`known_time_events`, the CS01 apex decision by :func:`apex`. :func:`simulate_kernel` drives
-them and keeps the logs.
+:func:`known_time_events`, the CS01 apex decision by :func:`apex`. :func:`drive` runs them in turn
+and writes the history and the event logs as far as they have room (their fill levels in ``N``,
+``N_*``); :func:`simulate_kernel` grows them and calls it again. Every part takes the records
+(``S``, ``C``, ``P``) rather than their values one by one; a run is capped at ``MAX_EVENTS`` located
+events and ``MAX_STEPS`` steps and passes.
 
 The equation of motion, impacts, uplift and the REST/HOLD exits read the driving Ẍg
 (``ground_acceleration``); the control law's decisions (CS02's sign of Ẍg, its Ẍg = 0 switch,
