@@ -551,27 +551,36 @@ def _coefficients_once(have_q, hh, y0, y1, K, Q):
 
 
 @njit(cache=True, inline="always")
-def search_events(S, C, P, rec, K, Q, t, hh, y0, y1, n0, n1, hint, x_hint, max_abs):
+def segment_events(S, C, P):
+    """What the event search looks for while the steps from the state last (a fracture, a switch, the
+    end of the excitation end them first): (side, CS01 switch, CS02 switch, overturning rotation θ_over,
+    θ_K,u and θ_D,u of the working side's intact elements (inf: none that can break), Taylor steps).
+    Read once from the records ``S``, ``C``, ``P`` by :func:`integrate` for all its steps."""
+    sidx = _working(S)
+    use_thd_event, use_xg_event = _events_used(S, C, P)
+    fracture = C[C_FRACTURE] != 0.0
+    th_ku = P[I_TKU] if fracture and S[R_SPRING + sidx] > 0.0 else math.inf
+    th_du = P[I_TDU] if fracture and S[R_DAMPER + sidx] > 0.0 else math.inf
+    return S[R_SIDE], use_thd_event, use_xg_event, P[I_TOVER], th_ku, th_du, C[C_TAYLOR] != 0.0 and S[R_H_ON] != 0.0
+
+
+@njit(cache=True, inline="always")
+def search_events(seg, P, rec, K, Q, t, hh, y0, y1, n0, n1, hint, x_hint, max_abs):
     """The event search of one accepted step from (θ, θ̇) = (y0, y1) at t to (n0, n1) at t + hh (its
-    stages in ``K``), in the state ``S`` of the run (``C``, ``P``): the earliest state event on
-    (t, t + hh] — an impact (side·θ reaches 0), the overturning rotation, a working element's ultimate
-    rotation, the CS01 switch (θ̇ = 0, sign ``hint`` before it), the CS02 switch (sensed Ẍg = 0, sign
-    ``x_hint`` before it) — located on the continuous extension, whose coefficients are written
-    to ``Q`` when an event is to be located (a Taylor step has written them already).
+    stages in ``K``), for the events of the segment ``seg`` (:func:`segment_events`): the earliest state
+    event on (t, t + hh] — an impact (side·θ reaches 0), the overturning rotation, a working element's
+    ultimate rotation, the CS01 switch (θ̇ = 0, sign ``hint`` before it), the CS02 switch (sensed
+    Ẍg = 0, sign ``x_hint`` before it) — located on the continuous extension, whose coefficients are
+    written to ``Q`` when an event is to be located (a Taylor step has written them already).
 
     Returns (best, negligible, max_abs): ``best`` the event's fraction of the step (> 1: none;
     < 0: θ left 0 and came back within the step, which must be retried with a smaller one),
     ``negligible`` True for such an excursion within a step <= NEGLIGIBLE_STEP (it ends at the
     step's end), ``max_abs`` the largest |θ| updated by an apex inside the step.
     """
-    # the working side's elements cannot change within the steps (a fracture is a state event)
-    side = S[R_SIDE]
-    sidx = _working(S)
-    use_thd_event, use_xg_event = _events_used(S, C, P)
-    th_over = P[I_TOVER]
+    side, use_thd_event, use_xg_event, th_over, th_ku, th_du, have_q = seg  # a Taylor step has written Q
     best = 2.0
     negligible = False
-    have_q = C[C_TAYLOR] != 0.0 and S[R_H_ON] != 0.0  # a Taylor step writes its polynomials to Q
     # impact: side·θ crosses to <= 0 (located below, after the apex)
     impact = False
     if side * n0 <= 0.0:
@@ -609,15 +618,13 @@ def search_events(S, C, P, rec, K, Q, t, hh, y0, y1, n0, n1, hint, x_hint, max_a
         s = _locate_on(min(best, sig_peak), Q, -side, 0.0, th_over)
         if s >= 0.0:
             best = s
-    if C[C_FRACTURE] != 0.0:
-        for k in range(2):
-            thu = P[I_TKU] if k == 0 else P[I_TDU]
-            intact = S[R_SPRING + sidx] if k == 0 else S[R_DAMPER + sidx]
-            if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and peak - thu >= 0.0:
-                have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-                s = _locate_on(min(best, sig_peak), Q, -side, 0.0, thu)
-                if s >= 0.0:
-                    best = s
+    for k in range(2):  # the working side's intact elements (th_ku, th_du = inf: none that can break)
+        thu = th_ku if k == 0 else th_du
+        if not negligible and side * y0 - thu < 0.0 and peak - thu >= 0.0:
+            have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
+            s = _locate_on(min(best, sig_peak), Q, -side, 0.0, thu)
+            if s >= 0.0:
+                best = s
     if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
         if apex_switch:
             # the apex located above is the first zero of the same function on (0, 1], so also the
@@ -736,8 +743,10 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N):
     cd_eff = C[C_CD] * S[R_DAMPER + _working(S)]
     use_taylor = C[C_TAYLOR] != 0.0 and h_on
     want_history = C[C_HISTORY] != 0.0
-    use_xg_event = _events_used(S, C, P)[1]
+    seg = segment_events(S, C, P)
+    use_xg_event = seg[2]
     inv_g = 1.0 / P[I_G]
+    p, sin_alpha, cos_alpha, rtol, atol, hmax = P[I_P], P[I_SINA], P[I_COSA], P[I_RTOL], P[I_ATOL], P[I_HMAX]
     room, f0, x_hint, hint, h = _open_steps(S, C, P, rec, vert, H, N, kap_eff, cd_eff, use_taylor)
     if not room:
         return NEED_ROOM
@@ -759,7 +768,7 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N):
             S[R_T_NEXT] = t_next
             result = NEED_ROOM
             break
-        hh, h, lazy = _trial_step(h, lazy, h_hh, h_err, t, t_next, P[I_HMAX])
+        hh, h, lazy = _trial_step(h, lazy, h_hh, h_err, t, t_next, hmax)
         if hh <= 0.0:
             break
         if use_taylor:
@@ -767,17 +776,16 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N):
             x_at = t + hh
             x_end = ground_acceleration(x_at, P, rec)
             n0, n1, err, f_end = taylor.step(hh, th, thd, side, kap_eff, cd_eff, x0 * inv_g, (x_end - x0) * inv_g / hh,
-                                             P[I_P], P[I_SINA], P[I_COSA], Q, P[I_RTOL], P[I_ATOL])
+                                             p, sin_alpha, cos_alpha, Q, rtol, atol)
         else:
-            n0, n1, err = dopri.step(t, hh, th, thd, f0, K, side, kap_eff, cd_eff, h_on, P, rec, vert, P[I_RTOL],
-                                     P[I_ATOL])
+            n0, n1, err = dopri.step(t, hh, th, thd, f0, K, side, kap_eff, cd_eff, h_on, P, rec, vert, rtol, atol)
             f_end = K[6, 1]
         if err > 1.0:
             h = hh * max(0.2, 0.9 * guarded_pow(err, -0.2))
             lazy = False
             continue
         # ---- accepted: look for state events on (t, t + hh] ----
-        best, negligible, max_abs = search_events(S, C, P, rec, K, Q, t, hh, th, thd, n0, n1, hint, x_hint, max_abs)
+        best, negligible, max_abs = search_events(seg, P, rec, K, Q, t, hh, th, thd, n0, n1, hint, x_hint, max_abs)
         if best < 0.0:
             # left θ = 0 and came back within one step: the excursion is shorter than the step,
             # so resolve it with a smaller one (a zero-length event here would re-uplift at the
