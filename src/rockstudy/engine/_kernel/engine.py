@@ -747,6 +747,7 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N):
     use_xg_event = seg[2]
     inv_g = 1.0 / P[I_G]
     p, sin_alpha, cos_alpha, rtol, atol, hmax = P[I_P], P[I_SINA], P[I_COSA], P[I_RTOL], P[I_ATOL], P[I_HMAX]
+    exc_end, alpha, kmax = C[C_EXC_END], P[I_ALPHA], C[C_KMAX]
     room, f0, x_hint, hint, h = _open_steps(S, C, P, rec, vert, H, N, kap_eff, cd_eff, use_taylor)
     if not room:
         return NEED_ROOM
@@ -814,11 +815,11 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N):
         if hint == 0.0 and thd != 0.0:
             hint = sign(thd)
         # early overturning: nothing can bring the block back
-        if t >= C[C_EXC_END] and side * th > P[I_ALPHA] and side * thd > 0.0 and (spring == 0.0 or C[C_KMAX] == 0.0):
+        if t >= exc_end and side * th > alpha and side * thd > 0.0 and (spring == 0.0 or kmax == 0.0):
             S[R_T_OVER] = t
             result = OVERTURNED
             break
-        if t == t_next and t < C[C_EXC_END]:
+        if t == t_next and t < exc_end:
             # on a known-time event: when it is only a record knot (the next one lies ahead, so
             # nothing acts here) go on as a new segment would, else return to the driver
             S[R_T] = t
