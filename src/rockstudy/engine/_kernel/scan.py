@@ -28,8 +28,8 @@ SPACING_FLOOR = 4.0
 """The bisection stops once its bracket is at most this many float spacings of its upper end wide,
 whatever the resolution asked for: below a float spacing the midpoint is one of the ends. [-]"""
 MAX_HALVINGS = 200
-"""Cap on the bisection's halvings: a bracket [0, hi] reaches the float spacing of hi in 52 halvings,
-and any bracket whose width is within 2^140 of its upper end within 200. [-]"""
+"""Cap on the bisection's halvings: a bracket [0, hi] closes at the float spacing of hi within 52
+halvings, a bracket up to 2^140 times as wide as its upper end within 200. [-]"""
 
 
 @njit(cache=True)
