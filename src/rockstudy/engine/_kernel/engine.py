@@ -753,7 +753,7 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N):
         return NEED_ROOM
     t, th, thd = S[R_T], S[R_TH], S[R_THD]
     nh = N[N_HISTORY]
-    steps = S[R_N_STEPS]
+    steps = np.int64(S[R_N_STEPS])
     f0_ok = False
     # the trial step h after an accepted step is _grown_step(h_hh, h_err), computed only when needed
     lazy, h_hh, h_err = False, 0.0, 0.0
@@ -761,7 +761,7 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N):
     result = STEPPED
     x_at, x_end = -1.0, 0.0  # a Taylor step's Ẍg at its end, x_end, serves the next step starting there
     while t < t_next:
-        steps += 1.0
+        steps += 1
         if steps > MAX_STEPS:
             break  # the driver ends the run
         if want_history and _hist_full(H, nh):
