@@ -4,7 +4,7 @@ on one core, each threshold compared with the scan of Dormand–Prince runs thro
     python benchmarks/threshold_steppers.py [--strategy CS01] [--noise-level 0.05] [--realisations 40]
                                             [--rounds 3] [--config config.yaml]
 
-The four scans (``rockstudy.engine._kernel.scan.threshold_scan``):
+The four scans (:func:`handover_scan`, built from ``rockstudy.engine._kernel.scan.run_scan``):
 
 - ``taylor``: Taylor steps between the record's knots in every run (the study's scan);
 - ``handover 0``: Taylor steps up to the first grid point they overturn the block at, then
@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import math
 import sys
 import time
 from pathlib import Path
@@ -28,21 +29,49 @@ from pathlib import Path
 import numpy as np
 import yaml
 from converged_thresholds import SCENARIO_KEYS
+from numba import njit
 
 from rockstudy.analysis.spectra import _cases
 from rockstudy.engine import _kernel as kernel
-from rockstudy.engine._kernel.scan import threshold_scan
+from rockstudy.engine._kernel.engine import takes_taylor_steps
+from rockstudy.engine._kernel.scan import S_J, run_scan, scan_start, threshold_kernel, uplift_floor
 from rockstudy.studies import parameters
 
 SCANS = {"taylor": (1.0, -1), "handover 0": (1.0, 0), "handover 3": (1.0, 3), "dopri": (0.0, -1)}
 
 
+@njit(cache=True)
+def handover_scan(P, rec, vert, grid, resolution, unit_peak, handover):
+    """The threshold scan of ``rockstudy.engine._kernel.scan.threshold_kernel``, handed over to
+    Dormand–Prince runs near the threshold; the same returns.
+
+    ``handover`` < 0: every run takes the stepper of ``P`` (the study's scan). ``handover`` = k >= 0,
+    when the runs of ``P`` take Taylor steps: they scan upward only to the first grid point they
+    overturn at (the last grid point if none); from k grid points below it Dormand–Prince runs scan
+    on, so that point, any above it and every bisection point are Dormand–Prince outcomes. Every run
+    is counted, the Taylor runs the hand-over repeats included.
+    """
+    if handover < 0 or not takes_taylor_steps(P, vert.shape[0]):
+        return threshold_kernel(P, rec, vert, grid, resolution, unit_peak)
+    counts = np.zeros(2, dtype=np.int64)
+    lower = uplift_floor(vert, unit_peak)
+    state = scan_start()
+    run_scan(P, rec, vert, grid, math.inf, unit_peak, lower, state, counts)  # upward only: no bisection
+    j = max(int(state[S_J]) - handover, 0)
+    state = scan_start()
+    state[S_J] = j
+    dopri = P.copy()
+    dopri[kernel.I_TAYLOR] = 0.0
+    run_scan(dopri, rec, vert, grid, resolution, unit_peak, lower, state, counts)
+    return state[kernel.S_HI], state[kernel.S_LO], counts[0], counts[1]
+
+
 def scan_all(Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks, handover):
-    """threshold_scan over every case (rows of Pm), one after the other; thresholds and simulations."""
+    """handover_scan over every case (rows of Pm), one after the other; thresholds and simulations."""
     out, nsim = np.empty(len(Pm)), np.zeros(len(Pm), dtype=np.int64)
     for i in range(len(Pm)):
         rec = recs[rec_off[i]:rec_off[i] + rec_len[i]]
-        out[i], _, nsim[i], _ = threshold_scan(Pm[i], rec, vert, grid, resolution, peaks[i], handover)
+        out[i], _, nsim[i], _ = handover_scan(Pm[i], rec, vert, grid, resolution, peaks[i], handover)
     return out, nsim
 
 

@@ -15,6 +15,7 @@ from scipy.integrate._ivp.rk import RK45
 
 from rockstudy import BLOCK_PRESETS, Anchorage, Control
 from rockstudy.engine._kernel import dopri
+from rockstudy.engine._kernel.events import locate_poly, locate_sensed_poly
 from rockstudy.engine._kernel.layout import I_ATOL, I_RTOL
 from rockstudy.engine.simulate import pack_parameters
 from rockstudy.model.excitation import GroundMotion, modulated_duration
@@ -121,16 +122,20 @@ def _horner(g, s):
     return v
 
 
+def locate(hi, g0, g1, g2, g3, g4):
+    """The engine's locator on a Dormand–Prince step's quartic: ``locate_poly`` with g5 = g6 = 0."""
+    return locate_poly(hi, g0, g1, g2, g3, g4, 0.0, 0.0)
+
+
 def test_locate_finds_the_root_of_a_quartic_from_the_right():
     """locate (Newton in the bracket) returns a point within LOCATE_TOLERANCE at or after the root,
-    where g <= 0, and -1 when g stays positive; so does locate_sensed (Illinois) with a_x = 0."""
+    where g <= 0, and -1 when g stays positive; so does locate_sensed_poly (Illinois) with a_x = 0."""
     from rockstudy.core.constants import LOCATE_TOLERANCE
-    from rockstudy.engine._kernel.events import locate, locate_sensed
 
     for root in (1e-6, 0.137, 0.5, 0.999):
         # g = (root - sig)·(1 + sig²)·0.3 = 0.3·(root - sig + root·sig² - sig³): positive before the root
         g = (0.3 * root, -0.3, 0.3 * root, -0.3, 0.0)
-        for s in (locate(1.0, *g), locate_sensed(1.0, *g, 0.0, 0.0, 0.01, _problem()[0], NONE)):
+        for s in (locate(1.0, *g), locate_sensed_poly(1.0, *g, 0.0, 0.0, 0.0, 0.0, 0.01, _problem()[0], NONE)):
             assert _horner(g, s) <= 0.0 and root - 1e-15 <= s <= root + LOCATE_TOLERANCE + 1e-15, (root, s)
     assert locate(1.0, 1.0, 0.1, 0.0, 0.0, 0.0) == -1.0  # no crossing
     assert locate(0.5, 0.3 * 0.7, -0.3, 0.0, 0.0, 0.0) == -1.0  # the root (0.7) lies beyond hi
@@ -148,13 +153,10 @@ def test_locate_finds_the_root_of_a_quartic_from_the_right():
 def test_locate_keeps_to_the_bracket_on_hard_quartics(g, root, close):
     """Flat and non-monotone quartics with one crossing in (0, 1]: the point returned has g <= 0
     and lies at the root (the bracket [lo, hi] with g(lo) > 0 >= g(hi) is never lost)."""
-    from rockstudy.engine._kernel.events import locate
-
     s = locate(1.0, *g)
     assert _horner(g, s) <= 0.0
     assert abs(s - root) <= close, (s, root)
     # the location of Taylor steps (degree NQ - 1), on the same quartic padded with zeros: the same point
-    from rockstudy.engine._kernel.events import locate_poly
     assert locate_poly(1.0, *_poly(*g)) == s
 
 
@@ -163,7 +165,6 @@ def test_locate_poly_finds_the_root_of_a_taylor_steps_polynomial():
     the Taylor step's degree: one crossing, at the root, approached from the right within
     LOCATE_TOLERANCE; -1 when the root lies beyond hi."""
     from rockstudy.core.constants import LOCATE_TOLERANCE
-    from rockstudy.engine._kernel.events import locate_poly, locate_sensed_poly
 
     for root in (1e-6, 0.3, 0.77, 0.999):
         g = (root, -1.0) + (0.0,) * (dopri.NQ - 4) + (root, -1.0)
@@ -178,7 +179,7 @@ def test_quadratic_start_is_the_root_of_the_parabola(root, curvature):
     and non-positive at hi = 1, the start is the closed-form first root itself, and locate returns
     it within LOCATE_TOLERANCE from the right."""
     from rockstudy.core.constants import LOCATE_TOLERANCE
-    from rockstudy.engine._kernel.events import _quadratic_start, locate
+    from rockstudy.engine._kernel.events import _quadratic_start
 
     g = (root, curvature * root - 1.0, -curvature, 0.0, 0.0)
     assert _horner(g, 1.0) <= 0.0 < g[0]

@@ -314,7 +314,7 @@ def test_functions_compiled_without_reference_counting_count_none():
     from rockstudy.engine._kernel import dopri, engine, events, ground, taylor
 
     for fn in (engine.integrate, engine.drive, taylor.step, dopri.rhs, dopri.dense_coefficients,
-               ground.ground_acceleration, ground.sensed_acceleration, events.scan_exit, events.locate_sensed,
+               ground.ground_acceleration, ground.sensed_acceleration, events.scan_exit,
                events.locate_sensed_poly):
         assert all(fn.targetoptions.get(k) == v for k, v in NO_REFCOUNT.items()), fn.__name__
 

@@ -7,7 +7,7 @@ from rockstudy.engine._kernel import layout
 MULTI = {"R_SPRING": 2, "R_DAMPER": 2, "R_FRAC": 4}  # slots that hold a small array
 
 
-@pytest.mark.parametrize("prefix, size", [("I_", "NPAR"), ("C_", "NCONST"), ("R_", "NSTATE")])
+@pytest.mark.parametrize("prefix, size", [("I_", "NPAR"), ("C_", "NCONST"), ("R_", "NSTATE"), ("N_", "NFILL")])
 def test_slots_are_distinct_and_fit(prefix, size):
     names = [n for n in vars(layout) if n.startswith(prefix) and n.isupper()]
     assert names

@@ -12,7 +12,7 @@ from scipy.integrate import solve_ivp
 
 from rockstudy import BLOCK_PRESETS, Anchorage, Control
 from rockstudy.engine import _kernel as kn
-from rockstudy.engine._kernel import dopri, taylor, taylor_source
+from rockstudy.engine._kernel import _generate_taylor, dopri, taylor
 from rockstudy.engine._kernel.engine import setup
 from rockstudy.engine._kernel.layout import C_TAYLOR
 from rockstudy.engine.simulate import kernel_record, pack_parameters
@@ -53,9 +53,9 @@ CASES = [  # side, κ·f_K, 2ξp·f_D, u0, u1 [1/s], (θ, θ̇)
 
 def test_the_module_is_what_its_generator_writes():
     """taylor.py is generated: a hand edit, or a generator change not written out, fails here."""
-    on_disk = (taylor_source.Path(taylor_source.__file__).with_name("taylor.py")).read_text(encoding="utf-8")
-    assert on_disk == taylor_source.source()
-    assert taylor.ORDER == taylor_source.ORDER == dopri.NQ - 1
+    on_disk = (_generate_taylor.Path(_generate_taylor.__file__).with_name("taylor.py")).read_text(encoding="utf-8")
+    assert on_disk == _generate_taylor.source()
+    assert taylor.ORDER == _generate_taylor.ORDER == dopri.NQ - 1
 
 
 @pytest.mark.parametrize("side, kap, cd, u0, u1, y", CASES)

@@ -34,6 +34,12 @@ MAX_EVENTS = 2_000_000
 """Safety cap on located events per fast-engine run; a run hitting it is "undetermined". [-]
 No run of the study comes near it; it turns an unforeseen infinite event loop into a reported outcome."""
 
+MAX_STEPS = 20_000_000
+"""Budget of steps per fast-engine run: integration steps and passes of its driving loop together; a
+run that spends it is "undetermined", as at the event cap. [-] The study's runs take 10^4 to 10^5;
+the budget ends in seconds, in compiled code that Ctrl-C cannot stop, a run whose time scales lie far
+below its length (it would step for hours) or whose step or clock stalls."""
+
 NEGLIGIBLE_STEP = 1e-9
 """[s] An excursion from θ = 0 that returns within a step this short is not resolved further: the block
 is taken back on the ground at the step's end (θ = θ̇ = 0). Far below every time scale of the model."""

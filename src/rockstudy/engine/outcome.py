@@ -17,7 +17,8 @@ class Outcome(IntEnum):
     OVERTURNED_AFTER_IMPACT
         Overturned after at least one impact (θ = 0).
     UNDETERMINED
-        The fast engine hit its event cap (``constants.MAX_EVENTS``); counted as not overturned.
+        The fast engine hit its event cap or step budget (``constants.MAX_EVENTS``, ``MAX_STEPS``); counted
+        as not overturned.
     """
 
     NO_UPLIFT = 0

@@ -132,10 +132,10 @@ def _result_from_kernel(out, block: Block, engine: str = "fast") -> SimulationRe
             status=STATUS_UNDETERMINED, overturned=False, overturn_time=math.nan, end_time=float(t_end),
             max_rotation_ratio=float(max_abs / block.alpha), impact_times=np.asarray(impacts).copy(),
             uplift_times=np.asarray(uplifts).copy(), rest_times=np.asarray(rests).copy(), engine=engine,
-            message=f"the fast engine located its cap of {_kernel.MAX_EVENTS} events (impacts, controller samples, "
-                    f"record knots, switches) by t = {t_end:.6g} s, before the run ended: a long run with many "
-                    "events, or a chattering sequence it cannot resolve, so the outcome is undetermined; "
-                    "engine='reference' decides it (slowly)")
+            message=f"the fast engine reached its cap of {_kernel.MAX_EVENTS} located events (impacts, uplifts, "
+                    f"switches) or of {_kernel.MAX_STEPS} steps by t = {t_end:.6g} s, before the run ended: a long "
+                    "run with many events, a chattering sequence it cannot resolve, or time scales far below the "
+                    "run's length, so the outcome is undetermined; engine='reference' decides it (slowly)")
     name = {_kernel.ST_REST: STATUS_REST, _kernel.ST_OVER: STATUS_OVERTURNED, _kernel.ST_TLIM: STATUS_TIME_LIMIT,
             _kernel.ST_BOUND: STATUS_CANNOT_OVERTURN}[status]
     history = None

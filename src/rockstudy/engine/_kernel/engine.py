@@ -8,8 +8,11 @@ once (:func:`setup`, ``C_*``) and the state record ``S`` (:func:`initial_state`,
 Taylor steps between the knots of a record or Dormand–Prince steps (:func:`integrate`); each
 accepted step is searched for state events, the earliest is located
 and its map applied (:func:`state_event`); the known-time events are applied by
-:func:`known_time_events`, the CS01 apex decision by :func:`apex`. :func:`simulate_kernel` drives
-them and keeps the logs.
+:func:`known_time_events`, the CS01 apex decision by :func:`apex`. :func:`drive` runs them in turn
+and writes the history and the event logs as far as they have room (their fill levels in ``N``,
+``N_*``); :func:`simulate_kernel` grows them and calls it again. Every part takes the records
+(``S``, ``C``, ``P``) rather than their values one by one; a run is capped at ``MAX_EVENTS`` located
+events and ``MAX_STEPS`` steps and passes.
 
 The equation of motion, impacts, uplift and the REST/HOLD exits read the driving Ẍg
 (``ground_acceleration``); the control law's decisions (CS02's sign of Ẍg, its Ẍg = 0 switch,
@@ -30,6 +33,7 @@ from rockstudy.core.constants import (
     FIRST_STEP,
     IMPACT_TOLERANCE,
     MAX_EVENTS,
+    MAX_STEPS,
     NEGLIGIBLE_STEP,
     ROTATION_TOLERANCE,
     TIME_TOLERANCE,
@@ -48,8 +52,10 @@ from rockstudy.engine._kernel.layout import (
     C_CD,
     C_EXC_END,
     C_FRACTURE,
+    C_HISTORY,
     C_KMAX,
     C_KMIN,
+    C_LOG,
     C_QUIET_KNOTS,
     C_SAMPLED,
     C_SWITCHING,
@@ -88,7 +94,12 @@ from rockstudy.engine._kernel.layout import (
     MODE_HOLD,
     MODE_REST,
     MODE_ROCK,
+    N_HISTORY,
+    N_IMPACTS,
+    N_RESTS,
+    N_UPLIFTS,
     NCONST,
+    NFILL,
     NSTATE,
     R_APEX,
     R_DAMPER,
@@ -104,6 +115,7 @@ from rockstudy.engine._kernel.layout import (
     R_MODE,
     R_N_EVENTS,
     R_N_IMPACTS,
+    R_N_STEPS,
     R_Q_COUNT,
     R_Q_HEAD,
     R_RESUME,
@@ -247,7 +259,7 @@ def takes_taylor_steps(P, nvert):
 @njit(cache=True)
 def setup(P, vert, want_history, want_log):
     """The run's constants ``C`` (``C_*`` slots): the device the strategy uses, the time limits and
-    the flags that select the events and the early stop."""
+    the flags that select the events, the early stop, the stepper and what the run records."""
     C = np.zeros(NCONST)
     strategy = int(P[I_STRAT])
     kmax = P[I_KMAX]
@@ -279,6 +291,8 @@ def setup(P, vert, want_history, want_log):
     C[C_QUIET_KNOTS] = _flag(int(P[I_KIND]) == RECORD and not sampled and nvert == 0 and not want_history)
     # Taylor steps between record knots: Ẍg linear on every step, no vertical motion (docs/model.md)
     C[C_TAYLOR] = _flag(takes_taylor_steps(P, nvert))
+    C[C_HISTORY] = _flag(want_history)
+    C[C_LOG] = _flag(want_log)
     return C
 
 
@@ -537,22 +551,36 @@ def _coefficients_once(have_q, hh, y0, y1, K, Q):
 
 
 @njit(cache=True, inline="always")
-def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, use_thd_event, use_xg_event, th_over,
-                  track_fracture, th_ku, th_du, spring, damper, max_abs, P, rec):
+def segment_events(S, C, P):
+    """What the event search looks for while the steps from the state last (a fracture, a switch, the
+    end of the excitation end them first): (side, CS01 switch, CS02 switch, overturning rotation θ_over,
+    θ_K,u and θ_D,u of the working side's intact elements (inf: none that can break), Taylor steps).
+    Read once from the records ``S``, ``C``, ``P`` by :func:`integrate` for all its steps."""
+    sidx = _working(S)
+    use_thd_event, use_xg_event = _events_used(S, C, P)
+    fracture = C[C_FRACTURE] != 0.0
+    th_ku = P[I_TKU] if fracture and S[R_SPRING + sidx] > 0.0 else math.inf
+    th_du = P[I_TDU] if fracture and S[R_DAMPER + sidx] > 0.0 else math.inf
+    return S[R_SIDE], use_thd_event, use_xg_event, P[I_TOVER], th_ku, th_du, C[C_TAYLOR] != 0.0 and S[R_H_ON] != 0.0
+
+
+@njit(cache=True, inline="always")
+def search_events(seg, P, rec, K, Q, t, hh, y0, y1, n0, n1, hint, x_hint, max_abs):
     """The event search of one accepted step from (θ, θ̇) = (y0, y1) at t to (n0, n1) at t + hh (its
-    stages in ``K``): the earliest state event on (t, t + hh] — an impact (side·θ reaches 0), the
-    overturning rotation, a working element's ultimate rotation, the CS01 switch (θ̇ = 0), the CS02
-    switch (sensed Ẍg = 0) — located on the continuous extension, whose coefficients are written
-    to ``Q`` when an event is to be located (a Taylor step, ``taylor_step``, has written them already).
+    stages in ``K``), for the events of the segment ``seg`` (:func:`segment_events`): the earliest state
+    event on (t, t + hh] — an impact (side·θ reaches 0), the overturning rotation, a working element's
+    ultimate rotation, the CS01 switch (θ̇ = 0, sign ``hint`` before it), the CS02 switch (sensed
+    Ẍg = 0, sign ``x_hint`` before it) — located on the continuous extension, whose coefficients are
+    written to ``Q`` when an event is to be located (a Taylor step has written them already).
 
     Returns (best, negligible, max_abs): ``best`` the event's fraction of the step (> 1: none;
     < 0: θ left 0 and came back within the step, which must be retried with a smaller one),
     ``negligible`` True for such an excursion within a step <= NEGLIGIBLE_STEP (it ends at the
     step's end), ``max_abs`` the largest |θ| updated by an apex inside the step.
     """
+    side, use_thd_event, use_xg_event, th_over, th_ku, th_du, have_q = seg  # a Taylor step has written Q
     best = 2.0
     negligible = False
-    have_q = taylor_step
     # impact: side·θ crosses to <= 0 (located below, after the apex)
     impact = False
     if side * n0 <= 0.0:
@@ -590,15 +618,13 @@ def search_events(t, hh, y0, y1, n0, n1, K, Q, taylor_step, side, hint, x_hint, 
         s = _locate_on(min(best, sig_peak), Q, -side, 0.0, th_over)
         if s >= 0.0:
             best = s
-    if track_fracture:
-        for k in range(2):
-            thu = th_ku if k == 0 else th_du
-            intact = spring if k == 0 else damper
-            if not negligible and intact > 0.0 and side * y0 - thu < 0.0 and peak - thu >= 0.0:
-                have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-                s = _locate_on(min(best, sig_peak), Q, -side, 0.0, thu)
-                if s >= 0.0:
-                    best = s
+    for k in range(2):  # the working side's intact elements (th_ku, th_du = inf: none that can break)
+        thu = th_ku if k == 0 else th_du
+        if not negligible and side * y0 - thu < 0.0 and peak - thu >= 0.0:
+            have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
+            s = _locate_on(min(best, sig_peak), Q, -side, 0.0, thu)
+            if s >= 0.0:
+                best = s
     if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
         if apex_switch:
             # the apex located above is the first zero of the same function on (0, 1], so also the
@@ -630,114 +656,137 @@ def _event_point(best, negligible, t, hh, n0, n1, Q):
     return t + best * hh, a, b
 
 
-@njit(cache=True, **NO_REFCOUNT)
-def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history, use_taylor):
-    """ROCK: steps towards ``t_next`` — Taylor steps when ``use_taylor`` (while a record without vertical
-    motion lasts, ``C_TAYLOR``), Dormand–Prince steps otherwise — each accepted step searched for state
-    events (impact, overturning rotation, fractures, the CS01/CS02 switches); stops at the earliest,
-    located on the step's polynomial. A step ends on every known-time event; at a record knot where
-    nothing else happens the steps go on (to the next known-time event) without returning.
-    Returns (STEPPED | EVENT | OVERTURNED | NEED_ROOM, nh).
-
-    Compiled on its own without numba's reference counting (``core._inline.NO_REFCOUNT``): it allocates nothing,
-    so the arrays it works on need no counting at each inlined call. The history rows go into ``H``
-    as far as it has room; when it is full the loop stops with NEED_ROOM and ``R_RESUME`` set, the
-    driver grows ``H`` and calls again, and the loop goes on exactly where it stopped.
-    """
+@njit(cache=True, inline="always")
+def _open_steps(S, C, P, rec, vert, H, N, kap_eff, cd_eff, use_taylor):
+    """What the steps from the state start with: (room, f0, x_hint, hint, h) — θ̈ at the start (the
+    stored one while valid; a Taylor step off θ = 0 needs none), the signs before the switch events and
+    the first trial step (:func:`_segment_start`); on ``R_RESUME``, what the loop held when it stopped.
+    ``room`` is False when the history is full before its first row (nothing done: NEED_ROOM)."""
+    if S[R_RESUME] != 0.0:  # the history was full: go on where the loop stopped
+        S[R_RESUME] = 0.0
+        return True, S[R_F0], S[R_X_HINT], S[R_HINT], S[R_H]
     t = S[R_T]
     th = S[R_TH]
     thd = S[R_THD]
+    if S[R_F0_OK] != 0.0:
+        f0 = S[R_F0]
+    else:
+        want_history = C[C_HISTORY] != 0.0
+        if want_history and _hist_full(H, N[N_HISTORY]):
+            return False, 0.0, 0.0, 0.0, 0.0
+        h_on = S[R_H_ON] != 0.0
+        # Taylor steps need no θ̈ at the start; _segment_start reads it only at θ = 0
+        f0 = dopri.rhs(t, th, thd, S[R_SIDE], kap_eff, cd_eff, h_on, P, rec, vert) if not use_taylor or th == 0.0 \
+            else 0.0
+        if want_history:
+            N[N_HISTORY] = _write_hist(H, N[N_HISTORY], t, th, thd, _device(S, C),
+                                       ground_acceleration(t, P, rec) if h_on else 0.0)
+    x_hint, hint, h = _segment_start(t, th, thd, f0, S[R_SIDE], _events_used(S, C, P)[1], S[R_X_HINT], S[R_HINT],
+                                     S[R_H], P, rec)
+    return True, f0, x_hint, hint, h
+
+
+@njit(cache=True, inline="always")
+def _trial_step(h, lazy, h_hh, h_err, t, t_next, hmax):
+    """The step to try from t towards ``t_next``: the trial step ``h`` — or, when ``lazy``, the step grown
+    from the last accepted one (``h_hh`` with error ``h_err``), its power taken only when it may matter
+    (:func:`_grows_past`) — cut at ``t_next`` and ``hmax`` and stretched to a known-time event it would
+    stop just short of. Returns (hh, h, lazy). [s]"""
+    d = min(t_next - t, hmax)
+    if lazy and _grows_past(h_hh, h_err, d):
+        hh = d  # min(h, t_next - t, hmax) with h >= d
+    else:
+        if lazy:
+            h = _grown_step(h_hh, h_err)
+            lazy = False
+        hh = min(h, d)
+    if t_next - (t + hh) < TIME_TOLERANCE * (1.0 + t):
+        hh = t_next - t
+    return hh, h, lazy
+
+
+@njit(cache=True, inline="always")
+def _close_steps(S, t, th, thd, f0, f0_ok, h, hint, x_hint, max_abs, steps):
+    """Store what the steps leave in the state record (``R_F0_OK``: ``f0`` is θ̈ at t, valid for the next
+    segment; ``R_F0`` is also read on ``R_RESUME``)."""
+    S[R_T] = t
+    S[R_TH] = th
+    S[R_THD] = thd
+    S[R_F0_OK] = _flag(f0_ok)
+    S[R_F0] = f0
+    S[R_H] = h
+    S[R_HINT] = hint
+    S[R_X_HINT] = x_hint
+    S[R_MAX_ABS] = max_abs
+    S[R_N_STEPS] = steps
+
+
+@njit(cache=True, **NO_REFCOUNT)
+def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N):
+    """ROCK: steps towards ``t_next`` — Taylor steps while a record without vertical motion lasts
+    (``C_TAYLOR``), Dormand–Prince steps otherwise — each accepted step searched for state events
+    (:func:`search_events`); stops at the earliest, located on the step's polynomial. A step ends on
+    every known-time event; at a record knot where nothing else happens the steps go on (to the next
+    known-time event) without returning. Returns STEPPED, EVENT, OVERTURNED or NEED_ROOM; past the
+    run's budget of steps (``R_N_STEPS`` > ``MAX_STEPS``) it returns STEPPED and the driver ends the run.
+
+    Compiled without reference counting (``core._inline.NO_REFCOUNT``): it allocates nothing. History
+    rows go into ``H`` (``N[N_HISTORY]`` written) as far as it has room; when it is full the loop stops
+    with NEED_ROOM and ``R_RESUME`` set, the driver grows ``H`` and calls again, and the loop goes on
+    exactly where it stopped.
+    """
     side = S[R_SIDE]
-    sidx = _working(S)
     h_on = S[R_H_ON] != 0.0
     kap_dev = _device(S, C)
-    spring = S[R_SPRING + sidx]
+    spring = S[R_SPRING + _working(S)]
     kap_eff = kap_dev * spring
-    cd_eff = C[C_CD] * S[R_DAMPER + sidx]
-    kmax = C[C_KMAX]
-    th_over = P[I_TOVER]
-    hmax = P[I_HMAX]
-    rtol = P[I_RTOL]
-    atol = P[I_ATOL]
-    alpha = P[I_ALPHA]
-    exc_end = C[C_EXC_END]
-    # the working side's elements cannot change within the steps (a fracture is a state event)
-    track_fracture = C[C_FRACTURE] != 0.0
-    th_ku = P[I_TKU]
-    th_du = P[I_TDU]
-    damper = S[R_DAMPER + sidx]
-    use_thd_event, use_xg_event = _events_used(S, C, P)
-    p = P[I_P]
-    sin_alpha = P[I_SINA]
-    cos_alpha = P[I_COSA]
+    cd_eff = C[C_CD] * S[R_DAMPER + _working(S)]
+    use_taylor = C[C_TAYLOR] != 0.0 and h_on
+    want_history = C[C_HISTORY] != 0.0
+    seg = segment_events(S, C, P)
+    use_xg_event = seg[2]
     inv_g = 1.0 / P[I_G]
-    if S[R_RESUME] != 0.0:  # the history was full: go on where the loop stopped
-        S[R_RESUME] = 0.0
-        t_next = S[R_T_NEXT]
-        f0 = S[R_F0]
-        x_hint = S[R_X_HINT]
-        hint = S[R_HINT]
-        h = S[R_H]
-    else:
-        if S[R_F0_OK] != 0.0:
-            f0 = S[R_F0]
-        else:
-            if want_history and _hist_full(H, nh):
-                return NEED_ROOM, nh  # nothing done yet: the call is repeated as it is
-            # Taylor steps need no θ̈ at the start; _segment_start reads it only at θ = 0
-            f0 = dopri.rhs(t, th, thd, side, kap_eff, cd_eff, h_on, P, rec, vert) if not use_taylor or th == 0.0 \
-                else 0.0
-            if want_history:
-                nh = _write_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
-        x_hint, hint, h = _segment_start(t, th, thd, f0, side, use_xg_event, S[R_X_HINT], S[R_HINT], S[R_H], P,
-                                         rec)
+    p, sin_alpha, cos_alpha, rtol, atol, hmax = P[I_P], P[I_SINA], P[I_COSA], P[I_RTOL], P[I_ATOL], P[I_HMAX]
+    exc_end, alpha, kmax = C[C_EXC_END], P[I_ALPHA], C[C_KMAX]
+    room, f0, x_hint, hint, h = _open_steps(S, C, P, rec, vert, H, N, kap_eff, cd_eff, use_taylor)
+    if not room:
+        return NEED_ROOM
+    t, th, thd = S[R_T], S[R_TH], S[R_THD]
+    nh = N[N_HISTORY]
+    steps = np.int64(S[R_N_STEPS])
     f0_ok = False
     # the trial step h after an accepted step is _grown_step(h_hh, h_err), computed only when needed
-    lazy = False
-    h_hh = 0.0
-    h_err = 0.0
+    lazy, h_hh, h_err = False, 0.0, 0.0
     max_abs = S[R_MAX_ABS]
     result = STEPPED
-    x_at = -1.0  # a Taylor step's reading of Ẍg at its end, x_end, serves the next step when it starts there
-    x_end = 0.0
+    x_at, x_end = -1.0, 0.0  # a Taylor step's Ẍg at its end, x_end, serves the next step starting there
     while t < t_next:
+        steps += 1
+        if steps > MAX_STEPS:
+            break  # the driver ends the run
         if want_history and _hist_full(H, nh):
             S[R_RESUME] = 1.0
             S[R_T_NEXT] = t_next
             result = NEED_ROOM
             break
-        d = min(t_next - t, hmax)
-        if lazy and _grows_past(h_hh, h_err, d):
-            hh = d  # min(h, t_next - t, hmax) with h >= d
-        else:
-            if lazy:
-                h = _grown_step(h_hh, h_err)
-                lazy = False
-            hh = min(h, d)
-        if t_next - (t + hh) < TIME_TOLERANCE * (1.0 + t):
-            hh = t_next - t
+        hh, h, lazy = _trial_step(h, lazy, h_hh, h_err, t, t_next, hmax)
         if hh <= 0.0:
             break
-        y0 = th
-        y1 = thd
         if use_taylor:
             x0 = x_end if t == x_at else ground_acceleration(t, P, rec)
             x_at = t + hh
-            x1 = ground_acceleration(x_at, P, rec)
-            x_end = x1
-            n0, n1, err, f_end = taylor.step(hh, y0, y1, side, kap_eff, cd_eff, x0 * inv_g, (x1 - x0) * inv_g / hh, p,
-                                             sin_alpha, cos_alpha, Q, rtol, atol)
+            x_end = ground_acceleration(x_at, P, rec)
+            n0, n1, err, f_end = taylor.step(hh, th, thd, side, kap_eff, cd_eff, x0 * inv_g, (x_end - x0) * inv_g / hh,
+                                             p, sin_alpha, cos_alpha, Q, rtol, atol)
         else:
-            n0, n1, err = dopri.step(t, hh, y0, y1, f0, K, side, kap_eff, cd_eff, h_on, P, rec, vert, rtol, atol)
+            n0, n1, err = dopri.step(t, hh, th, thd, f0, K, side, kap_eff, cd_eff, h_on, P, rec, vert, rtol, atol)
             f_end = K[6, 1]
         if err > 1.0:
             h = hh * max(0.2, 0.9 * guarded_pow(err, -0.2))
             lazy = False
             continue
         # ---- accepted: look for state events on (t, t + hh] ----
-        best, negligible, max_abs = search_events(t, hh, y0, y1, n0, n1, K, Q, use_taylor, side, hint, x_hint,
-                                                  use_thd_event, use_xg_event, th_over, track_fracture, th_ku, th_du,
-                                                  spring, damper, max_abs, P, rec)
+        best, negligible, max_abs = search_events(seg, P, rec, K, Q, t, hh, th, thd, n0, n1, hint, x_hint, max_abs)
         if best < 0.0:
             # left θ = 0 and came back within one step: the excursion is shorter than the step,
             # so resolve it with a smaller one (a zero-length event here would re-uplift at the
@@ -745,8 +794,7 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
             h = 0.25 * hh
             lazy = False
             continue
-        if best <= 1.0:
-            # ---- move to the earliest event ----
+        if best <= 1.0:  # ---- move to the earliest event ----
             S[R_N_EVENTS] += 1
             t, th, thd = _event_point(best, negligible, t, hh, n0, n1, Q)
             if abs(th) > max_abs:
@@ -758,16 +806,12 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
         if t_next - t < TIME_TOLERANCE * (1.0 + t):
             t = t_next
             f0_ok = True
-        th = n0
-        thd = n1
-        f0 = f_end
+        th, thd, f0 = n0, n1, f_end
         if abs(th) > max_abs:
             max_abs = abs(th)
         if want_history:
             nh = _write_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
-        lazy = True
-        h_hh = hh
-        h_err = err
+        lazy, h_hh, h_err = True, hh, err
         if hint == 0.0 and thd != 0.0:
             hint = sign(thd)
         # early overturning: nothing can bring the block back
@@ -793,18 +837,10 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history
                     lazy = False
     if lazy:
         h = _grown_step(h_hh, h_err)
-    S[R_T] = t
-    S[R_TH] = th
-    S[R_THD] = thd
+    N[N_HISTORY] = nh
     # a Taylor step's θ̈ at its end comes from its polynomial: the next segment evaluates Eq. (1) anew
-    S[R_F0_OK] = _flag(f0_ok and not use_taylor)
-    # read only when R_F0_OK (after a plain step that ended the segment) or R_RESUME
-    S[R_F0] = f0
-    S[R_H] = h
-    S[R_HINT] = hint
-    S[R_X_HINT] = x_hint
-    S[R_MAX_ABS] = max_abs
-    return result, nh
+    _close_steps(S, t, th, thd, f0, f0_ok and not use_taylor, h, hint, x_hint, max_abs, steps)
+    return result
 
 
 @njit(cache=True, inline=inline_into("drive"))
@@ -860,27 +896,57 @@ def state_event(S, C, P, rec, vert):
 
 
 # ---- the driver -----------------------------------------------------------------------------
+@njit(cache=True, inline="always")
+def _log_event(what, S, impacts, uplifts, rests, N):
+    """Log the time of an impact (and of the uplift or rest it ends in), or of an uplift (``UPLIFTED``)."""
+    if what == UPLIFTED:
+        N[N_UPLIFTS] = _write_log(uplifts, N[N_UPLIFTS], S[R_T])
+        return
+    N[N_IMPACTS] = _write_log(impacts, N[N_IMPACTS], S[R_T])
+    if what == IMPACT_UPLIFT:
+        N[N_UPLIFTS] = _write_log(uplifts, N[N_UPLIFTS], S[R_T])
+    if what == IMPACT_REST:
+        N[N_RESTS] = _write_log(rests, N[N_RESTS], S[R_T])
+
+
+@njit(cache=True, inline="always")
+def _room_full(C, H, impacts, uplifts, rests, N):
+    """True when the history or an event log the run writes has no more room than its reserve."""
+    if C[C_HISTORY] != 0.0 and _hist_full(H, N[N_HISTORY]):
+        return True
+    return C[C_LOG] != 0.0 and (_log_full(impacts, N[N_IMPACTS]) or _log_full(uplifts, N[N_UPLIFTS])
+                                or _log_full(rests, N[N_RESTS]))
+
+
+@njit(cache=True, inline="always")
+def _history_row(S, C, P, rec, H, N):
+    """A row of the history at the state (the caller has made room)."""
+    N[N_HISTORY] = _write_hist(H, N[N_HISTORY], S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
+
+
 @njit(cache=True, **NO_REFCOUNT)
-def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, nh, impacts, n_imp, uplifts, n_up, rests, n_rest,
-          want_history, want_log):
-    """The driver's loop: the parts of a run in turn until it ends. Returns (status, nh, n_imp, n_up,
-    n_rest): an ``ST_*`` code, or GROW when the history or an event log is full.
+def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplifts, rests, N):
+    """The driver's loop: the parts of a run in turn until it ends. Returns an ``ST_*`` code, or GROW
+    when the history or an event log is full; ``N`` (``N_*``) holds how far each is written.
 
     Compiled without reference counting (``core._inline.NO_REFCOUNT``), so it allocates nothing: on
     GROW :func:`simulate_kernel` grows the full arrays and calls again. The loop keeps its state in
     ``S`` between passes (and ``integrate`` its own, ``R_RESUME``), so the run goes on where it
-    stopped, the same run as with arrays large enough from the start."""
+    stopped, the same run as with arrays large enough from the start. A run ends as ``ST_ELIMIT``
+    past ``MAX_EVENTS`` located events or ``MAX_STEPS`` steps and passes (``R_N_STEPS``)."""
+    want_history = C[C_HISTORY] != 0.0
+    want_log = C[C_LOG] != 0.0
     while True:
-        if S[R_N_EVENTS] > MAX_EVENTS:
+        if S[R_N_EVENTS] > MAX_EVENTS or S[R_N_STEPS] > MAX_STEPS:
             status = ST_ELIMIT
             break
-        if (want_history and _hist_full(H, nh)) or (want_log and (_log_full(impacts, n_imp) or _log_full(
-                uplifts, n_up) or _log_full(rests, n_rest))):
-            return GROW, nh, n_imp, n_up, n_rest
+        if _room_full(C, H, impacts, uplifts, rests, N):
+            return GROW
+        S[R_N_STEPS] += 1.0
         t_next = S[R_T_NEXT] if S[R_RESUME] != 0.0 else next_known_time(S, C, P, vert, queue_times)
         mode = S[R_MODE]
         if want_history and mode != MODE_ROCK:
-            nh = _write_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
+            _history_row(S, C, P, rec, H, N)
         if mode == MODE_REST or mode == MODE_HOLD:  # on the ground, or held by CS01
             if mode == MODE_REST and S[R_T] >= C[C_EXC_END]:
                 status = ST_REST
@@ -889,7 +955,7 @@ def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, nh, impacts, n
                 t_next = pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next)
             left = ground_phase(S, C, P, rec, vert, t_next)
             if left == UPLIFTED and want_log:
-                n_up = _write_log(uplifts, n_up, S[R_T])
+                _log_event(UPLIFTED, S, impacts, uplifts, rests, N)
             if left != NOTHING:
                 continue
             # still there at t_next: on to the known-time events there
@@ -904,30 +970,25 @@ def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, nh, impacts, n
             break
         if S[R_APEX] != 0.0 and apex(S, C, P, rec, vert) == HELD:
             continue
-        result, nh = integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, nh, want_history,
-                               C[C_TAYLOR] != 0.0 and S[R_H_ON] != 0.0)
+        result = integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N)
         if result == NEED_ROOM:
-            return GROW, nh, n_imp, n_up, n_rest
+            return GROW
         if result == OVERTURNED:
             status = ST_OVER
             break
         if result == STEPPED:
             continue
         if want_history:
-            nh = _write_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
+            _history_row(S, C, P, rec, H, N)
         what = state_event(S, C, P, rec, vert)
         if what == OVERTURNED:
             status = ST_OVER
             break
         if want_log and what >= IMPACT:
-            n_imp = _write_log(impacts, n_imp, S[R_T])
-            if what == IMPACT_UPLIFT:
-                n_up = _write_log(uplifts, n_up, S[R_T])
-            if what == IMPACT_REST:
-                n_rest = _write_log(rests, n_rest, S[R_T])
+            _log_event(what, S, impacts, uplifts, rests, N)
     if want_history:
-        nh = _write_hist(H, nh, S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))
-    return status, nh, n_imp, n_up, n_rest
+        _history_row(S, C, P, rec, H, N)
+    return status
 
 
 @njit(cache=True)
@@ -939,27 +1000,22 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     K = np.zeros((7, 2))
     Q = np.zeros((2, dopri.NQ))
     impacts = np.empty(16 if want_log else 0)
-    n_imp_log = np.int64(0)
     uplifts = np.empty(16 if want_log else 0)
-    n_up = np.int64(0)
     rests = np.empty(16 if want_log else 0)
-    n_rest = np.int64(0)
     H = np.empty((256 if want_history else 0, 5))
-    nh = np.int64(0)
+    N = np.zeros(NFILL, dtype=np.int64)
     while True:
-        status, nh, n_imp_log, n_up, n_rest = drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, nh,
-                                                    impacts, n_imp_log, uplifts, n_up, rests, n_rest,
-                                                    want_history, want_log)
+        status = drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplifts, rests, N)
         if status != GROW:
             break
-        if want_history and _hist_full(H, nh):
-            H = _grow_hist(H, nh)
+        if want_history and _hist_full(H, N[N_HISTORY]):
+            H = _grow_hist(H, N[N_HISTORY])
         if want_log:
-            if _log_full(impacts, n_imp_log):
-                impacts = _grow_log(impacts, n_imp_log)
-            if _log_full(uplifts, n_up):
-                uplifts = _grow_log(uplifts, n_up)
-            if _log_full(rests, n_rest):
-                rests = _grow_log(rests, n_rest)
-    return KernelResult(status, S[R_T_OVER], S[R_T], S[R_MAX_ABS], np.int64(S[R_N_IMPACTS]), impacts[:n_imp_log],
-                        uplifts[:n_up], rests[:n_rest], S[R_FRAC:R_FRAC + 4].copy(), H[:nh])
+            if _log_full(impacts, N[N_IMPACTS]):
+                impacts = _grow_log(impacts, N[N_IMPACTS])
+            if _log_full(uplifts, N[N_UPLIFTS]):
+                uplifts = _grow_log(uplifts, N[N_UPLIFTS])
+            if _log_full(rests, N[N_RESTS]):
+                rests = _grow_log(rests, N[N_RESTS])
+    return KernelResult(status, S[R_T_OVER], S[R_T], S[R_MAX_ABS], np.int64(S[R_N_IMPACTS]), impacts[:N[N_IMPACTS]],
+                        uplifts[:N[N_UPLIFTS]], rests[:N[N_RESTS]], S[R_FRAC:R_FRAC + 4].copy(), H[:N[N_HISTORY]])

@@ -27,14 +27,6 @@ smooth function cannot hide inside 1/256 of a period at the amplitudes that matt
 
 
 @njit(cache=True, inline="always")
-def event_quartic(Q, a_th, a_thd, c):
-    """The coefficients (g0 … g4) of g = a_th·θ + a_thd·θ̇ + c on a Dormand–Prince step, a quartic in the
-    fraction of the step, from the step's :func:`~rockstudy.engine._kernel.dopri.dense_coefficients` ``Q``
-    (the first five of :func:`event_poly`)."""
-    return event_poly(Q, a_th, a_thd, c)[:5]
-
-
-@njit(cache=True, inline="always")
 def event_poly(Q, a_th, a_thd, c):
     """The coefficients (g0 … g6) of g = a_th·θ + a_thd·θ̇ + c on a Taylor step, a polynomial of degree 6
     in the fraction of the step, from the step's polynomials ``Q`` (:mod:`~rockstudy.engine._kernel.taylor`)."""
@@ -149,12 +141,6 @@ def locate_poly(hi, g0, g1, g2, g3, g4, g5, g6):
     return hi
 
 
-@njit(cache=True)
-def locate(hi, g0, g1, g2, g3, g4):
-    """:func:`locate_poly` on the quartic g = g0 + g1·sig + … + g4·sig^4 (:func:`event_quartic`)."""
-    return locate_poly(hi, g0, g1, g2, g3, g4, 0.0, 0.0)
-
-
 @njit(cache=True, **NO_REFCOUNT)
 def locate_sensed_poly(hi, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
     """:func:`locate_poly` for g = polynomial + a_x·Ẍg(t + sig·hh) as the controller senses it (the CS02
@@ -167,12 +153,6 @@ def locate_sensed_poly(hi, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
     if flo <= 0.0:
         return hi
     return _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec)
-
-
-@njit(cache=True, **NO_REFCOUNT)
-def locate_sensed(hi, g0, g1, g2, g3, g4, a_x, t, hh, P, rec):
-    """:func:`locate_sensed_poly` on a quartic (g5 = g6 = 0), as :func:`locate`."""
-    return locate_sensed_poly(hi, g0, g1, g2, g3, g4, 0.0, 0.0, a_x, t, hh, P, rec)
 
 
 @njit(cache=True, inline=inline_into("scan_exit"))
@@ -203,7 +183,7 @@ def scan_exit(mode, t0, t1, th, side, kmx, kmn, h_on, P, rec, vert):
     ta = t0
     while ta < t1:
         tb = min(t1, ta + dt)
-        if t1 - tb < 1e-12 * dt:
+        if t1 - tb < 1e-12 * dt or tb <= ta:  # (tb <= ta: dt below the float spacing of ta, one piece)
             tb = t1
         vb = exit_value(mode, tb, th, side, kmx, kmn, h_on, P, rec, vert)
         hit = vb > 0.0 if mode == MODE_REST else vb >= 0.0

@@ -59,7 +59,9 @@ C_BOUND = 9      # 1: outcome run that may stop below the overturning energy (do
 C_BOUND_SWITCHING = 10  # 1: ... with the half-cycle bound of sampled switching control
 C_QUIET_KNOTS = 11  # 1: at rest, record knots pass in one tight loop (no sampled control, vertical record, history)
 C_TAYLOR = 12    # 1: while the record lasts the steps are Taylor steps (I_TAYLOR, a record, no vertical record)
-NCONST = 13
+C_HISTORY = 13   # 1: the run writes its history (rows t, θ, θ̇, κ, Ẍg)
+C_LOG = 14       # 1: the run logs its impact, uplift and rest times
+NCONST = 15
 
 # ---- the run's state record: every quantity the driving loop changes (engine.py) ------------
 R_T = 0          # time t [s]
@@ -87,12 +89,20 @@ R_DAMPER = 22    # intact flags of the dampers: 2 slots
 R_FRAC = 24      # fracture times: spring L, R, damper L, R (NaN: intact): 4 slots [s]
 R_RESUME = 28    # 1: integrate stopped mid-segment for a larger history array; it goes on from here
 R_T_NEXT = 29    # ... towards this known-time event [s]
-NSTATE = 30
+R_N_STEPS = 30   # steps and passes of the driver's loop so far (capped by MAX_STEPS)
+NSTATE = 31
+
+# ---- fill levels of the growable arrays (engine.drive's ``N``, int64) -------------------------
+N_HISTORY = 0    # rows of the history written
+N_IMPACTS = 1    # impact times logged
+N_UPLIFTS = 2    # uplift times logged
+N_RESTS = 3      # rest times logged
+NFILL = 4
 
 # ---- how a run ended ---------------------------------------------------------------------
 ST_REST, ST_OVER, ST_TLIM, ST_ELIMIT, ST_BOUND = 0, 1, 2, 3, 4
-"""At rest after the excitation; overturned; time limit; event cap; below the overturning energy
-after the excitation (threshold runs only, see docs/model.md)."""
+"""At rest after the excitation; overturned; time limit; event cap or step budget (``MAX_EVENTS``,
+``MAX_STEPS``); below the overturning energy after the excitation (threshold runs only, see docs/model.md)."""
 
 # ---- the engine's modes --------------------------------------------------------------------
 MODE_REST, MODE_ROCK, MODE_HOLD = 0, 1, 2

@@ -1,12 +1,11 @@
 """The threshold scan, written once: an upward scan of the amplitude grid, then a bisection between
 the last safe and the first overturning grid point down to the resolution.
 
-:func:`threshold_scan` can also hand a scan of Taylor-step runs over to Dormand–Prince runs near
-the threshold, so that the outcomes that decide it are Dormand–Prince runs, as in the engine before
-the Taylor step. The study's scan, :func:`threshold_kernel`, does not hand over: it costs more than
-the study's speed allows (docs/model.md, "The stepper that decides a threshold").
+Every run of a scan takes the stepper of its parameters (Taylor steps between a record's knots unless
+``stepper="dopri"``); ``benchmarks/threshold_steppers.py`` measures scans that hand over to
+Dormand–Prince runs near the threshold, built from :func:`run_scan`.
 
-:func:`scan_amplitude` / :func:`scan_update` are the scan as a small state machine on a 4-slot
+:func:`scan_amplitude` / :func:`scan_update` are the scan as a small state machine on a 5-slot
 array, so that the compiled :func:`threshold_kernel` and the reference engine's Python loop
 (:func:`rockstudy.analysis.spectra.threshold`) drive the very same decisions.
 """
@@ -17,19 +16,26 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from rockstudy.engine._kernel.engine import simulate_kernel, takes_taylor_steps
-from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, I_TAYLOR, ST_ELIMIT, ST_OVER
+from rockstudy.engine._kernel.engine import simulate_kernel
+from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, ST_ELIMIT, ST_OVER
 from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, SAFE, UNDETERMINED
 
-# ---- the scan's state: [phase, j, lo, hi] ------------------------------------------------
-S_PHASE, S_J, S_LO, S_HI = 0, 1, 2, 3
+# ---- the scan's state: [phase, j, lo, hi, halvings] ---------------------------------------
+S_PHASE, S_J, S_LO, S_HI, S_HALVINGS = 0, 1, 2, 3, 4
 SCANNING, BISECTING, DONE = 0.0, 1.0, 2.0
+
+SPACING_FLOOR = 4.0
+"""The bisection stops once its bracket is at most this many float spacings of its upper end wide,
+whatever the resolution asked for: below a float spacing the midpoint is one of the ends. [-]"""
+MAX_HALVINGS = 200
+"""Cap on the bisection's halvings: a bracket [0, hi] closes at the float spacing of hi within 52
+halvings, a bracket up to 2^140 times as wide as its upper end within 200. [-]"""
 
 
 @njit(cache=True)
 def scan_start():
     """A new scan at the first grid point."""
-    state = np.zeros(4)
+    state = np.zeros(5)
     state[S_PHASE] = SCANNING
     return state
 
@@ -43,12 +49,22 @@ def scan_amplitude(state, grid):
 
 
 @njit(cache=True)
+def bracket_closed(lo, hi, resolution):
+    """True when the bracket [lo, hi] needs no more halving: at most ``resolution`` wide, or at most
+    :data:`SPACING_FLOOR` float spacings of ``hi`` (so the bisection ends for any resolution)."""
+    width = hi - lo
+    return not (width > resolution) or width <= SPACING_FLOOR * np.spacing(abs(hi))
+
+
+@njit(cache=True)
 def scan_update(state, grid, resolution, lower, overturned):
     """Advance the scan with the outcome at :func:`scan_amplitude`; True when it is done.
 
     ``lower`` is the amplitude ratio below which nothing can uplift (the bracket's floor).
     When done, ``state[S_HI]`` is the threshold (NaN: nothing on the grid overturns) and
-    ``state[S_LO]`` the highest amplitude shown safe below it.
+    ``state[S_LO]`` the highest amplitude shown safe below it. The bisection ends at ``resolution``,
+    at a few float spacings of the bracket (:func:`bracket_closed`), or after :data:`MAX_HALVINGS`
+    halvings, whichever comes first.
     """
     if state[S_PHASE] == SCANNING:
         j = int(state[S_J])
@@ -59,7 +75,7 @@ def scan_update(state, grid, resolution, lower, overturned):
                 lo = lower
             state[S_LO] = lo
             state[S_HI] = hi
-            state[S_PHASE] = BISECTING if hi - lo > resolution else DONE
+            state[S_PHASE] = DONE if bracket_closed(lo, hi, resolution) else BISECTING
         elif j + 1 >= grid.shape[0]:
             state[S_LO] = grid[grid.shape[0] - 1]
             state[S_HI] = np.nan
@@ -72,7 +88,8 @@ def scan_update(state, grid, resolution, lower, overturned):
             state[S_HI] = mid
         else:
             state[S_LO] = mid
-        if not (state[S_HI] - state[S_LO] > resolution):
+        state[S_HALVINGS] += 1
+        if bracket_closed(state[S_LO], state[S_HI], resolution) or state[S_HALVINGS] >= MAX_HALVINGS:
             state[S_PHASE] = DONE
     return state[S_PHASE] == DONE
 
@@ -112,12 +129,12 @@ def outcome_kernel(P, rec, vert, amplitude_ratio, unit_peak):
 
 
 @njit(cache=True)
-def _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, upward_only, counts):
-    """Advance ``state`` with the outcomes of runs of ``P`` until the scan is done, or with
-    ``upward_only`` until its upward part stops (at the first grid point that overturns, or the
-    last); ``counts`` += (simulations, undetermined runs)."""
+def run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, counts):
+    """Advance ``state`` with the outcomes of runs of ``P`` until the scan is done; ``counts`` +=
+    (simulations, undetermined runs). With ``resolution`` = inf the scan stops at the first grid
+    point that overturns (or the last), ``state[S_J]``, without bisecting."""
     done = state[S_PHASE] == DONE
-    while not done and not (upward_only and state[S_PHASE] != SCANNING):
+    while not done:
         o = outcome_kernel(P, rec, vert, scan_amplitude(state, grid), unit_peak)
         if o != NO_UPLIFT:
             counts[0] += 1
@@ -127,37 +144,17 @@ def _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, upward_on
 
 
 @njit(cache=True)
-def threshold_scan(P, rec, vert, grid, resolution, unit_peak, handover):
-    """:func:`threshold_kernel`, with the choice of stepper near the threshold.
-
-    ``handover`` < 0: every run takes the stepper of ``P`` (the study's scan). ``handover`` = k >= 0,
-    when the runs of ``P`` take Taylor steps: they scan upward only to the first grid point they
-    overturn at (the last grid point if none); from k grid points below it Dormand–Prince runs scan
-    on, so that point, any above it and every bisection point are Dormand–Prince outcomes. Every run
-    is counted, the Taylor runs the hand-over repeats included.
-    """
-    counts = np.zeros(2, dtype=np.int64)
-    lower = uplift_floor(vert, unit_peak)
-    state = scan_start()
-    if handover >= 0 and takes_taylor_steps(P, vert.shape[0]):
-        _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, True, counts)
-        j = max(int(state[S_J]) - handover, 0)
-        state = scan_start()
-        state[S_J] = j
-        P = P.copy()
-        P[I_TAYLOR] = 0.0
-    _run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, False, counts)
-    return state[S_HI], state[S_LO], counts[0], counts[1]
-
-
-@njit(cache=True)
 def threshold_kernel(P, rec, vert, grid, resolution, unit_peak):
     """Lowest overturning amplitude ratio on ``grid`` refined to ``resolution``.
 
     Returns (threshold, lower_safe, n_simulations, n_undetermined); threshold = NaN when nothing
-    on the grid overturns. An undetermined run (event cap) counts as not overturned and is counted.
+    on the grid overturns. An undetermined run (event cap or step budget) counts as not
+    overturned and is counted.
     """
-    return threshold_scan(P, rec, vert, grid, resolution, unit_peak, -1)
+    counts = np.zeros(2, dtype=np.int64)
+    state = scan_start()
+    run_scan(P, rec, vert, grid, resolution, unit_peak, uplift_floor(vert, unit_peak), state, counts)
+    return state[S_HI], state[S_LO], counts[0], counts[1]
 
 
 @njit(cache=True, inline="always")

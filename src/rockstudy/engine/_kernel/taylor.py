@@ -1,5 +1,5 @@
 """The Taylor-series step between record knots (written by
-:mod:`rockstudy.engine._kernel.taylor_source`; do not edit by hand).
+:mod:`rockstudy.engine._kernel._generate_taylor`; do not edit by hand).
 
 Between two knots of a record Ẍg is linear and Ÿg = 0, so θ(t₀ + τ) is analytic on the step and its
 Taylor coefficients follow from Eq. (1) by recurrences (automatic differentiation; the module that

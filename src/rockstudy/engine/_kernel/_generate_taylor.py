@@ -2,7 +2,7 @@
 straight-line scalar code (every coefficient a local variable, so that the compiled step keeps them
 in registers and allocates nothing).
 
-Run ``python -m rockstudy.engine._kernel.taylor_source`` after changing :data:`ORDER` or the
+Run ``python -m rockstudy.engine._kernel._generate_taylor`` after changing :data:`ORDER` or the
 recurrences below; ``tests/engine/test_taylor.py`` checks that the module on disk is what this
 writes.
 
@@ -26,7 +26,7 @@ ORDER = 6
 """Degree of the θ polynomial of a step; its last term is the step's error estimate."""
 
 HEADER = '''"""The Taylor-series step between record knots (written by
-:mod:`rockstudy.engine._kernel.taylor_source`; do not edit by hand).
+:mod:`rockstudy.engine._kernel._generate_taylor`; do not edit by hand).
 
 Between two knots of a record Ẍg is linear and Ÿg = 0, so θ(t₀ + τ) is analytic on the step and its
 Taylor coefficients follow from Eq. (1) by recurrences (automatic differentiation; the module that
