@@ -73,14 +73,19 @@ OVERVIEW_BEYOND = f"{REPORT_DIR}/overview_beyond.html"
 """The headline numbers of the studies beyond the paper in `all` (the fragility medians), for the overview page."""
 
 
+BEYOND_PAGES_READ = ([("fragility", name) for name in RECORD_SETS] if BEYOND else []) + (
+    [("risk", name) for name in RECORD_SETS] if BEYOND and config.get("risk") else [])
+"""(kind, record set) of the fragility and risk datasets the overview reads."""
+
+
 # One rule makes every page of `all` (one node of the rule graph instead of one per page).
 rule report_pages:
     input:
         claims=f"{OUT}/reproduction/claims.nc",
         comparison=f"{OUT}/reproduction/table1_vs_paper.nc",
         tables=[entry[0] for entry in HTML_TABLES.values()],
-        fragility=[f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS] if BEYOND else [],
-        risk=[f"{OUT}/risk/{name}.nc" for name in RECORD_SETS] if BEYOND and config.get("risk") else [],
+        fragility=[f"{OUT}/{kind}/{name}.nc" for kind, name in BEYOND_PAGES_READ if kind == "fragility"],
+        risk=[f"{OUT}/{kind}/{name}.nc" for kind, name in BEYOND_PAGES_READ if kind == "risk"],
     output:
         claims=report(f"{OUT}/reproduction/claims.html", caption="../report/claims.rst", category="Reproduction",
                       subcategory="Claims and Table 1",
@@ -95,11 +100,9 @@ rule report_pages:
         f"{OUT}/logs/report/report_pages.log",
     params:
         expect=expected([f"{OUT}/reproduction/claims.nc", f"{OUT}/reproduction/table1_vs_paper.nc"]
-                        + [f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS] * bool(BEYOND)
-                        + [f"{OUT}/risk/{name}.nc" for name in RECORD_SETS] * bool(BEYOND and config.get("risk")),
+                        + [f"{OUT}/{kind}/{name}.nc" for kind, name in BEYOND_PAGES_READ],
                         [EXPECT.claims(), EXPECT.table1_comparison()]
-                        + [EXPECT.fragility(name) for name in RECORD_SETS] * bool(BEYOND)
-                        + [EXPECT.risk(name) for name in RECORD_SETS] * bool(BEYOND and config.get("risk"))),
+                        + [getattr(EXPECT, kind)(name) for kind, name in BEYOND_PAGES_READ]),
         pages=REPORT_CODE,
     localrule: True
     conda:
