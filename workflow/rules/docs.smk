@@ -15,6 +15,9 @@ rule docs:
         numbers="docs/figures/run_numbers.csv",
     log:
         f"{OUT}/logs/docs.log",
+    params:
+        expect=expected([f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS] if BEYOND else [],
+                        [EXPECT.fragility(name) for name in RECORD_SETS] if BEYOND else []),
     localrule: True
     conda:
         "../envs/rockstudy.yaml"

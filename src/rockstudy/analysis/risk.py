@@ -117,9 +117,10 @@ def fragility_from_dataset(ds: xr.Dataset, strategy: str) -> LognormalFragility:
     if strategy not in strategies:
         raise validation.InputError(f"strategy {strategy!r} is not in the fragility dataset (it has "
                                     f"{', '.join(strategies)})")
-    if "fragility_median_physical" in ds and ds["fragility_median_physical"].attrs.get("units") == "g":
+    in_g = (G_N, "g")  # PGA in units of standard gravity (files of rockstudy 0.2.0 wrote "g")
+    if "fragility_median_physical" in ds and ds["fragility_median_physical"].attrs.get("units") in in_g:
         median = float(ds["fragility_median_physical"].sel(strategy=strategy))
-    elif ds["fragility_median"].attrs.get("units") == "g":
+    elif ds["fragility_median"].attrs.get("units") in in_g:
         median = float(ds["fragility_median"].sel(strategy=strategy))
     else:
         raise validation.InputError("the fragility dataset's median is not a PGA in g (intensity_measure "

@@ -29,6 +29,7 @@ from rockstudy.engine.simulate import DEFAULT_FREE_TIME, OVERTURN_CRITERIA
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS
 from rockstudy.model.control import STRATEGIES, Control
+from rockstudy.model.records import STANDARD_GRAVITY_UNITS
 
 ANCHORAGE, CONTROL = Anchorage(), Control()
 """The library's defaults the options show."""
@@ -163,7 +164,7 @@ def run_fragility(args, parser) -> None:
     write_netcdf(ds, args.output)
     d = ds.sel(strategy=args.strategy)
     unit = ds["fragility_median_physical"].attrs["units"]
-    key = "median_g" if unit == "g" else "median_pgv_m_per_s"
+    key = "median_g" if unit in (STANDARD_GRAVITY_UNITS, "g") else "median_pgv_m_per_s"
     print(json.dumps({"strategy": args.strategy, "suite": args.suite, "n_records": len(entries),
                       key: _value(d.fragility_median_physical), f"{key}_low": _value(d.median_low_physical),
                       f"{key}_high": _value(d.median_high_physical), "dispersion": _value(d.fragility_dispersion),
