@@ -81,13 +81,14 @@ ROCKSTUDY = [(w, c) for w, c in COMMANDS if c[0] == "rockstudy"]
 
 def dry(words: list[str]) -> list[str]:
     """A snakemake command line as a dry run: -n, without --report (which needs finished results) and without
-    a cluster profile."""
+    a cluster profile, and with the software already installed (``--sdm conda`` would need conda; the environment
+    file itself is checked by tests/test_environment.py)."""
     out, skip = [], False
     for word in words[1:]:
         if skip:
             skip = False
             continue
-        if word in ("--report", "--profile"):
+        if word in ("--report", "--profile", "--sdm", "--software-deployment-method"):
             skip = True
             continue
         if word.startswith(("--report=", "--profile=", "-j")) or word in ("--cores",):
