@@ -13,7 +13,7 @@ import sys
 
 from snakemake.utils import min_version, validate
 
-from rockstudy.core import declarations
+from rockstudy.core import config_files
 from rockstudy.studies import device_calibration as calibration
 from rockstudy import report as report_pages
 from rockstudy.studies import parameters, study
@@ -21,7 +21,7 @@ from rockstudy.studies import parameters, study
 min_version("9.0")
 
 try:  # the --configfile files as written (bounded, aliases expanded): an overlay replaces the sections it gives
-    OVERLAYS = [declarations.load_yaml(path) for path in workflow.overwrite_configfiles]
+    OVERLAYS = [config_files.load_yaml(path) for path in workflow.overwrite_configfiles]
 except ValueError as exc:
     sys.exit(f"config error: {exc}")
 
@@ -37,7 +37,7 @@ report: "workflow/report/workflow.rst"
 # a bad key ends the run with one short message naming it (exit 1, no traceback).
 try:
     for overlay in OVERLAYS:
-        declarations.replace_sections(config, overlay)
+        config_files.replace_sections(config, overlay)
     study.check_study(config)
 except ValueError as exc:
     sys.exit(f"config error: {exc}")

@@ -26,7 +26,7 @@ import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from rockstudy.core import declarations, validation
+from rockstudy.core import config_files, declarations, validation
 from rockstudy.studies import study
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -249,7 +249,7 @@ def test_an_overlay_block_replaces_the_preset():
     config["block"].update(overlay["block"])
     config["results_dir"] = overlay["results_dir"]
     if "replace_sections" in (ROOT / "Snakefile").read_text():  # what the Snakefile does after the merge
-        declarations.replace_sections(config, overlay)
+        config_files.replace_sections(config, overlay)
     message = config_outcome(config)
     verdict("config sections", message is None, f"tall.yaml overlay: {message}")
 

@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from rockstudy.core import declarations
+from rockstudy.core import config_files, declarations
 
 ROOT = Path(__file__).resolve().parents[1]
 FENCE = re.compile(r"^```(\w+)[^\n]*\n(.*?)^```", re.MULTILINE | re.DOTALL)
@@ -58,7 +58,7 @@ def test_yaml_block_is_a_valid_config_or_overlay(where, body):
     data = yaml.safe_load(body)
     if not isinstance(data, dict) or not set(data) <= set(declarations.Study.model_fields):
         return  # not a config: parsed is enough
-    config = declarations.replace_sections(merge(copy.deepcopy(DEFAULT), data), data)
+    config = config_files.replace_sections(merge(copy.deepcopy(DEFAULT), data), data)
     study.check_study(config)
 
 

@@ -8,6 +8,7 @@ import jsonschema
 import pytest
 import yaml
 
+from rockstudy.core import config_files
 from rockstudy.core import declarations as d
 from rockstudy.core.validation import InputError
 
@@ -94,7 +95,7 @@ def test_overlay_replaces_the_block_it_gives():
     overlay = {"block": {"width": 0.5, "height": 2.5, "depth": 0.5}, "noise_levels": {"R000": 0.0, "R005": 0.05}}
     merged["block"].update(overlay["block"])  # Snakemake's deep merge
     merged["noise_levels"].update(overlay["noise_levels"])
-    d.replace_sections(merged, overlay)
+    config_files.replace_sections(merged, overlay)
     assert merged["block"] == overlay["block"] and merged["noise_levels"] == overlay["noise_levels"]
     d.check_config(merged)
 
@@ -106,7 +107,7 @@ def test_alias_bomb_is_refused_at_once(tmp_path):
     bomb.write_text("\n".join(lines) + "\n")
     t0 = time.perf_counter()
     with pytest.raises(InputError, match="alias bomb"):
-        d.load_yaml(bomb)
+        config_files.load_yaml(bomb)
     assert time.perf_counter() - t0 < 2.0
 
 
@@ -115,4 +116,4 @@ def test_load_yaml_refuses_what_is_not_a_config(tmp_path, text, needle):
     path = tmp_path / "c.yaml"
     path.write_text(text)
     with pytest.raises(InputError, match=needle):
-        d.load_yaml(path)
+        config_files.load_yaml(path)

@@ -13,7 +13,7 @@ import os
 
 from rockstudy.analysis.scenario import DEFAULT_BLOCK, DEFAULT_EXCITATION, DEFAULT_OVERTURN_CRITERION
 from rockstudy.analysis.spectra import AmplitudeGrid
-from rockstudy.core import declarations, validation
+from rockstudy.core import config_files, declarations, validation
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME, ENGINES, OVERTURN_CRITERIA
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS
@@ -222,7 +222,7 @@ def _apply_config(args, argv, parser) -> None:
     if path is None:
         return
     try:  # a config like any other: every key it gives is checked as declared, unknown keys refused
-        config = declarations.load_yaml(path, f"argument --config: {path}")
+        config = config_files.load_yaml(path, f"argument --config: {path}")
         declarations.check_config(config, declarations.PartialStudy, f"argument --config: {path}")
     except validation.InputError as exc:
         parser.error(str(exc))

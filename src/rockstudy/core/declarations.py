@@ -36,6 +36,7 @@ from pydantic import (
 
 from rockstudy.core import risk_inputs as r
 from rockstudy.core import validation as v
+from rockstudy.core.config_files import count_nodes
 from rockstudy.core.validation import InputError
 
 SCHEMA_PATH = "workflow/schemas/config.schema.yaml"
@@ -421,82 +422,7 @@ OPTIONS = {
 """The command line's numeric options, each declared like the config key it stands for (``--kappa-max`` is
 ``anchorage.kappa_max``); the CLI checks them with :func:`check_option`."""
 
-REPLACED_BY_OVERLAY = ("block", "noise_levels", "reproduction.readings", "beyond.fragility.records")
-"""Config keys whose value an overlay replaces whole instead of merging into: sections with alternatives
-(a block by preset or by dimensions) and mappings of names (noise levels, readings)."""
-
-MAX_NODES = 100_000
-"""Most nodes (mappings, lists and scalars, aliases expanded) of a config: a few-hundred-byte YAML alias
-bomb expands to billions, which any walk over it would take hours to visit."""
-
-
 # ----------------------------------------------------------------------------------------------- checks
-
-def replace_sections(config: dict, overlay: dict) -> dict:
-    """Give ``config`` (already deep-merged with ``overlay``, as Snakemake merges a ``--configfile``) the
-    overlay's own value of every key of :data:`REPLACED_BY_OVERLAY` it sets: an overlay's ``block:`` with
-    dimensions replaces the preset instead of being merged into it. Returns ``config`` (changed in place).
-    A YTE template (``__use_yte__: true``) is left to Snakemake's merge: its text is not the values it makes."""
-    if overlay.get("__use_yte__"):
-        return config
-    for path in REPLACED_BY_OVERLAY:
-        *parents, key = path.split(".")
-        src, dst = overlay, config
-        for part in parents:
-            src, dst = (src.get(part) if isinstance(src, dict) else None), (
-                dst.get(part) if isinstance(dst, dict) else None)
-        if isinstance(src, dict) and key in src and isinstance(dst, dict):
-            dst[key] = src[key]
-    return config
-
-
-LONG_LISTS = {"beyond.fragility.records": v.MAX_SUITE_RECORDS}
-"""Lists allowed more than :data:`~rockstudy.core.validation.MAX_LIST_ITEMS` entries, by key path."""
-
-
-def count_nodes(value, limit: int = MAX_NODES, name: str = "config") -> int:
-    """Nodes of a parsed config, aliases expanded, refused (:class:`InputError`) beyond ``limit`` as soon as
-    the count passes it (the walk never visits more than ``limit`` nodes), and no list or mapping longer
-    than :data:`~rockstudy.core.validation.MAX_LIST_ITEMS` entries (:data:`LONG_LISTS`), naming its key path."""
-    count, stack = 0, [(value, "")]
-    while stack:
-        node, path = stack.pop()
-        count += 1
-        if isinstance(node, (dict, list, tuple)):
-            most = LONG_LISTS.get(path, v.MAX_LIST_ITEMS)
-            if len(node) > most:
-                v.fail(f"{name}: {path}" if path else name, f"{len(node)} entries",
-                       f"at most {most} entries (each one multiplies the workflow's jobs, which Snakemake plans "
-                       "before any runs)")
-            count += len(node)
-            if count > limit:
-                raise InputError(f"{name}: more than {limit} values (YAML aliases expanded) is not allowed; a "
-                                 "config this large is an alias bomb or not a config")
-            if isinstance(node, dict):
-                stack.extend((item, f"{path}.{k}" if path else str(k)) for k, item in node.items())
-            else:
-                stack.extend((item, f"{path}[{i}]") for i, item in enumerate(node))
-    return count
-
-
-def load_yaml(path, name: str | None = None) -> dict:
-    """A YAML (or JSON) config file as a dict, refused when it is not a bounded mapping (:func:`count_nodes`),
-    not a regular file of at most 1 MiB, or not valid YAML; the message names the file."""
-    import yaml
-    name = name or str(path)
-    p = v.check_input_file(name, path, 2**20)
-    try:
-        with open(p, encoding="utf-8") as f:
-            data = yaml.safe_load(f)
-    except (yaml.YAMLError, UnicodeDecodeError) as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f" (line {mark.line + 1})" if mark is not None else ""
-        raise InputError(f"{name}: not valid YAML{where}: {getattr(exc, 'problem', None) or exc}") from None
-    if not isinstance(data, dict):
-        raise InputError(f"{name}: a config is a mapping of keys, got {type(data).__name__}")
-    count_nodes(data, name=name)
-    return data
-
 
 def _short(value, width: int = 60) -> str:
     text = repr(value)

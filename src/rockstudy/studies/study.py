@@ -23,16 +23,16 @@ from rockstudy.studies.parameters import (
 
 def check_sizes(config: dict) -> None:
     """No list or mapping of the config is longer than declared (:mod:`rockstudy.core.declarations`), and the
-    config has at most :data:`~rockstudy.core.declarations.MAX_NODES` values (YAML aliases expanded).
+    config has at most :data:`~rockstudy.core.config_files.MAX_NODES` values (YAML aliases expanded).
 
     Raises
     ------
     ValueError
         (:class:`rockstudy.core.validation.InputError`) naming the key path.
     """
-    from rockstudy.core import declarations
+    from rockstudy.core import config_files
 
-    declarations.count_nodes(config)
+    config_files.count_nodes(config)
 
 
 def check_study(config: dict) -> None:
