@@ -430,7 +430,29 @@ def fragility_markdown(ds: xr.Dataset) -> str:
     lines.append(f"{ds.attrs['n_records']} records, {ds.sizes['intensity']} IM levels "
                  f"({float(ds.intensity.min()):g}–{float(ds.intensity.max()):g}); "
                  f"{ds.attrs['n_bootstrap']} bootstrap draws over records.")
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines + _two_fits(ds)) + "\n"
+
+
+def _two_fits(ds: xr.Dataset) -> list:
+    """The two lognormal fits of one object in PGA [g], side by side: the stripes' fit (P(overturn) at each
+    level, the table above, which the risk uses) and the fit of the records' thresholds (their first
+    overturning); empty for a fragility without per-record thresholds in PGA."""
+    if not {"threshold_pga", "fragility_median_physical"} <= set(ds.data_vars) or "record_pga" not in ds.coords:
+        return []
+    if ds.attrs.get("intensity_measure") != "pga_ratio":
+        return []
+    from rockstudy.analysis.risk import threshold_fit
+    rows = ["", "Two fits of the same object, PGA in g: the stripes' (P(overturn) at each level, above; the risk "
+                "uses it) and the records' thresholds' (the first overturning the upward scan finds along each "
+                "record's scale, a record without one censored at the last level). They differ because "
+                "overturning is not monotone in the scale: a record can overturn the block at one scale and not "
+                "at a higher one.", "",
+            "| strategy | stripes' fit θ [g] (β) | records' thresholds' fit θ [g] (β) |", "|---|---|---|"]
+    for s in ds.strategy.values:
+        d, fit = ds.sel(strategy=s), threshold_fit(ds, str(s))
+        rows.append(f"| {s} | {float(d.fragility_median_physical):.3f} ({float(d.fragility_dispersion):.2f}) "
+                    f"| {fit.median:.3f} ({fit.dispersion:.2f}) |")
+    return rows
 
 
 def suite_summary_markdown(rows) -> str:

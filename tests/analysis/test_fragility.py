@@ -90,3 +90,13 @@ def test_suite_fragility_names_every_record_and_its_threshold(blc06):
     np.testing.assert_allclose(ds.fragility_median_physical.values, ds.fragility_median.values
                                * blc06.uplift_acceleration / STANDARD_GRAVITY)
     np.testing.assert_allclose(ds.threshold_pga.values, ds.threshold_scale.values * ds.record_pga.values[None, :])
+    # the table shows both fits of the object in g: the stripes' and the records' thresholds'
+    from rockstudy.analysis.risk import threshold_fit
+    from rockstudy.report import fragility_markdown
+    table = fragility_markdown(ds)
+    assert "records' thresholds' fit" in table
+    for s in ("FS", "CS01"):
+        fit, d = threshold_fit(ds, s), ds.sel(strategy=s)
+        row = (f"| {s} | {float(d.fragility_median_physical):.3f} ({float(d.fragility_dispersion):.2f}) "
+               f"| {fit.median:.3f} ({fit.dispersion:.2f}) |")
+        assert row in table
