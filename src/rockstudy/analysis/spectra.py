@@ -68,7 +68,27 @@ DEFAULT_FREQUENCY_GRID = {"start": 0.25, "stop": 5.0, "step": 0.1}
 
 def frequency_grid(start: float = DEFAULT_FREQUENCY_GRID["start"], stop: float = DEFAULT_FREQUENCY_GRID["stop"],
                    step: float = DEFAULT_FREQUENCY_GRID["step"]) -> np.ndarray:
-    """Frequency ratios ω_p/p from ``start`` to ``stop`` (inclusive) in ``step``. [-]"""
+    """Frequency ratios ω_p/p from ``start`` to ``stop`` (inclusive) in ``step``: the abscissa of an
+    overturning spectrum.
+
+    Parameters
+    ----------
+    start, stop : float
+        First and last ω_p/p, 0 < start <= stop <= :data:`~rockstudy.core.validation.MAX_FREQUENCY_RATIO`. [-]
+    step : float
+        Spacing of the ratios; the grid has at most :data:`~rockstudy.core.validation.MAX_GRID_POINTS`
+        points. [-]
+
+    Returns
+    -------
+    numpy.ndarray
+        The ratios, rounded to 10 decimals so that a grid read back from a file compares equal. [-]
+
+    Raises
+    ------
+    rockstudy.core.validation.InputError
+        Naming the argument that is out of range.
+    """
     # finite numbers (not bools), 0 < start <= stop <= the largest ratio, at most MAX_GRID_POINTS points: the
     # size is bounded before the grid is made
     validation.check_grid("frequency_grid", start, stop, step, high=validation.MAX_FREQUENCY_RATIO)
