@@ -83,7 +83,9 @@ def plot_scenario_probabilities(ax, risk):
         ax.errorbar(x, p, yerr=[np.nan_to_num(p - lo), np.nan_to_num(hi - p)], fmt="none", ecolor="0.2", capsize=3)
     ax.set_xticks(np.arange(len(strategies)), strategies)
     ax.set_ylabel("P(overturn | scenario) [-]")
-    ax.set_ylim(0, 1)
+    top = np.nanmax(np.concatenate([risk["scenario_probability_high"].values.ravel(),
+                                    risk["scenario_probability"].values.ravel(), [0.0]]))
+    ax.set_ylim(0, min(1.0, 1.2 * top) if top > 0 else 1.0)  # from the data: small probabilities stay readable
     return bars
 
 
