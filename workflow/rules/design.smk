@@ -93,8 +93,8 @@ if DESIGN:
         log:
             f"{OUT}/logs/design/gather.log",
         params:
-            expect={**expected(DESIGN_BLOCK_FILES, [EXPECT.design_block(*key) for key in DESIGN_BLOCK_KEYS]),
-                    **expected(DESIGN_DEVICE_FILES, [EXPECT.design_device(*key) for key in DESIGN_DEVICE_KEYS])},
+            expect=report_pages.ExpectedAttributes({**expected(DESIGN_BLOCK_FILES, [EXPECT.design_block(*key) for key in DESIGN_BLOCK_KEYS]),
+                    **expected(DESIGN_DEVICE_FILES, [EXPECT.design_device(*key) for key in DESIGN_DEVICE_KEYS])}),
             target=DDEVICES["target_median_g"],
             block=config["block"],
             library=BOOKKEEPING,

@@ -59,9 +59,9 @@ rule figure_realisations:
     log:
         f"{OUT}/logs/figures/fig5_realisations.log",
     params:
-        expect={**expected(spectrum_files([EX["strategy"]], [EX["noise_level"]]),
+        expect=report_pages.ExpectedAttributes({**expected(spectrum_files([EX["strategy"]], [EX["noise_level"]]),
                            spectra_expected([EX["strategy"]], [EX["noise_level"]])),
-                **expected(EX_HISTORIES, EX_HISTORIES_EXPECTED)},
+                **expected(EX_HISTORIES, EX_HISTORIES_EXPECTED)}),
         plotting=PLOTTING,
         point=EX,
         a_max0=config["a_max0"],
@@ -85,8 +85,8 @@ rule figure_noise_sensitivity:
     log:
         f"{OUT}/logs/figures/fig6_noise_sensitivity.log",
     params:
-        expect={**CONVERGENCE,
-                **expected(spectrum_files(FIG6_PANELS, LEVELS), spectra_expected(FIG6_PANELS, LEVELS))},
+        expect=report_pages.ExpectedAttributes({**CONVERGENCE,
+                **expected(spectrum_files(FIG6_PANELS, LEVELS), spectra_expected(FIG6_PANELS, LEVELS))}),
         plotting=PLOTTING,
         panels=FIG6_PANELS,
         a_max0=config["a_max0"],
@@ -109,9 +109,9 @@ rule figure_sampling:
     log:
         f"{OUT}/logs/figures/fig7_sampling.log",
     params:
-        expect={**expected(SAMPLING_FILES, [EXPECT.spectrum(*key) for key in SAMPLING_KEYS]),
+        expect=report_pages.ExpectedAttributes({**expected(SAMPLING_FILES, [EXPECT.spectrum(*key) for key in SAMPLING_KEYS]),
                 **expected(spectrum_files(SAMPLING["strategies"], [SAMPLING["noise_level"]]),
-                           spectra_expected(SAMPLING["strategies"], [SAMPLING["noise_level"]]))},
+                           spectra_expected(SAMPLING["strategies"], [SAMPLING["noise_level"]]))}),
         plotting=PLOTTING,
         variable="sampling_time",
         paper_figure="7",
@@ -135,8 +135,8 @@ rule figure_delay:
     log:
         f"{OUT}/logs/figures/fig8_delay.log",
     params:
-        expect={**expected(DELAY_FILES, [EXPECT.spectrum(*key) for key in DELAY_KEYS]),
-                **expected(DELAY_REFERENCES, [EXPECT.spectrum(*key) for key in DELAY_REFERENCE_KEYS])},
+        expect=report_pages.ExpectedAttributes({**expected(DELAY_FILES, [EXPECT.spectrum(*key) for key in DELAY_KEYS]),
+                **expected(DELAY_REFERENCES, [EXPECT.spectrum(*key) for key in DELAY_REFERENCE_KEYS])}),
         plotting=PLOTTING,
         variable="delay",
         paper_figure="8",

@@ -46,9 +46,9 @@ rule claims:
     log:
         f"{OUT}/logs/reproduction/claims.log",
     params:
-        expect={**expected([f"{OUT}/tables/{t}.nc" for t in ("table1", "timing_sampling", "timing_delay")],
+        expect=report_pages.ExpectedAttributes({**expected([f"{OUT}/tables/{t}.nc" for t in ("table1", "timing_sampling", "timing_delay")],
                            [EXPECT.table1(), EXPECT.timing_table("sampling"), EXPECT.timing_table("delay")]),
-                **CONVERGENCE, **expected(spectrum_files(FIG6_PANELS, LEVELS), spectra_expected(FIG6_PANELS, LEVELS))},
+                **CONVERGENCE, **expected(spectrum_files(FIG6_PANELS, LEVELS), spectra_expected(FIG6_PANELS, LEVELS))}),
         bookkeeping=BOOKKEEPING,
         noise_levels=LEVELS,
         a_max0=config["a_max0"],
@@ -73,8 +73,8 @@ rule readings_table:
     log:
         f"{OUT}/logs/reproduction/readings_table.log",
     params:
-        expect={**expected(READING_SPECTRA, READING_SPECTRA_EXPECTED),
-                **expected([f"{OUT}/spectra/{REPRO['strategy']}_{FREE}.nc"], [EXPECT.spectrum(REPRO["strategy"], FREE)])},
+        expect=report_pages.ExpectedAttributes({**expected(READING_SPECTRA, READING_SPECTRA_EXPECTED),
+                **expected([f"{OUT}/spectra/{REPRO['strategy']}_{FREE}.nc"], [EXPECT.spectrum(REPRO["strategy"], FREE)])}),
         bookkeeping=BOOKKEEPING,
         spectrum_keys=[(name, level) for name in READINGS for level in NOISY],
         readings=READINGS,
@@ -234,9 +234,9 @@ rule calibration_refine:
     log:
         f"{OUT}/logs/reproduction/calibration/refine.log",
     params:
-        expect={**expected([f"{OUT}/reproduction/calibration/grid.nc"] + CAL_REFINE,
+        expect=report_pages.ExpectedAttributes({**expected([f"{OUT}/reproduction/calibration/grid.nc"] + CAL_REFINE,
                            [EXPECT.calibration_grid()] + [EXPECT.calibration_refined(*key) for key in CAL_REFINE_KEYS]),
-                **expected(fs_spectra_of_the_study(), spectra_expected(["FS"], LEVELS))},
+                **expected(fs_spectra_of_the_study(), spectra_expected(["FS"], LEVELS))}),
         block=config["block"],
         candidates=CAL["candidates"],
         levels=LEVELS,

@@ -269,13 +269,13 @@ rule timing_table_sampling:
     log:
         f"{OUT}/logs/tables/timing_sampling.log",
     params:
-        expect={
+        expect=report_pages.ExpectedAttributes({
             **expected(SAMPLING_FILES, [EXPECT.spectrum(*key) for key in SAMPLING_KEYS]),
             **expected(spectrum_files(SAMPLING["strategies"], [SAMPLING["noise_level"]]),
                        spectra_expected(SAMPLING["strategies"], [SAMPLING["noise_level"]])),
             **expected(spectrum_files(["FS"], [SAMPLING["noise_level"]]),
                        spectra_expected(["FS"], [SAMPLING["noise_level"]])),
-        },
+        }),
         bookkeeping=BOOKKEEPING,
         variable="sampling_time",
         reference="continuous_same_noise",
@@ -299,11 +299,11 @@ rule timing_table_delay:
     log:
         f"{OUT}/logs/tables/timing_delay.log",
     params:
-        expect={
+        expect=report_pages.ExpectedAttributes({
             **expected(DELAY_FILES, [EXPECT.spectrum(*key) for key in DELAY_KEYS]),
             **expected(DELAY_REFERENCES, [EXPECT.spectrum(*key) for key in DELAY_REFERENCE_KEYS]),
             **expected(spectrum_files(["FS"], [DELAY["noise_level"]]), spectra_expected(["FS"], [DELAY["noise_level"]])),
-        },
+        }),
         bookkeeping=BOOKKEEPING,
         variable="delay",
         reference="sampled_without_delay_same_noise",
