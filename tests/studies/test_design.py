@@ -66,3 +66,24 @@ def test_pga_levels_are_geometric():
     np.testing.assert_allclose(levels, [0.1, math.sqrt(0.1), 1.0])
     with pytest.raises(ValueError):
         design.pga_levels(1.0, 0.5, 3)
+
+
+def test_the_design_answer_says_when_the_medians_interval_holds_the_target():
+    """A median above the target whose 95 % interval reaches below it: the sentence that gives the answer says
+    the records do not settle it (CS02 at kappa_max = 1 of the default design: 0.884 g, 0.848-0.922 g against
+    0.9 g, is the case this guards); an interval wholly above the target gets no such note."""
+    import xarray as xr
+    points = []
+    for k, (m, lo, hi) in ((0.5, (0.80, 0.75, 0.85)), (1.0, (0.92, 0.88, 0.96)), (2.0, (1.1, 1.05, 1.15))):
+        points.append(xr.Dataset({"fragility_median": ("strategy", [0.6, m]),
+                                  "fragility_median_low": ("strategy", [0.55, lo]),
+                                  "fragility_median_high": ("strategy", [0.65, hi])},
+                                 coords={"strategy": ["FS", "CS02"], "kappa_max": k, "damping_ratio": 0.05},
+                                 attrs={"record_suite": "s", "n_records": 3, "compute_time_s": 1.0}))
+    devices = design.gather_devices(points)
+    assert devices.fragility_median_low.sel(strategy="CS02", damping_ratio=0.05).values.tolist() == [0.75, 0.88, 1.05]
+    held = design.design_markdown(devices, 0.9, "block BLC06")
+    assert "κ_max ≥ 1 keeps the median above 0.9 g" in held
+    assert "its 95 % interval, 0.880–0.960 g, holds the target" in held
+    clear = design.design_markdown(devices, 0.85, "block BLC06")
+    assert "κ_max ≥ 1 keeps the median above 0.85 g" in clear and "holds the target" not in clear

@@ -66,6 +66,8 @@ def fragility_medians_g(block: Block, anchorage: Anchorage, controls, records, l
     fractions : ndarray, shape (control, level)
         Fraction of the records that overturn the block at each level.
     status : list of str
+    intervals : ndarray, shape (control, 2)
+        95 % Wald interval of each median [g] (NaN without a fit).
     """
     levels_g = np.asarray(levels_g, dtype=float)
     ratio = levels_g * STANDARD_GRAVITY / block.uplift_acceleration  # PGA/(g tan(alpha)) of each level
@@ -76,8 +78,9 @@ def fragility_medians_g(block: Block, anchorage: Anchorage, controls, records, l
                             free_time=free_time)
             counts[c] += is_overturned(grid_outcomes(run, ratio))
     fits = [fit_lognormal(levels_g, np.full(levels_g.size, len(records)), counts[c]) for c in range(len(controls))]
+    intervals = np.array([f.median_interval() if math.isfinite(f.median) else (math.nan, math.nan) for f in fits])
     return (np.array([f.median for f in fits]), np.array([f.dispersion for f in fits]), counts / len(records),
-            [f.status for f in fits])
+            [f.status for f in fits], intervals.reshape(len(fits), 2))
 
 
 def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, frequency_ratios, *,
@@ -125,7 +128,7 @@ def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, freque
                                     freqs, grid=grid, progress_chunks=1)["threshold"].values for c in controls])
     fs = thresholds[list(strategies).index("FS")]
     jos = np.array([utility_index(t, fs, a_max0_ratio, undefined="nan")[0] for t in thresholds])
-    medians, betas, _, status = fragility_medians_g(block, anchorage, controls, records, levels_g,
+    medians, betas, _, status, _ = fragility_medians_g(block, anchorage, controls, records, levels_g,
                                                     overturn_criterion=overturn_criterion, free_time=free_time)
     ds = xr.Dataset(
         {"threshold": (("strategy", "frequency_ratio"), thresholds,
@@ -157,13 +160,18 @@ def device_point(block: Block, kappa_max: float, damping_ratio: float, strategie
     """One point of the device sweep: the fragility median [g] of each strategy with this device."""
     t0 = time.perf_counter()
     anchorage = Anchorage(kappa_max=kappa_max, kappa_min=kappa_min, damping_ratio=damping_ratio)
-    medians, betas, _, status = fragility_medians_g(block, anchorage, [Control(s) for s in strategies], records,
+    medians, betas, _, status, interval = fragility_medians_g(block, anchorage, [Control(s) for s in strategies],
+                                                              records,
                                                     levels_g, overturn_criterion=overturn_criterion,
                                                     free_time=free_time)
     ds = xr.Dataset(
         {"fragility_median": ("strategy", medians, {
              "units": STANDARD_GRAVITY_UNITS, "long_name": f"fragility median PGA on {suite}",
              "comment": gravity_comment(block)}),
+         "fragility_median_low": ("strategy", interval[:, 0], {
+             "units": STANDARD_GRAVITY_UNITS, "long_name": "fragility median PGA, low end of its 95 % Wald interval"}),
+         "fragility_median_high": ("strategy", interval[:, 1], {
+             "units": STANDARD_GRAVITY_UNITS, "long_name": "fragility median PGA, high end of its 95 % Wald interval"}),
          "fragility_dispersion": ("strategy", betas, {"units": "1", "long_name": "fragility dispersion beta"}),
          "fit_status": ("strategy", status, {"long_name": "see rockstudy.analysis.fragility.FragilityFit"})},
         coords={"strategy": ("strategy", list(strategies)),
@@ -207,13 +215,15 @@ def gather_devices(points) -> xr.Dataset:
     kappas = sorted({float(p.kappa_max) for p in points})
     xis = sorted({float(p.damping_ratio) for p in points})
     strategies = list(points[0].strategy.values)
-    med = np.full((len(strategies), len(kappas), len(xis)), np.nan)
+    names = [n for n in ("fragility_median", "fragility_median_low", "fragility_median_high") if n in points[0]]
+    values = {n: np.full((len(strategies), len(kappas), len(xis)), np.nan) for n in names}
     for p in points:
-        med[:, kappas.index(float(p.kappa_max)), xis.index(float(p.damping_ratio))] = \
-            p.fragility_median.sel(strategy=strategies).values
+        for n in names:
+            values[n][:, kappas.index(float(p.kappa_max)), xis.index(float(p.damping_ratio))] = \
+                p[n].sel(strategy=strategies).values
     attrs = {k: v for k, v in points[0].attrs.items() if k.startswith("block_") or k in ("record_suite", "n_records")}
     return xr.Dataset(
-        {"fragility_median": (("strategy", "kappa_max", "damping_ratio"), med, points[0].fragility_median.attrs)},
+        {n: (("strategy", "kappa_max", "damping_ratio"), values[n], points[0][n].attrs) for n in names},
         coords={"strategy": strategies,
                 "kappa_max": ("kappa_max", kappas, {"units": "1", "long_name": "4 K_max b^2/(m g R)"}),
                 "damping_ratio": ("damping_ratio", xis, {"units": "1", "long_name": "xi"})},
@@ -255,8 +265,22 @@ def design_markdown(devices: xr.Dataset, target_g: float, block_label: str) -> s
                 m = float(devices.fragility_median.sel(strategy=s, kappa_max=k, damping_ratio=xi))
                 lines.append(f"- For this object, {s} with ξ = {xi:g} and κ_max ≥ {k:g} keeps the median above "
                              f"{target_g:g} g ({m:.3f} g at κ_max = {k:g}, the smallest κ_max of the sweep that "
-                             "does).")
+                             f"does{_interval_note(devices, s, k, float(xi), target_g)}).")
     return "\n".join(lines) + "\n"
+
+
+def _interval_note(devices: xr.Dataset, strategy: str, kappa_max: float, damping_ratio: float,
+                   target_g: float) -> str:
+    """``"; ..."``: that the answer rests on a median whose 95 % interval holds the target (the records do not
+    settle it), or ``""`` when the interval lies above the target or is not stored."""
+    if "fragility_median_low" not in devices:
+        return ""
+    at = {"strategy": strategy, "kappa_max": kappa_max, "damping_ratio": damping_ratio}
+    low, high = (float(devices[n].sel(**at)) for n in ("fragility_median_low", "fragility_median_high"))
+    if not (math.isfinite(low) and low < target_g):
+        return ""
+    return (f"; but its 95 % interval, {low:.3f}–{high:.3f} g, holds the target, so these records do not settle "
+            "whether it is reached")
 
 
 def check_config(section: dict) -> None:
