@@ -260,7 +260,8 @@ def design_markdown(devices: xr.Dataset, target_g: float, block_label: str) -> s
             k = smallest_kappa(devices, s, float(xi), target_g)
             if math.isnan(k):
                 lines.append(f"- For this object, {s} with ξ = {xi:g} does not reach a median of {target_g:g} g "
-                             f"with κ_max up to {float(devices.kappa_max.max()):g}.")
+                             f"with κ_max up to {float(devices.kappa_max.max()):g}"
+                             f"{_interval_note(devices, s, math.nan, float(xi), target_g)}.")
             else:
                 m = float(devices.fragility_median.sel(strategy=s, kappa_max=k, damping_ratio=xi))
                 lines.append(f"- For this object, {s} with ξ = {xi:g} and κ_max ≥ {k:g} keeps the median above "
@@ -271,16 +272,31 @@ def design_markdown(devices: xr.Dataset, target_g: float, block_label: str) -> s
 
 def _interval_note(devices: xr.Dataset, strategy: str, kappa_max: float, damping_ratio: float,
                    target_g: float) -> str:
-    """``"; ..."``: that the answer rests on a median whose 95 % interval holds the target (the records do not
-    settle it), or ``""`` when the interval lies above the target or is not stored."""
+    """``"; ..."`` when the answer κ_max rests on a median whose 95 % interval holds the target: its own
+    (the median is above the target, the interval reaches below it), or that of the κ_max just below it
+    (the median is below the target, the interval reaches above it); ``""`` when neither holds it or no
+    interval is stored. ``kappa_max`` NaN: no κ_max of the sweep reaches the target (the largest is checked)."""
     if "fragility_median_low" not in devices:
         return ""
-    at = {"strategy": strategy, "kappa_max": kappa_max, "damping_ratio": damping_ratio}
-    low, high = (float(devices[n].sel(**at)) for n in ("fragility_median_low", "fragility_median_high"))
-    if not (math.isfinite(low) and low < target_g):
-        return ""
-    return (f"; but its 95 % interval, {low:.3f}–{high:.3f} g, holds the target, so these records do not settle "
-            "whether it is reached")
+    kappas = [float(k) for k in devices.kappa_max.values]
+    notes = []
+
+    def interval(k):
+        at = {"strategy": strategy, "kappa_max": k, "damping_ratio": damping_ratio}
+        return tuple(float(devices[n].sel(**at)) for n in ("fragility_median", "fragility_median_low",
+                                                              "fragility_median_high"))
+
+    if math.isfinite(kappa_max):
+        median, low, high = interval(kappa_max)
+        if math.isfinite(low) and low < target_g:
+            notes.append(f"its 95 % interval, {low:.3f}–{high:.3f} g, reaches below the target")
+    below = [k for k in kappas if k < kappa_max] if math.isfinite(kappa_max) else kappas
+    if below:
+        median, low, high = interval(below[-1])
+        if math.isfinite(high) and high >= target_g:
+            notes.append(f"at κ_max = {below[-1]:g} the median, {median:.3f} g, is below the target but its 95 % "
+                         f"interval, {low:.3f}–{high:.3f} g, reaches it")
+    return ("; " + "; ".join(notes) + ": these records do not settle the smallest κ_max") if notes else ""
 
 
 def check_config(section: dict) -> None:
