@@ -106,13 +106,19 @@ def _common(p: argparse.ArgumentParser, single_frequency=True, realisation=True)
                    help="the controller reads the ground acceleration through a causal 2nd-order Butterworth "
                         "low-pass with this cut-off [Hz], below 1/(2 step) of the record it reads (default: "
                         "it reads the driving acceleration itself)")
+    device_and_end_options(p, "the excitation")
+    p.add_argument("--engine", default=ENGINES[0], choices=ENGINES, help=f"integration engine (default {ENGINES[0]})")
+
+
+def device_and_end_options(p: argparse.ArgumentParser, motion: str) -> None:
+    """The anchorage (``--kappa-max``, ``--kappa-min``, ``--damping-ratio``), the overturning criterion and
+    the free time after ``motion``: the options every command that simulates shares."""
     _numeric(p, "--kappa-max", ANCHORAGE.kappa_max, "4 K_max b^2/(m g R) [-]")
     _numeric(p, "--kappa-min", ANCHORAGE.kappa_min, "4 K_min b^2/(m g R) [-]")
     _numeric(p, "--damping-ratio", ANCHORAGE.damping_ratio, "xi [-]")
     p.add_argument("--overturn-criterion", default=DEFAULT_OVERTURN_CRITERION, choices=OVERTURN_CRITERIA,
                    help=f"overturned at |theta| >= pi/2 (flat) or >= alpha (default {DEFAULT_OVERTURN_CRITERION})")
-    _numeric(p, "--free-time", DEFAULT_FREE_TIME, "free motion allowed after the excitation [s]")
-    p.add_argument("--engine", default=ENGINES[0], choices=ENGINES, help=f"integration engine (default {ENGINES[0]})")
+    _numeric(p, "--free-time", DEFAULT_FREE_TIME, f"free motion allowed after {motion} [s]")
 
 
 CHECKED_OPTIONS = ("--noise-level", "--seed", "--sampling-time", "--delay", "--kappa-max", "--kappa-min",

@@ -15,7 +15,6 @@ suite, and its risk of overturning at a site (:mod:`rockstudy.analysis.risk`).
 """
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import sys
@@ -23,15 +22,15 @@ import warnings
 
 from rockstudy.analysis.fragility import INTENSITY_MEASURES, SUITE_DEFAULTS
 from rockstudy.analysis.hazard import EXTENSIONS
+from rockstudy.cli import options
 from rockstudy.core import validation
 from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, GMMS, RISK_INPUTS
-from rockstudy.engine.simulate import DEFAULT_FREE_TIME, OVERTURN_CRITERIA
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS
 from rockstudy.model.control import STRATEGIES, Control
 from rockstudy.model.records import STANDARD_GRAVITY_UNITS
 
-ANCHORAGE, CONTROL = Anchorage(), Control()
+CONTROL = options.CONTROL
 """The library's defaults the options show."""
 BLOCK_DIMENSIONS = {"width": "base width 2b [m]", "height": "height 2h [m]", "depth": "depth [m]",
                     "density": "density [kg/m^3] (default 2700)",
@@ -39,69 +38,45 @@ BLOCK_DIMENSIONS = {"width": "base width 2b [m]", "height": "height 2h [m]", "de
 """Block options besides the preset ``--block``."""
 
 
-def _typed(option: str, kind=float):
-    """argparse type: a number of ``kind`` (finite), the error naming ``option``."""
-    def convert(text):
-        try:
-            value = kind(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{option} must be {'an integer' if kind is int else 'a number'}, "
-                                             f"got {text!r}") from None
-        try:
-            return validation.check_number(option, value) if kind is float else value
-        except validation.InputError as exc:
-            raise argparse.ArgumentTypeError(str(exc)) from None
-    return convert
-
-
-def _num(p, option: str, default, text: str) -> None:
-    """A number option (its help states the default, the library's)."""
-    p.add_argument(option, type=_typed(option), default=default, help=text)
-
-
 def register(sub) -> None:
     """Add ``fragility`` and ``risk`` to the subparsers ``sub`` (each with ``run``)."""
-    from rockstudy.analysis.scenario import DEFAULT_BLOCK, DEFAULT_OVERTURN_CRITERION
+    from rockstudy.analysis.scenario import DEFAULT_BLOCK
     from rockstudy.model.record_suites import suite_names
     pf = sub.add_parser("fragility", help="fragility of one object on a record suite (netCDF; JSON with median_g "
                         "and dispersion)")
     pf.add_argument("--strategy", default=CONTROL.strategy, choices=STRATEGIES,
                     help=f"control strategy, run beside FS (default {CONTROL.strategy})")
     pf.add_argument("--suite", required=True, choices=suite_names(), help="record suite (see 'rockstudy records')")
-    pf.add_argument("--max-records", type=_typed("--max-records", int), default=None, metavar="N",
+    pf.add_argument("--max-records", type=options._integer("--max-records"), default=None, metavar="N",
                     help="only the suite's first N records (default: all)")
     pf.add_argument("--block", default=DEFAULT_BLOCK, choices=sorted(BLOCK_PRESETS),
                     help=f"block preset (default {DEFAULT_BLOCK}); or give --width, --height, --depth")
     dims = pf.add_argument_group("block by its dimensions (instead of --block)")
     for name, text in BLOCK_DIMENSIONS.items():
-        dims.add_argument(f"--{name}", type=_typed(f"--{name}"), default=None, help=text)
-    _num(pf, "--kappa-max", ANCHORAGE.kappa_max, "4 K_max b^2/(m g R) [-]")
-    _num(pf, "--kappa-min", ANCHORAGE.kappa_min, "4 K_min b^2/(m g R) [-]")
-    _num(pf, "--damping-ratio", ANCHORAGE.damping_ratio, "xi [-]")
-    _num(pf, "--sampling-time", CONTROL.sampling_time, "controller sampling time T_s [s] (0: continuous)")
-    _num(pf, "--delay", CONTROL.delay, "actuation delay [s] (needs T_s > 0)")
-    pf.add_argument("--overturn-criterion", default=DEFAULT_OVERTURN_CRITERION, choices=OVERTURN_CRITERIA,
-                    help=f"overturned at |theta| >= pi/2 (flat) or >= alpha (default {DEFAULT_OVERTURN_CRITERION})")
-    _num(pf, "--free-time", DEFAULT_FREE_TIME, "free motion allowed after the record [s]")
+        dims.add_argument(f"--{name}", type=options._number(f"--{name}"), default=None, help=text)
+    options._numeric(pf, "--sampling-time", CONTROL.sampling_time, "controller sampling time T_s [s] (0: continuous)")
+    options._numeric(pf, "--delay", CONTROL.delay, "actuation delay [s] (needs T_s > 0)")
+    options.device_and_end_options(pf, "the record")
     levels = SUITE_DEFAULTS["intensity_levels"]
     pf.add_argument("--intensity-measure", default=SUITE_DEFAULTS["intensity_measure"], choices=INTENSITY_MEASURES,
                     help=f"intensity measure of the stripes (default {SUITE_DEFAULTS['intensity_measure']})")
-    _num(pf, "--levels-start", levels["start"], "first stripe level [IM]")
-    _num(pf, "--levels-stop", levels["stop"], "last stripe level [IM]")
-    _num(pf, "--levels-step", levels["step"], "step of the stripe levels [IM]")
-    _num(pf, "--threshold-resolution", SUITE_DEFAULTS["threshold_resolution"],
+    options._numeric(pf, "--levels-start", levels["start"], "first stripe level [IM]")
+    options._numeric(pf, "--levels-stop", levels["stop"], "last stripe level [IM]")
+    options._numeric(pf, "--levels-step", levels["step"], "step of the stripe levels [IM]")
+    options._numeric(pf, "--threshold-resolution", SUITE_DEFAULTS["threshold_resolution"],
          "resolution of each record's threshold [IM]")
-    pf.add_argument("--bootstrap", type=_typed("--bootstrap", int), default=SUITE_DEFAULTS["bootstrap"],
+    pf.add_argument("--bootstrap", type=options._integer("--bootstrap"), default=SUITE_DEFAULTS["bootstrap"],
                     help="bootstrap draws over records for the median shift's interval")
-    pf.add_argument("--seed", type=_typed("--seed", int), default=SUITE_DEFAULTS["seed"], help="bootstrap seed")
+    pf.add_argument("--seed", type=options._integer("--seed"), default=SUITE_DEFAULTS["seed"], help="bootstrap seed")
     pf.add_argument("--output", required=True, help="netCDF file to write")
     pf.set_defaults(run=run_fragility)
 
     pr = sub.add_parser("risk", help="rate and probability of overturning from a hazard curve or a scenario, or "
                         "the median meeting a target (JSON)")
     src = pr.add_argument_group("the fragility: --median and --dispersion, or --fragility and --strategy")
-    src.add_argument("--median", type=_typed("--median"), metavar="G", help="fragility median PGA theta [g]")
-    src.add_argument("--dispersion", type=_typed("--dispersion"), metavar="B", help="fragility dispersion beta [-]")
+    src.add_argument("--median", type=options._number("--median"), metavar="G", help="fragility median PGA theta [g]")
+    src.add_argument("--dispersion", type=options._number("--dispersion"), metavar="B",
+                     help="fragility dispersion beta [-]")
     src.add_argument("--fragility", metavar="F.nc", help="a fragility dataset ('rockstudy fragility' or the "
                      "study's fragility/<set>.nc): its stripes' lognormal fit in PGA")
     src.add_argument("--strategy", choices=STRATEGIES, help="the strategy of --fragility")
@@ -111,15 +86,15 @@ def register(sub) -> None:
     site.add_argument("--scenario", metavar="KEY=VALUE,...", help="earthquake scenario, e.g. "
                       "mag=7,dist_rup=10,v_s30=400 (optional: mechanism, dip, depth_tor, dist_jb, dist_x)")
     site.add_argument("--gmm", default=DEFAULT_GMM, choices=sorted(GMMS), help="ground-motion model of --scenario")
-    _num(pr, "--years", DEFAULT_YEARS, "exposure time T of the probability 1 - exp(-lambda T) [yr]")
+    options._numeric(pr, "--years", DEFAULT_YEARS, "exposure time T of the probability 1 - exp(-lambda T) [yr]")
     pr.add_argument("--extension", default=EXTENSIONS[0], choices=EXTENSIONS,
                     help="below the first and beyond the last point of the hazard curve, extend its end "
                          "segments' power laws (loglog) or count nothing (none)")
     pr.add_argument("--bands", metavar="G,G,...", help="PGA band edges [g] of a disaggregation to print")
     target = pr.add_argument_group("risk-targeted design (with --dispersion and --hazard)")
-    target.add_argument("--target-rate", type=_typed("--target-rate"), metavar="R",
+    target.add_argument("--target-rate", type=options._number("--target-rate"), metavar="R",
                         help="the median meeting this annual rate of overturning [1/yr]")
-    target.add_argument("--target-probability", type=_typed("--target-probability"), metavar="P",
+    target.add_argument("--target-probability", type=options._number("--target-probability"), metavar="P",
                         help="the median meeting this probability of overturning in --years")
     target.add_argument("--devices", metavar="FILE", help="a design study's device sweep (design/devices.nc): "
                         "which devices meet the target")
