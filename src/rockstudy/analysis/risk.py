@@ -566,24 +566,18 @@ def _finite_fit(ds: xr.Dataset, strategy: str) -> bool:
 
 
 def check_config(section: dict, key: str = "risk") -> dict:
-    """The config's ``risk:`` section (after its declaration, :class:`rockstudy.core.declarations.Risk`):
-    every scenario complete and in range, every hazard file readable. Returns the hazard curves by name.
+    """The config's ``risk:`` section: its declaration (:class:`rockstudy.core.declarations.Risk`: every value
+    in range, no unknown key), at least one site, every hazard file readable. Returns the hazard curves by name.
 
     Raises
     ------
     ValueError
         (:class:`~rockstudy.core.validation.InputError`) naming ``<key>.<entry>``.
     """
-    from rockstudy.analysis.ground_motion import check_scenario
     from rockstudy.analysis.hazard import read_hazard_curve
-    from rockstudy.core.risk_inputs import GMMS
-    RISK_INPUTS["years"].check(f"{key}.years", section.get("years", DEFAULT_YEARS))
-    gmm = section.get("gmm", DEFAULT_GMM)
-    if gmm not in GMMS:
-        raise validation.InputError(f"{key}.gmm = {gmm!r} is not allowed: one of {', '.join(GMMS)}")
+    from rockstudy.core import declarations
+    declarations.check_config(section, declarations.Risk, key)
     scenarios, curves = section.get("scenarios") or {}, section.get("hazard_curves") or {}
     if not scenarios and not curves:
         raise validation.InputError(f"{key}: give at least one scenario or hazard curve")
-    for name, scenario in scenarios.items():
-        check_scenario(scenario, f"{key}.scenarios.{name}")
     return {name: read_hazard_curve(path, f"{key}.hazard_curves.{name}") for name, path in curves.items()}
