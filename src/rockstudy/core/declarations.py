@@ -19,7 +19,6 @@ checks: neither ``rockstudy --help`` nor a simulation loads it.
 from __future__ import annotations
 
 import difflib
-import math
 from typing import Annotated, Literal, Union
 
 from pydantic import (
@@ -37,6 +36,20 @@ from pydantic import (
 from rockstudy.core import risk_inputs as r
 from rockstudy.core import validation as v
 from rockstudy.core.config_files import count_nodes
+from rockstudy.core.quantities import (  # noqa: F401 -- the limits, where the config's readers look for them
+    MAX_A_MAX0_G,
+    MAX_ALPHA,
+    MAX_BLOCK_SIZE,
+    MAX_DENSITY,
+    MAX_PGA_G,
+    MAX_ROTATION_RATIO,
+    MIN_ALPHA,
+    MIN_BLOCK_SIZE,
+    MIN_DESIGN_RESOLUTION,
+    MIN_DESIGN_STEP,
+    MIN_PGA_G,
+    QUANTITIES,
+)
 from rockstudy.core.validation import InputError
 
 SCHEMA_PATH = "workflow/schemas/config.schema.yaml"
@@ -53,30 +66,8 @@ SUITES = ("p695-far-field", "p695-near-field-pulse", "p695-near-field-no-pulse",
 RECORD_UNITS = ("g", "m/s^2", "m/s2", "cm/s^2", "cm/s2", "gal", "mm/s^2", "mm/s2")
 INTENSITY_MEASURES = ("pga_ratio", "pgv_ratio")
 
-MAX_PGA_G = 100.0
-"""Largest peak ground acceleration of a design stripe or a synthetic suite. [g]"""
-MIN_PGA_G = 1e-4
-"""Smallest peak ground acceleration of a design stripe. [g]"""
-MAX_A_MAX0_G = 100.0
-"""Largest protection level a_max,0. [g]"""
-MAX_BLOCK_SIZE = 1000.0
-"""Largest block dimension. [m]"""
-MIN_BLOCK_SIZE = 1e-4
-"""Smallest block dimension. [m]"""
-MAX_DENSITY = 1e5
-"""Largest block density. [kg/m^3]"""
 MAX_TEXT = 4096
 """Longest string of a config (a path or a label)."""
-MIN_DESIGN_STEP = 1e-3
-"""Smallest step of a design block's amplitude scan (it has no stop: it scans up to a_max,0). [-]"""
-MIN_DESIGN_RESOLUTION = 1e-6
-"""Smallest resolution of a design block's threshold. [-]"""
-MIN_ALPHA = 1e-3
-"""Smallest slenderness alpha of a design block. [rad]"""
-MAX_ALPHA = 0.6
-"""Largest slenderness alpha of a design block. [rad]"""
-MAX_ROTATION_RATIO = 10.0
-"""Largest ultimate rotation of a calibration device, as a multiple of alpha. [-]"""
 
 
 def _unique(items: list) -> list:
@@ -94,20 +85,26 @@ def _list(item, low: int = 1, high: int = v.MAX_LIST_ITEMS, unique: bool = True)
 
 
 def _number(unit: str = "", **limits):
+    """A number of a config-only range (one that no library argument shares)."""
     return Annotated[float, Field(description=f"[{unit}]" if unit else None, **limits)]
+
+
+def Q(name: str):  # noqa: N802 -- reads as the type it returns
+    """The declared type of the quantity ``name`` (:data:`rockstudy.core.quantities.QUANTITIES`)."""
+    return QUANTITIES[name].annotated()
 
 
 Strategy = Literal[STRATEGIES]
 Strategies = _list(Strategy)
 LevelName = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9]+$", max_length=64)]
-Ratio = _number("-", gt=0, le=v.MAX_FREQUENCY_RATIO)
-AmplitudeRatio = _number("-", gt=0, le=v.MAX_AMPLITUDE_RATIO)
+Ratio = Q("frequency_ratio")
+AmplitudeRatio = Q("amplitude_ratio")
 Seconds = _number("s", gt=0, le=v.MAX_TIME_SPAN)
-Rotation = Union[_number("rad", gt=0, le=math.pi / 2), None]
-Kappa = _number("-", ge=0, le=v.MAX_KAPPA)
-Damping = _number("-", ge=0, le=v.MAX_DAMPING_RATIO)
+Rotation = Q("ultimate_rotation")
+Kappa = Q("kappa")
+Damping = Q("damping_ratio")
 Count = Annotated[int, Field(ge=1, le=v.MAX_REALISATIONS)]
-Seed = Annotated[int, Field(ge=0, le=v.MAX_INTEGER, description="stored as a netCDF int64 attribute")]
+Seed = Q("seed")
 
 
 class Section(BaseModel):
@@ -121,11 +118,11 @@ class Block(Section):
         {"required": ["preset"], "not": {"anyOf": [{"required": [k]} for k in ("width", "height", "depth")]}},
         {"required": ["width", "height", "depth"], "not": {"required": ["preset"]}}]})
     preset: Literal[BLOCK_PRESETS] = None
-    width: _number("m", ge=MIN_BLOCK_SIZE, le=MAX_BLOCK_SIZE) = None
-    height: _number("m", ge=MIN_BLOCK_SIZE, le=MAX_BLOCK_SIZE) = None
-    depth: _number("m", ge=MIN_BLOCK_SIZE, le=MAX_BLOCK_SIZE) = None
-    density: _number("kg/m^3", gt=0, le=MAX_DENSITY) = None
-    restitution: Union[_number("-", ge=0, le=1), None] = None
+    width: Q("length") = None
+    height: Q("length") = None
+    depth: Q("length") = None
+    density: Q("density") = None
+    restitution: Q("restitution") = None
 
     @model_validator(mode="after")
     def _one_way(self):
@@ -147,24 +144,24 @@ class Anchorage(Section):
 
 class Reading(Section):
     """A noise reading (:class:`rockstudy.model.noise.NoiseReading`); a missing key takes the library's default."""
-    step: _number("s", gt=0, le=v.MAX_NOISE_STEP) = None
+    step: Q("noise_step") = None
     rescale: Literal[RESCALES] = None
     level_means: Literal[LEVEL_MEANINGS] = None
-    band: Union[_number("Hz", gt=0, le=1e6), None] = None
-    span: _number("s", ge=0, le=v.MAX_TIME_SPAN) = None
+    band: Q("band") = None
+    span: Q("noise_span") = None
 
 
 class Noise(Reading):
     """The study's noise reading: every key given."""
-    step: _number("s", gt=0, le=v.MAX_NOISE_STEP)
+    step: Q("noise_step")
     rescale: Literal[RESCALES]
     level_means: Literal[LEVEL_MEANINGS]
-    band: Union[_number("Hz", gt=0, le=1e6), None]
-    span: _number("s", ge=0, le=v.MAX_TIME_SPAN)
+    band: Q("band")
+    span: Q("noise_span")
 
 
 class Control(Section):
-    sensor_band: Union[_number("Hz", gt=0, le=1e6), None]
+    sensor_band: Q("band")
 
 
 class Grid(Section):
@@ -177,7 +174,7 @@ class AmplitudeGrid(Section):
     start: AmplitudeRatio
     stop: AmplitudeRatio
     step: AmplitudeRatio
-    resolution: AmplitudeRatio
+    resolution: Q("amplitude_resolution")
 
 
 class Table1(Section):
@@ -265,7 +262,7 @@ class Synthetic(Section):
     filter_ratio: _number("-", gt=0, lt=1)
     duration: Seconds
     dt: Seconds
-    pga_g: _number("g", gt=0, le=MAX_PGA_G)
+    pga_g: Q("pga_g")
 
 
 class Fragility(Section):
@@ -274,8 +271,8 @@ class Fragility(Section):
     synthetic: Synthetic
     intensity_measure: Literal[INTENSITY_MEASURES]
     intensity_levels: Grid
-    threshold_resolution: _number("intensity measure", gt=0, le=v.MAX_AMPLITUDE_RATIO)
-    bootstrap: Annotated[int, Field(ge=0, le=v.MAX_BOOTSTRAP)]
+    threshold_resolution: Q("intensity_resolution")
+    bootstrap: Q("bootstrap")
     seed: Seed
 
 
@@ -286,23 +283,23 @@ class Beyond(Section):
 
 
 class PgaLevels(Section):
-    start: _number("g", ge=MIN_PGA_G, le=MAX_PGA_G)
-    stop: _number("g", ge=MIN_PGA_G, le=MAX_PGA_G)
+    start: Q("design_pga_g")
+    stop: Q("design_pga_g")
     count: Annotated[int, Field(ge=2, le=v.MAX_LIST_ITEMS)]
 
 
 class DesignAmplitudeGrid(Section):
     start: AmplitudeRatio
-    step: _number("-", ge=MIN_DESIGN_STEP, le=v.MAX_AMPLITUDE_RATIO)
-    resolution: _number("-", ge=MIN_DESIGN_RESOLUTION, le=v.MAX_AMPLITUDE_RATIO)
+    step: Q("design_step")
+    resolution: Q("design_resolution")
 
 
 class DesignBlocks(Section):
-    R: _list(_number("m", ge=MIN_BLOCK_SIZE, le=50))
-    alpha: _list(_number("rad", ge=MIN_ALPHA, le=MAX_ALPHA))
+    R: _list(Q("half_diagonal"))
+    alpha: _list(Q("slenderness"))
     frequency_grid: Grid
     amplitude_grid: DesignAmplitudeGrid
-    a_max0: _number("g", gt=0, le=MAX_A_MAX0_G)
+    a_max0: Q("a_max0_g")
 
 
 class DesignDevices(Section):
@@ -320,23 +317,23 @@ class Design(Section):
     devices: DesignDevices
 
 
-def _bounded(bound: r.Bound):
-    """A number within a :class:`~rockstudy.core.risk_inputs.Bound`."""
-    low = {"gt" if bound.low_open else "ge": bound.low}
-    high = {"lt" if bound.high_open else "le": bound.high}
-    unit = f" [{bound.unit}]" if bound.unit else ""
-    return Annotated[float, Field(description=bound.description + unit, **low, **high)]
+def _scenario(name: str):
+    return r.SCENARIO_INPUTS[name].annotated()
+
+
+def _risk(name: str):
+    return r.RISK_INPUTS[name].annotated()
 
 
 class Scenario(Section):
     """An earthquake scenario of a ground-motion model (:data:`rockstudy.core.risk_inputs.SCENARIO_INPUTS`)."""
-    mag: _bounded(r.SCENARIO_INPUTS["mag"])
-    dist_rup: _bounded(r.SCENARIO_INPUTS["dist_rup"])
-    v_s30: _bounded(r.SCENARIO_INPUTS["v_s30"])
-    dist_jb: _bounded(r.SCENARIO_INPUTS["dist_jb"]) = None
-    dist_x: _bounded(r.SCENARIO_INPUTS["dist_x"]) = None
-    dip: _bounded(r.SCENARIO_INPUTS["dip"]) = None
-    depth_tor: _bounded(r.SCENARIO_INPUTS["depth_tor"]) = None
+    mag: _scenario("mag")
+    dist_rup: _scenario("dist_rup")
+    v_s30: _scenario("v_s30")
+    dist_jb: _scenario("dist_jb") = None
+    dist_x: _scenario("dist_x") = None
+    dip: _scenario("dip") = None
+    depth_tor: _scenario("depth_tor") = None
     mechanism: Literal[r.MECHANISMS] = None
 
 
@@ -346,7 +343,7 @@ RiskName = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_-]+$", max_len
 class Risk(Section):
     """Risk at a site (optional): the rate and probability of overturning per record set and strategy, from
     hazard curves (files: PGA [g], annual rate of exceedance [1/yr]) and earthquake scenarios."""
-    years: _bounded(r.RISK_INPUTS["years"]) = None
+    years: _risk("years") = None
     gmm: Literal[tuple(r.GMMS)] = None
     scenarios: Annotated[dict[RiskName, Scenario], Field(max_length=r.MAX_SCENARIOS)] = None
     hazard_curves: Annotated[dict[RiskName, Annotated[str, StringConstraints(min_length=1, max_length=MAX_TEXT)]],
@@ -362,8 +359,8 @@ class Study(Section):
     strategies: Strategies
     excitation: Literal[EXCITATIONS]
     overturn_criterion: Literal[OVERTURN_CRITERIA]
-    free_time: _number("s", ge=0, le=v.MAX_FREE_TIME)
-    noise_levels: Annotated[dict[LevelName, _number("-", ge=0, lt=1)],
+    free_time: Q("free_time")
+    noise_levels: Annotated[dict[LevelName, Q("noise_level")],
                             Field(min_length=1, max_length=v.MAX_LIST_ITEMS)]
     realisations: Count
     realisations_per_job: Count
@@ -374,7 +371,7 @@ class Study(Section):
     noise_records_stored: Count
     frequency_grid: Grid
     amplitude_grid: AmplitudeGrid
-    a_max0: _number("g", gt=0, le=MAX_A_MAX0_G)
+    a_max0: Q("a_max0_g")
     table1: Table1
     convergence: Convergence
     sampling_sweep: SamplingSweep
@@ -402,22 +399,15 @@ PartialStudy = create_model(
 _MODEL_NAMES = {cls.__name__ for cls in (*Section.__subclasses__(), Noise)}
 """The sections' class names, which pydantic puts into the location of an error inside a union."""
 
-NonNegativeSeconds = _number("s", ge=0, le=v.MAX_TIME_SPAN)
-Length = _number("m", ge=MIN_BLOCK_SIZE, le=MAX_BLOCK_SIZE)
-
 OPTIONS = {
-    "--frequency-ratio": Ratio, "--amplitude-ratio": AmplitudeRatio,
-    "--noise-level": _number("-", ge=0, lt=1),
-    "--realisation": Annotated[int, Field(ge=0, le=v.MAX_INTEGER)], "--realisations": Count, "--seed": Seed,
-    "--sampling-time": NonNegativeSeconds, "--delay": NonNegativeSeconds,
-    "--free-time": _number("s", ge=0, le=v.MAX_FREE_TIME),
+    "--frequency-ratio": Q("frequency_ratio"), "--amplitude-ratio": Q("amplitude_ratio"),
+    "--noise-level": Q("noise_level"), "--realisation": Q("realisation"), "--realisations": Count, "--seed": Seed,
+    "--sampling-time": Q("sampling_time"), "--delay": Q("delay"), "--free-time": Q("free_time"),
     "--kappa-max": Kappa, "--kappa-min": Kappa, "--damping-ratio": Damping,
-    "--width": Length, "--height": Length, "--depth": Length, "--density": _number("kg/m^3", gt=0, le=MAX_DENSITY),
-    "--restitution": _number("-", ge=0, le=1),
-    "--noise-step": _number("s", gt=0, le=v.MAX_NOISE_STEP), "--noise-band": _number("Hz", gt=0, le=1e6),
-    "--noise-span": NonNegativeSeconds, "--sensor-band": _number("Hz", gt=0, le=1e6),
-    "--record-scale": _number("-", gt=0, le=1e6), "--record-dt": Seconds,
-    "--a-max0": _number("g", gt=0, le=MAX_A_MAX0_G),
+    "--width": Q("length"), "--height": Q("length"), "--depth": Q("length"), "--density": Q("density"),
+    "--restitution": Q("restitution"), "--noise-step": Q("noise_step"), "--noise-band": Q("band"),
+    "--noise-span": Q("noise_span"), "--sensor-band": Q("band"), "--record-scale": Q("record_scale"),
+    "--record-dt": Q("record_dt"), "--a-max0": Q("a_max0_g"),
 }
 """The command line's numeric options, each declared like the config key it stands for (``--kappa-max`` is
 ``anchorage.kappa_max``); the CLI checks them with :func:`check_option`."""

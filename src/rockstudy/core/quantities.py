@@ -1,0 +1,257 @@
+"""What every numeric input is, declared once: its unit, its range and whether it is an integer.
+
+A :class:`Quantity` declares one kind of input (a frequency ratio, a block dimension, a seed). Each way a
+value enters names the quantity it is, and takes its check from it:
+
+* the library's arguments -- :data:`ARGUMENTS` maps each public class and function to the quantity of each
+  of its numeric arguments, and :func:`check_arguments` is the check those classes and functions run first;
+* the study config -- :mod:`rockstudy.core.declarations` builds its pydantic fields from
+  :meth:`Quantity.annotated`, so the JSON schema Snakemake validates against carries the same ranges;
+* the command line -- :data:`rockstudy.core.declarations.OPTIONS` gives each numeric option the quantity of
+  the config key it stands for.
+
+Relations between inputs (``kappa_min <= kappa_max``, a grid's start below its stop, a run's time span) are
+not a single input's range: the functions that take the related inputs check them, after these.
+
+This module imports neither numba, xarray nor pydantic (:meth:`Quantity.annotated` imports pydantic when the
+config declarations call it), so the library's checks cost no import.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from rockstudy.core import validation as v
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """Allowed values of one kind of numeric input, its unit and what it is.
+
+    Parameters
+    ----------
+    low, high : float or None
+        Range ends; None: unbounded on that side (the value must still be finite). [unit]
+    unit : str
+        Unit as written in messages and schema descriptions ("" or "-" for a ratio).
+    description : str
+        What the input is, in a few words.
+    low_open, high_open : bool
+        Whether the ends themselves are excluded.
+    integer : bool
+        An integer (an ``int``, a numpy integer or a float with an integer value), not any real number.
+    optional : bool
+        ``None`` is allowed too (its meaning is in the description).
+    """
+
+    low: float | None
+    high: float | None
+    unit: str
+    description: str
+    low_open: bool = True
+    high_open: bool = False
+    integer: bool = False
+    optional: bool = False
+
+    def check(self, name: str, value):
+        """``value`` as a float (an int for an integer quantity, None when optional and None), or
+        :class:`~rockstudy.core.validation.InputError` naming ``name``, the value and the range.
+
+        Parameters
+        ----------
+        name : str
+            The input's name as the caller knows it (``"Block.width"``, ``"--kappa-max"``).
+        value : object
+            The value given.
+        """
+        if value is None and self.optional:
+            return None
+        if self.integer:
+            low = -v.MAX_INTEGER - 1 if self.low is None else int(math.ceil(self.low + (1 if self.low_open else 0)))
+            high = v.MAX_INTEGER if self.high is None else int(self.high)
+            return v.check_int_range(name, value, low, high)
+        return v.check_range(name, value, self.low, self.high, "" if self.unit == "-" else self.unit,
+                             low_open=self.low_open, high_open=self.high_open,
+                             why="or None" if self.optional else "")
+
+    def limits(self) -> dict:
+        """The range as pydantic/annotated-types keywords (``gt``/``ge``, ``lt``/``le``)."""
+        out = {}
+        kind = int if self.integer else float
+        if self.low is not None:
+            out["gt" if self.low_open else "ge"] = kind(self.low)
+        if self.high is not None:
+            out["lt" if self.high_open else "le"] = kind(self.high)
+        return out
+
+    def annotated(self):
+        """This quantity as a constrained pydantic type (``Annotated[float, Field(...)]``, or ``int``; ``| None``
+        when optional), for the config's declarations and their JSON schema."""
+        from typing import Annotated, Optional
+
+        from pydantic import Field
+        unit = "" if self.unit in ("", "-") else f" [{self.unit}]"
+        base = Annotated[int if self.integer else float, Field(description=self.description + unit, **self.limits())]
+        return Optional[base] if self.optional else base  # noqa: UP045 -- a runtime type expression
+
+    def json_schema(self) -> dict:
+        """This quantity as a JSON Schema number (or integer)."""
+        out = {"type": "integer" if self.integer else "number"}
+        keys = {"gt": "exclusiveMinimum", "ge": "minimum", "lt": "exclusiveMaximum", "le": "maximum"}
+        out.update({keys[k]: value for k, value in self.limits().items()})
+        out["description"] = self.description + ("" if self.unit in ("", "-") else f" [{self.unit}]")
+        return out
+
+
+def _q(low, high, unit, description, **kw) -> Quantity:
+    return Quantity(low, high, unit, description, **kw)
+
+
+MAX_PGA_G = 100.0
+"""Largest peak ground acceleration of a design stripe or a synthetic suite. [g]"""
+MIN_PGA_G = 1e-4
+"""Smallest peak ground acceleration of a design stripe. [g]"""
+MAX_A_MAX0_G = 100.0
+"""Largest protection level a_max,0. [g]"""
+MAX_BLOCK_SIZE = 1000.0
+"""Largest block dimension. [m]"""
+MIN_BLOCK_SIZE = 1e-4
+"""Smallest block dimension. [m]"""
+MAX_DENSITY = 1e5
+"""Largest block density. [kg/m^3]"""
+MIN_DESIGN_STEP = 1e-3
+"""Smallest step of a design block's amplitude scan (it has no stop: it scans up to a_max,0). [-]"""
+MIN_DESIGN_RESOLUTION = 1e-6
+"""Smallest resolution of a design block's threshold. [-]"""
+MIN_ALPHA = 1e-3
+"""Smallest slenderness alpha of a design block. [rad]"""
+MAX_ALPHA = 0.6
+"""Largest slenderness alpha of a design block. [rad]"""
+MAX_ROTATION_RATIO = 10.0
+"""Largest ultimate rotation of a calibration device, as a multiple of alpha. [-]"""
+MAX_BAND = 1e6
+"""Largest filter cut-off of a noise reading or a sensor. [Hz]"""
+MAX_RECORD_SCALE = 1e6
+"""Largest factor a record is scaled by. [-]"""
+RTOL_RANGE = (1e-14, 1e-3)
+"""Allowed relative tolerances of the integrators [-]: tighter than 1e-14 is below round-off, looser than 1e-3
+is not a result."""
+ATOL_RANGE = (1e-16, 1e-3)
+"""Allowed absolute tolerances of the integrators (θ in rad, θ̇ in rad/s). [-]"""
+
+QUANTITIES = {
+    # the excitation and its scan
+    "frequency_ratio": _q(0.0, v.MAX_FREQUENCY_RATIO, "-", "frequency ratio omega_p/p"),
+    "amplitude_ratio": _q(0.0, v.MAX_AMPLITUDE_RATIO, "-", "amplitude ratio a_p/(g tan alpha)"),
+    "amplitude_resolution": _q(0.0, v.MAX_AMPLITUDE_RATIO, "-", "width of a threshold's final bracket"),
+    "a_max0_g": _q(0.0, MAX_A_MAX0_G, "g", "protection level a_max,0"),
+    "pga_g": _q(0.0, MAX_PGA_G, "g", "peak ground acceleration"),
+    "design_pga_g": _q(MIN_PGA_G, MAX_PGA_G, "g", "peak ground acceleration of a design stripe", low_open=False),
+    "acceleration": _q(None, None, "m/s^2", "ground acceleration amplitude"),
+    "circular_frequency": _q(0.0, None, "rad/s", "circular frequency"),
+    "duration": _q(0.0, v.MAX_TIME_SPAN, "s", "duration", low_open=False),
+    "free_time": _q(0.0, v.MAX_FREE_TIME, "s", "free motion after the excitation", low_open=False),
+    "record_dt": _q(0.0, v.MAX_TIME_SPAN, "s", "sampling step of a record"),
+    "record_scale": _q(0.0, MAX_RECORD_SCALE, "-", "factor a record is scaled by"),
+    "design_step": _q(MIN_DESIGN_STEP, v.MAX_AMPLITUDE_RATIO, "-", "step of a design block's amplitude scan",
+                      low_open=False),
+    "design_resolution": _q(MIN_DESIGN_RESOLUTION, v.MAX_AMPLITUDE_RATIO, "-",
+                            "resolution of a design block's threshold", low_open=False),
+    # the block and its restrainers
+    "slenderness": _q(MIN_ALPHA, MAX_ALPHA, "rad", "slenderness alpha of a design block", low_open=False),
+    "half_diagonal": _q(MIN_BLOCK_SIZE, 50.0, "m", "half diagonal R of a design block", low_open=False),
+    "length": _q(MIN_BLOCK_SIZE, MAX_BLOCK_SIZE, "m", "block dimension", low_open=False),
+    "density": _q(0.0, MAX_DENSITY, "kg/m^3", "mass density"),
+    "gravity": _q(0.0, 1000.0, "m/s^2", "acceleration of gravity"),
+    "restitution": _q(0.0, 1.0, "-", "coefficient of restitution (None: Housner's, Eq. 14)", low_open=False,
+                      optional=True),
+    "kappa": _q(0.0, v.MAX_KAPPA, "-", "dimensionless stiffness 4 K b^2/(m g R)", low_open=False),
+    "damping_ratio": _q(0.0, v.MAX_DAMPING_RATIO, "-", "damping ratio xi", low_open=False),
+    "ultimate_rotation": _q(0.0, math.pi / 2, "rad", "rotation at which a restrainer breaks (None: alpha)",
+                            optional=True),
+    # control, sensing and noise
+    "sampling_time": _q(0.0, v.MAX_TIME_SPAN, "s", "controller sampling time T_s (0: continuous)", low_open=False),
+    "delay": _q(0.0, v.MAX_TIME_SPAN, "s", "actuation delay", low_open=False),
+    "band": _q(0.0, MAX_BAND, "Hz", "low-pass cut-off (None: no filter)", optional=True),
+    "noise_level": _q(0.0, 1.0, "-", "noise level N", low_open=False, high_open=True),
+    "noise_step": _q(0.0, v.MAX_NOISE_STEP, "s", "sampling step of a noisy record"),
+    "noise_span": _q(0.0, v.MAX_TIME_SPAN, "s", "noise after the excitation", low_open=False),
+    "seed": _q(0.0, v.MAX_INTEGER, "", "seed of the random numbers", low_open=False, integer=True),
+    "realisation": _q(0.0, v.MAX_INTEGER, "", "index of a noise realisation", low_open=False, integer=True),
+    "sample_count": _q(0.0, v.MAX_RECORD_SAMPLES, "", "number of samples", low_open=False, integer=True),
+    # integration
+    "initial_rotation": _q(-math.pi / 2, math.pi / 2, "rad", "initial rotation theta_0", low_open=False),
+    "initial_velocity": _q(None, None, "rad/s", "initial rotational velocity"),
+    "rest_velocity": _q(0.0, None, "rad/s", "|theta_dot+| below which an impact ends the motion",
+                        low_open=False, optional=True),
+    "rtol": _q(*RTOL_RANGE, "-", "relative integration tolerance", low_open=False, optional=True),
+    "atol": _q(*ATOL_RANGE, "-", "absolute integration tolerance", low_open=False, optional=True),
+    # fragility
+    "intensity_resolution": _q(0.0, v.MAX_AMPLITUDE_RATIO, "intensity measure",
+                               "width of a record threshold's final bracket"),
+    "bootstrap": _q(0.0, v.MAX_BOOTSTRAP, "", "bootstrap draws", low_open=False, integer=True),
+}
+"""Every kind of numeric input, by name."""
+
+ARGUMENTS = {
+    "Block": {"width": "length", "height": "length", "depth": "length", "density": "density",
+              "gravity": "gravity", "restitution": "restitution"},
+    "Anchorage": {"kappa_max": "kappa", "kappa_min": "kappa", "damping_ratio": "damping_ratio",
+                  "spring_ultimate_rotation": "ultimate_rotation", "damper_ultimate_rotation": "ultimate_rotation"},
+    "Control": {"sampling_time": "sampling_time", "delay": "delay", "sensor_band": "band"},
+    "NoiseReading": {"step": "noise_step", "band": "band", "span": "noise_span"},
+    "GroundMotion": {"amplitude": "acceleration", "omega": "circular_frequency", "duration": "duration",
+                     "record_dt": "record_dt", "vertical_dt": "record_dt"},
+    "Scenario": {"noise_level": "noise_level", "seed": "seed", "free_time": "free_time"},
+    "AmplitudeGrid": {"start": "amplitude_ratio", "stop": "amplitude_ratio", "step": "amplitude_ratio",
+                      "resolution": "amplitude_resolution"},
+    "frequency_grid": {"start": "frequency_ratio", "stop": "frequency_ratio", "step": "frequency_ratio"},
+    "simulate": {"free_time": "free_time", "initial_rotation": "initial_rotation",
+                 "initial_velocity": "initial_velocity", "rest_velocity": "rest_velocity", "rtol": "rtol",
+                 "atol": "atol"},
+    "threshold": {"frequency_ratio": "frequency_ratio", "realisation": "realisation"},
+    "spectrum": {"frequency_ratios": "frequency_ratio", "realisations": "realisation"},
+    "jos": {"a_max0_g": "a_max0_g"},
+    "read_record": {"dt": "record_dt"},
+    "read_one_column": {"dt": "record_dt"},
+    "noise_generator": {"seed": "seed", "level": "noise_level", "realisation": "realisation"},
+    "noisy_record": {"omega": "circular_frequency", "level": "noise_level", "realisation": "realisation",
+                     "seed": "seed"},
+    "record_threshold": {"resolution": "amplitude_resolution"},
+    "suite_fragility_dataset": {"resolution": "intensity_resolution", "n_boot": "bootstrap", "seed": "seed"},
+    "fragility_dataset": {"n_boot": "bootstrap", "seed": "seed"},
+    "pga_levels": {"start": "design_pga_g", "stop": "design_pga_g"},
+    "block_point": {"R": "half_diagonal", "alpha": "slenderness", "amplitude_start": "amplitude_ratio",
+                    "amplitude_step": "design_step", "resolution": "design_resolution", "a_max0_g": "a_max0_g"},
+    "device_point": {"kappa_max": "kappa", "damping_ratio": "damping_ratio"},
+}
+"""The quantity of each numeric argument of the public classes and functions, by the name the library
+gives them (``"Block"`` is :class:`rockstudy.Block`, ``"simulate"`` :func:`rockstudy.simulate`). An argument
+that takes a sequence (``spectrum``'s ``frequency_ratios``) is checked item by item."""
+
+
+def check_arguments(owner: str, values: dict, names=None) -> dict:
+    """Check each argument of ``owner`` that :data:`ARGUMENTS` declares and ``values`` holds, against its
+    quantity; the error names the argument as ``names[argument]`` (the caller's option or config key) or
+    ``"<owner>.<argument>"``. Returns the checked values (floats or ints; None where optional).
+
+    Parameters
+    ----------
+    owner : str
+        A key of :data:`ARGUMENTS` (``"Block"``, ``"simulate"`` ...).
+    values : dict
+        The arguments by name; names the declaration does not list are passed over.
+    names : dict, optional
+        The caller's name of an argument in messages (``{"kappa_max": "--kappa-max"}``).
+
+    Raises
+    ------
+    rockstudy.core.validation.InputError
+        For the first argument out of its declared type or range, naming it, the value and the range.
+    """
+    names = names or {}
+    out = {}
+    for arg, quantity in ARGUMENTS[owner].items():
+        if arg in values:
+            out[arg] = QUANTITIES[quantity].check(names.get(arg, f"{owner}.{arg}"), values[arg])
+    return out
