@@ -83,9 +83,10 @@ def test_time_span_steps_and_controller_samples(blc06):
         check_time_span(blc06, "modulated", [1e-5], 30.0)
     with pytest.raises(v.InputError, match="sampling_time = 1e-09 s"):
         check_time_span(blc06, "modulated", [2.0], 30.0, 1e-9)
-    tiny = Block(width=1e-9, height=4e-9, depth=1e-9)  # p ~ 1e5 rad/s: steps of ~3 us over 30 s
-    with pytest.raises(v.InputError, match="steps"):
-        check_time_span(tiny, "modulated", [2.0], 30.0)
+    tiny = Block(width=1e-4, height=4e-4, depth=1e-4)  # the smallest block: p ~ 190 rad/s
+    check_time_span(tiny, "modulated", [100.0], 30.0)
+    with pytest.raises(v.InputError, match="steps"):  # at omega_p/p = 1000, steps of ~2 us over 30 s
+        check_time_span(tiny, "modulated", [1000.0], 30.0)
 
 
 def test_housner_restitution_needs_a_slender_block():

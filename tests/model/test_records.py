@@ -232,7 +232,7 @@ def test_one_column_refuses_a_time_column_a_bad_step_and_an_at2_step(tmp_path, b
     one, two = _one_and_two_columns(tmp_path, blc06)
     with pytest.raises(RecordFormatError, match="time column"):
         read_record(two, dt=0.005)
-    with pytest.raises(ValueError, match="dt must be a positive number"):
+    with pytest.raises(ValueError, match=r"dt = 0 s is not allowed: allowed is 0 < dt"):
         read_record(one, "g", dt=0.0)
     with pytest.raises(RecordFormatError, match="unit"):
         read_record(one, dt=0.005)

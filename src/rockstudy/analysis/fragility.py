@@ -30,6 +30,7 @@ import xarray as xr
 from rockstudy._version import __version__
 from rockstudy.analysis.fragility_fit import BOOTSTRAP_KEY, bootstrap_median_ratios, fit_lognormal, fit_lognormal_points
 from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturned, stripes_and_thresholds
+from rockstudy.core.quantities import check_arguments
 from rockstudy.engine.outcome import OUTCOME_MEANINGS
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME
 from rockstudy.model.anchorage import Anchorage
@@ -144,6 +145,7 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
         intervals, ``fit_status``; ``median_ratio`` θ/θ_FS with its bootstrap 95 % interval (NaN when no
         draw has a finite ratio) and ``median_shift_percent`` 100·(θ/θ_FS − 1), per strategy.
     """
+    check_arguments("fragility_dataset", {"n_boot": n_boot, "seed": seed})
     _check_fragility_inputs(controls, n_boot)
     levels = np.asarray(levels, dtype=float)
     t0 = time.perf_counter()
@@ -161,8 +163,6 @@ def _check_fragility_inputs(controls, n_boot):
     strategies = [c.strategy for c in controls]
     if "FS" not in strategies:
         raise ValueError(f"controls must include FS, the reference of the median shift, got {strategies}")
-    if isinstance(n_boot, bool) or not isinstance(n_boot, int) or n_boot < 0:
-        raise ValueError(f"n_boot must be an integer >= 0, got {n_boot!r}")
     return strategies
 
 
@@ -179,6 +179,7 @@ def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records
         Factor applied to each record. [-]
     Others as for :func:`fragility_dataset`.
     """
+    check_arguments("fragility_from_stripes", {"n_boot": n_boot, "seed": seed})
     strategies = _check_fragility_inputs(controls, n_boot)
     levels = np.asarray(levels, dtype=float)
     overturned = np.asarray(overturned, dtype=bool)
@@ -299,6 +300,7 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
         ``fragility_dispersion_other`` and the interval in the other measure; the records' catalogue as
         coordinates (suite, id, event, station, year, magnitude, distance, site class, PGA, PGV, pulse).
     """
+    check_arguments("suite_fragility_dataset", {"resolution": resolution, "n_boot": n_boot, "seed": seed})
     _check_fragility_inputs(controls, n_boot)
     if measure not in INTENSITY_MEASURES:
         raise ValueError(f"intensity measure must be one of {', '.join(INTENSITY_MEASURES)}, got {measure!r}")

@@ -15,6 +15,7 @@ import numpy as np
 
 from rockstudy.analysis.utility_index import DEFAULT_A_MAX0, utility_index, utility_terms
 from rockstudy.core import validation
+from rockstudy.core.quantities import check_arguments
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -93,6 +94,7 @@ def jos(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float = DEFAULT_A_M
     if system.sizes["frequency_ratio"] != reference.sizes["frequency_ratio"] or not np.allclose(
             system["frequency_ratio"], reference["frequency_ratio"]):
         raise ValueError("J_OS needs the system and the reference on the same frequencies")
+    check_arguments("jos", {"a_max0_g": a_max0_g}, {"a_max0_g": a_max0_name})
     ratio = a_max0_ratio(system, a_max0_g, a_max0_name)
     a_max0_ratio(reference, a_max0_g, a_max0_name)
     a_sys, a_ref = system["threshold"].values, reference["threshold"].values

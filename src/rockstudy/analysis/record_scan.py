@@ -12,10 +12,9 @@ above it may hold safe islands.
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
+from rockstudy.core.quantities import check_arguments
 from rockstudy.engine import _kernel
 from rockstudy.engine._kernel.scan import S_J, S_PHASE, SCANNING
 from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, UNDETERMINED
@@ -86,11 +85,10 @@ def record_threshold(run: RecordRun, grid, resolution: float, outcomes=None) -> 
         grid level below it was shown safe), ``n_simulations`` and ``n_undetermined`` (runs at the
         engine's event cap, counted as not overturned).
     """
+    resolution = check_arguments("record_threshold", {"resolution": resolution})["resolution"]
     grid = np.asarray(grid, dtype=float)
     if grid.ndim != 1 or grid.size < 1 or np.any(np.diff(grid) <= 0) or np.any(grid <= 0):
         raise ValueError("grid must be an increasing 1-D list of positive amplitude ratios")
-    if not (resolution > 0 and math.isfinite(resolution)):
-        raise ValueError(f"resolution must be a positive number, got {resolution!r}")
     state, n_sim, n_und = _kernel.scan_start(), 0, 0
     done = False
     while not done:

@@ -10,6 +10,7 @@ from typing import NamedTuple
 import numpy as np
 
 from rockstudy.core import validation
+from rockstudy.core.quantities import check_arguments
 from rockstudy.engine.simulate import (
     DEFAULT_FREE_TIME,
     OVERTURN_CRITERIA,
@@ -99,12 +100,7 @@ class Scenario:
                                    f"{type(getattr(self, name)).__name__} {getattr(self, name)!r}")
         if not isinstance(self.excitation, str) or self.excitation not in EXCITATIONS:
             raise ValueError(f"excitation must be one of {', '.join(EXCITATIONS)}, got {self.excitation!r}")
-        validation.check_range("noise_level", self.noise_level, 0.0, 1.0, high_open=True,
-                               why="noise energy / baseline energy")
-        if not (isinstance(self.seed, (int, np.integer)) and not isinstance(self.seed, bool)
-                and 0 <= self.seed <= validation.MAX_INTEGER):
-            raise ValueError(f"seed must be an integer in [0, 2^63 - 1], got {self.seed!r}")
-        validation.check_nonnegative("free_time", self.free_time, "s", validation.MAX_FREE_TIME)
+        check_arguments("Scenario", {"noise_level": self.noise_level, "seed": self.seed, "free_time": self.free_time})
         if not isinstance(self.noise, NoiseReading):
             raise ValueError(f"noise must be a rockstudy.model.noise.NoiseReading, got {self.noise!r}")
         if self.overturn_criterion not in OVERTURN_CRITERIA:

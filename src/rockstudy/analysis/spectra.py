@@ -21,6 +21,7 @@ from rockstudy._version import __version__
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.core import validation
 from rockstudy.core.constants import PAPER
+from rockstudy.core.quantities import QUANTITIES, check_arguments
 from rockstudy.engine import _kernel as kernel
 from rockstudy.engine.outcome import OUTCOME_MEANINGS, Outcome
 from rockstudy.model.excitation import GroundMotion
@@ -48,10 +49,7 @@ class AmplitudeGrid:
     resolution: float = 0.01
 
     def __post_init__(self):
-        for name in ("start", "stop", "step", "resolution"):
-            v = getattr(self, name)
-            if not (validation.is_number(v) and math.isfinite(v) and v > 0):
-                raise ValueError(f"AmplitudeGrid.{name} must be a positive number, got {v!r}")
+        check_arguments("AmplitudeGrid", self.__dict__)  # each field's type and range (core.quantities)
         if self.stop <= self.start:
             raise ValueError(f"AmplitudeGrid.stop ({self.stop}) must exceed start ({self.start})")
         if self.resolution > self.step:
@@ -91,7 +89,9 @@ def frequency_grid(start: float = DEFAULT_FREQUENCY_GRID["start"], stop: float =
     """
     # finite numbers (not bools), 0 < start <= stop <= the largest ratio, at most MAX_GRID_POINTS points: the
     # size is bounded before the grid is made
-    validation.check_grid("frequency_grid", start, stop, step, high=validation.MAX_FREQUENCY_RATIO)
+    check_arguments("frequency_grid", {"start": start, "stop": stop, "step": step})
+    validation.check_grid("frequency_grid", start, stop, step, high=QUANTITIES["frequency_ratio"].high,
+                          names=("start", "stop", "step"))
     n = int(math.floor((stop - start) / step + 1e-9))
     return np.round(start + step * np.arange(n + 1), 10)
 
@@ -121,8 +121,7 @@ def _realisation_list(realisations) -> list[int]:
     if n > validation.MAX_REALISATIONS:
         validation.fail("realisations", counted,
                         f"at most {validation.MAX_REALISATIONS} realisations (the paper uses 100)")
-    out = [validation.check_int_range(f"realisations[{i}]", k, 0, validation.MAX_INTEGER)
-           for i, k in enumerate(realisations)]
+    out = [QUANTITIES["realisation"].check(f"realisations[{i}]", k) for i, k in enumerate(realisations)]
     if len(out) == 0 or len(set(out)) != len(out):
         raise validation.InputError(f"realisations must be distinct integers >= 0, got {out!r}")
     return out
@@ -227,8 +226,8 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
         When an argument is out of its declared range.
     """
     _check_call(scenario, grid)
-    frequency_ratio = validation.check_positive("frequency_ratio", frequency_ratio, high=validation.MAX_FREQUENCY_RATIO)
-    realisation = validation.check_int_range("realisation", realisation, 0, validation.MAX_INTEGER)
+    checked = check_arguments("threshold", {"frequency_ratio": frequency_ratio, "realisation": realisation})
+    frequency_ratio, realisation = checked["frequency_ratio"], checked["realisation"]
     scenario.check_span([frequency_ratio])
     values = grid.values()
     case = scenario.kernel_case(frequency_ratio, realisation, energy_bound=energy_bound)
@@ -324,11 +323,12 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     except (TypeError, ValueError):
         raise validation.InputError(
             f"frequency_ratios must be a 1-D list of numbers, got {frequency_ratios!r}") from None
-    if freqs.ndim != 1 or len(freqs) == 0 or not np.all(np.isfinite(freqs)) or np.any(freqs <= 0):
-        raise validation.InputError("frequency_ratios must be a non-empty 1-D list of finite positive numbers")
-    if len(freqs) > validation.MAX_GRID_POINTS or freqs.max() > validation.MAX_FREQUENCY_RATIO:
-        validation.fail("frequency_ratios", f"{len(freqs)} values up to {freqs.max():g}",
-               f"at most {validation.MAX_GRID_POINTS} values up to {validation.MAX_FREQUENCY_RATIO:g}")
+    if freqs.ndim != 1 or len(freqs) == 0 or len(freqs) > validation.MAX_GRID_POINTS:
+        validation.fail("frequency_ratios", f"an array of shape {freqs.shape}",
+                        f"a 1-D list of 1 to {validation.MAX_GRID_POINTS} frequency ratios")
+    bad = np.flatnonzero(~(np.isfinite(freqs) & (freqs > 0) & (freqs <= QUANTITIES["frequency_ratio"].high)))
+    if bad.size:  # the first value out of the declared range, named by its index
+        QUANTITIES["frequency_ratio"].check(f"frequency_ratios[{bad[0]}]", float(freqs[bad[0]]))
     realisations = _realisation_list(realisations)
     if scenario.noise_level == 0 and len(realisations) > 1:
         realisations = realisations[:1]  # without noise every realisation is the same record

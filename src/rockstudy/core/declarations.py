@@ -285,7 +285,7 @@ class Beyond(Section):
 class PgaLevels(Section):
     start: Q("design_pga_g")
     stop: Q("design_pga_g")
-    count: Annotated[int, Field(ge=2, le=v.MAX_LIST_ITEMS)]
+    count: Q("stripe_count")
 
 
 class DesignAmplitudeGrid(Section):

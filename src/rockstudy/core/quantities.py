@@ -149,10 +149,12 @@ QUANTITIES = {
     "design_pga_g": _q(MIN_PGA_G, MAX_PGA_G, "g", "peak ground acceleration of a design stripe", low_open=False),
     "acceleration": _q(None, None, "m/s^2", "ground acceleration amplitude"),
     "circular_frequency": _q(0.0, None, "rad/s", "circular frequency"),
-    "duration": _q(0.0, v.MAX_TIME_SPAN, "s", "duration", low_open=False),
+    "duration": _q(0.0, v.MAX_TIME_SPAN, "s", "duration"),
+    "angular_rate": _q(None, None, "rad/s", "circular frequency or rate (> 0 where it is a frequency)"),
     "free_time": _q(0.0, v.MAX_FREE_TIME, "s", "free motion after the excitation", low_open=False),
     "record_dt": _q(0.0, v.MAX_TIME_SPAN, "s", "sampling step of a record"),
     "record_scale": _q(0.0, MAX_RECORD_SCALE, "-", "factor a record is scaled by"),
+    "signed_factor": _q(None, None, "-", "factor (negative: the record reversed)"),
     "design_step": _q(MIN_DESIGN_STEP, v.MAX_AMPLITUDE_RATIO, "-", "step of a design block's amplitude scan",
                       low_open=False),
     "design_resolution": _q(MIN_DESIGN_RESOLUTION, v.MAX_AMPLITUDE_RATIO, "-",
@@ -189,6 +191,7 @@ QUANTITIES = {
     # fragility
     "intensity_resolution": _q(0.0, v.MAX_AMPLITUDE_RATIO, "intensity measure",
                                "width of a record threshold's final bracket"),
+    "stripe_count": _q(2, v.MAX_LIST_ITEMS, "", "number of PGA levels (stripes)", low_open=False, integer=True),
     "bootstrap": _q(0.0, v.MAX_BOOTSTRAP, "", "bootstrap draws", low_open=False, integer=True),
 }
 """Every kind of numeric input, by name."""
@@ -200,7 +203,7 @@ ARGUMENTS = {
                   "spring_ultimate_rotation": "ultimate_rotation", "damper_ultimate_rotation": "ultimate_rotation"},
     "Control": {"sampling_time": "sampling_time", "delay": "delay", "sensor_band": "band"},
     "NoiseReading": {"step": "noise_step", "band": "band", "span": "noise_span"},
-    "GroundMotion": {"amplitude": "acceleration", "omega": "circular_frequency", "duration": "duration",
+    "GroundMotion": {"amplitude": "acceleration", "omega": "angular_rate", "duration": "duration",
                      "record_dt": "record_dt", "vertical_dt": "record_dt"},
     "Scenario": {"noise_level": "noise_level", "seed": "seed", "free_time": "free_time"},
     "AmplitudeGrid": {"start": "amplitude_ratio", "stop": "amplitude_ratio", "step": "amplitude_ratio",
@@ -212,6 +215,8 @@ ARGUMENTS = {
     "threshold": {"frequency_ratio": "frequency_ratio", "realisation": "realisation"},
     "spectrum": {"frequency_ratios": "frequency_ratio", "realisations": "realisation"},
     "jos": {"a_max0_g": "a_max0_g"},
+    "Record": {"dt": "record_dt"},
+    "Record.motion": {"scale": "signed_factor"},
     "read_record": {"dt": "record_dt"},
     "read_one_column": {"dt": "record_dt"},
     "noise_generator": {"seed": "seed", "level": "noise_level", "realisation": "realisation"},
@@ -220,10 +225,11 @@ ARGUMENTS = {
     "record_threshold": {"resolution": "amplitude_resolution"},
     "suite_fragility_dataset": {"resolution": "intensity_resolution", "n_boot": "bootstrap", "seed": "seed"},
     "fragility_dataset": {"n_boot": "bootstrap", "seed": "seed"},
-    "pga_levels": {"start": "design_pga_g", "stop": "design_pga_g"},
+    "fragility_from_stripes": {"n_boot": "bootstrap", "seed": "seed"},
+    "pga_levels": {"start": "design_pga_g", "stop": "design_pga_g", "count": "stripe_count"},
     "block_point": {"R": "half_diagonal", "alpha": "slenderness", "amplitude_start": "amplitude_ratio",
                     "amplitude_step": "design_step", "resolution": "design_resolution", "a_max0_g": "a_max0_g"},
-    "device_point": {"kappa_max": "kappa", "damping_ratio": "damping_ratio"},
+    "device_point": {"kappa_max": "kappa", "damping_ratio": "damping_ratio", "kappa_min": "kappa"},
 }
 """The quantity of each numeric argument of the public classes and functions, by the name the library
 gives them (``"Block"`` is :class:`rockstudy.Block`, ``"simulate"`` :func:`rockstudy.simulate`). An argument
@@ -232,8 +238,9 @@ that takes a sequence (``spectrum``'s ``frequency_ratios``) is checked item by i
 
 def check_arguments(owner: str, values: dict, names=None) -> dict:
     """Check each argument of ``owner`` that :data:`ARGUMENTS` declares and ``values`` holds, against its
-    quantity; the error names the argument as ``names[argument]`` (the caller's option or config key) or
-    ``"<owner>.<argument>"``. Returns the checked values (floats or ints; None where optional).
+    quantity. The error names the argument as ``names[argument]`` (the caller's option or config key), else
+    as ``"<owner>.<argument>"`` for a class's field (``Block.width``) and by its name for a function's.
+    Returns the checked values (floats or ints; None where optional).
 
     Parameters
     ----------
@@ -250,8 +257,9 @@ def check_arguments(owner: str, values: dict, names=None) -> dict:
         For the first argument out of its declared type or range, naming it, the value and the range.
     """
     names = names or {}
+    prefix = f"{owner}." if owner[:1].isupper() else ""  # a class's field is Block.width, a function's argument dt
     out = {}
     for arg, quantity in ARGUMENTS[owner].items():
         if arg in values:
-            out[arg] = QUANTITIES[quantity].check(names.get(arg, f"{owner}.{arg}"), values[arg])
+            out[arg] = QUANTITIES[quantity].check(names.get(arg, prefix + arg), values[arg])
     return out

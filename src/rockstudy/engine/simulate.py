@@ -13,6 +13,7 @@ import numpy as np
 from rockstudy.core import validation
 from rockstudy.core.constants import FAST_ATOL, FAST_RTOL, FREE_TIME, MAX_STEP_FRACTION
 from rockstudy.core.constants import rest_velocity as default_rest_velocity
+from rockstudy.core.quantities import ATOL_RANGE, RTOL_RANGE, check_arguments  # noqa: F401 -- named in docs
 from rockstudy.engine import _kernel
 from rockstudy.engine.simulation_result import (
     FRACTURE_ELEMENTS,
@@ -151,12 +152,6 @@ def _result_from_kernel(out, block: Block, engine: str = "fast") -> SimulationRe
     )
 
 
-RTOL_RANGE = (1e-14, 1e-3)
-"""Allowed relative tolerances [-]: tighter than 1e-14 is below round-off, looser than 1e-3 is not a result."""
-ATOL_RANGE = (1e-16, 1e-3)
-"""Allowed absolute tolerances (θ in rad, θ̇ in rad/s). [-]"""
-
-
 def check_inputs(block, anchorage, control, motion, *, engine="fast", overturn_criterion="flat",
                  free_time=DEFAULT_FREE_TIME, initial_rotation=0.0, initial_velocity=0.0, rest_velocity=None,
                  rtol=None, atol=None) -> None:
@@ -179,15 +174,9 @@ def check_inputs(block, anchorage, control, motion, *, engine="fast", overturn_c
     if not isinstance(overturn_criterion, str) or overturn_criterion not in OVERTURN_CRITERIA:
         raise validation.InputError(f"overturn_criterion must be one of {', '.join(OVERTURN_CRITERIA)}, "
                            f"got {overturn_criterion!r}")
-    free_time = validation.check_nonnegative("free_time", free_time, "s", validation.MAX_FREE_TIME)
-    validation.check_range("initial_rotation", initial_rotation, -math.pi / 2, math.pi / 2, "rad")
-    validation.check_number("initial_velocity", initial_velocity, "rad/s")
-    if rest_velocity is not None:
-        validation.check_nonnegative("rest_velocity", rest_velocity, "rad/s")
-    if rtol is not None:
-        validation.check_range("rtol", rtol, *RTOL_RANGE)
-    if atol is not None:
-        validation.check_range("atol", atol, *ATOL_RANGE)
+    free_time = check_arguments("simulate", {  # each number's type and range (core.quantities)
+        "free_time": free_time, "initial_rotation": initial_rotation, "initial_velocity": initial_velocity,
+        "rest_velocity": rest_velocity, "rtol": rtol, "atol": atol})["free_time"]
     if motion.end_time + free_time > validation.MAX_TIME_SPAN:
         validation.fail("free_time", free_time,
                         f"the motion lasts {motion.end_time:.4g} s; with free_time a run lasts "

@@ -14,7 +14,8 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from rockstudy.core.validation import field_names, is_number
+from rockstudy.core.quantities import check_arguments
+from rockstudy.core.validation import field_names
 from rockstudy.model.block import Block
 
 
@@ -50,17 +51,13 @@ class Anchorage:
               damper_ultimate_rotation=None) -> None:
         """Refuse a bad field with a ``ValueError`` naming it ``names[field]`` (the caller's option or config
         key), else ``Anchorage.<field>``."""
-        name = field_names("Anchorage", names)
-        values = {"kappa_max": kappa_max, "kappa_min": kappa_min, "damping_ratio": damping_ratio}
-        for key, value in values.items():
-            if not (is_number(value) and math.isfinite(value) and value >= 0):
-                raise ValueError(f"{name(key)} must be a finite number >= 0, got {value!r}")
+        check_arguments("Anchorage", {  # each field's type and range (core.quantities), then their relation
+            "kappa_max": kappa_max, "kappa_min": kappa_min, "damping_ratio": damping_ratio,
+            "spring_ultimate_rotation": spring_ultimate_rotation, "damper_ultimate_rotation": damper_ultimate_rotation},
+            names)
         if kappa_min > kappa_max:
+            name = field_names("Anchorage", names)
             raise ValueError(f"{name('kappa_min')} ({kappa_min}) must not exceed {name('kappa_max')} ({kappa_max})")
-        for key, value in (("spring_ultimate_rotation", spring_ultimate_rotation),
-                           ("damper_ultimate_rotation", damper_ultimate_rotation)):
-            if value is not None and not (is_number(value) and 0 < value <= math.pi / 2):
-                raise ValueError(f"{name(key)} must lie in (0, pi/2] rad or be None (= alpha), got {value!r}")
 
     def theta_spring(self, block: Block) -> float:
         """Spring ultimate rotation theta_K,u. [rad]"""

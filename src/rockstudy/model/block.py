@@ -11,7 +11,8 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from rockstudy.core.validation import check_block, is_number
+from rockstudy.core.quantities import check_arguments
+from rockstudy.core.validation import check_block
 
 GRAVITY = 9.81
 """Acceleration of gravity used throughout. [m/s^2]"""
@@ -52,15 +53,7 @@ class Block:
     restitution: float | None = None
 
     def __post_init__(self):
-        for name in ("width", "height", "depth", "density", "gravity"):
-            value = getattr(self, name)
-            if not (is_number(value) and math.isfinite(value) and value > 0):
-                raise ValueError(f"Block.{name} must be a positive finite number, got {value!r}")
-        if self.restitution is not None and not (
-                is_number(self.restitution) and 0.0 <= self.restitution <= 1.0):
-            raise ValueError(
-                f"Block.restitution must lie in [0, 1] (or be None for Eq. 14), got {self.restitution!r}"
-            )
+        check_arguments("Block", self.__dict__)  # each field's type and range (core.quantities)
         check_block(self, "Block")  # a squat block would get e < 0 from Eq. (14)
 
     # --- derived geometry -------------------------------------------------------

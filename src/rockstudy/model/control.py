@@ -23,12 +23,12 @@ driving Xg_ddot.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 from numba import njit
 
-from rockstudy.core.validation import check_positive, field_names, is_number
+from rockstudy.core.quantities import check_arguments
+from rockstudy.core.validation import field_names
 
 STRATEGIES = ("FS", "PASSIVE", "CS01", "CS02")
 STRATEGY_CODE = {name: i for i, name in enumerate(STRATEGIES)}
@@ -70,17 +70,15 @@ class Control:
         name = field_names("Control", names)
         if strategy not in STRATEGIES:
             raise ValueError(f"{name('strategy')} must be one of {', '.join(STRATEGIES)}, got {strategy!r}")
-        for key, value in (("sampling_time", sampling_time), ("delay", delay)):
-            if not (is_number(value) and math.isfinite(value) and value >= 0):
-                raise ValueError(f"{name(key)} must be a finite number >= 0 [s], got {value!r}")
+        checked = check_arguments("Control", {"sampling_time": sampling_time, "delay": delay,
+                                              "sensor_band": sensor_band}, names)
         if sampling_time == 0 and delay > 0:
             raise ValueError(
                 f"{name('delay')} > 0 needs a {name('sampling_time')} > 0: a delay acts on sampled decisions "
                 f"(got {name('sampling_time')}=0, {name('delay')}={delay})"
             )
-        if sensor_band is None:  # the Nyquist limit depends on the record: rockstudy.model.sensor.check_band
-            return None
-        return check_positive(name("sensor_band"), sensor_band, "Hz", why="or None, the ideal sensor")
+        # None: the ideal sensor; the Nyquist limit depends on the record (rockstudy.model.sensor.check_band)
+        return checked["sensor_band"]
 
     @property
     def code(self) -> int:

@@ -13,14 +13,12 @@ import numpy as np
 from numba import njit
 
 from rockstudy.core._inline import inline_into
+from rockstudy.core.quantities import check_arguments
 from rockstudy.core.validation import (
     MAX_CONTROLLER_SAMPLES,
     MAX_RECORD_SAMPLES,
     MAX_STEPS,
     MAX_TIME_SPAN,
-    check_number,
-    check_positive,
-    check_range,
     fail,
 )
 
@@ -192,13 +190,17 @@ class GroundMotion:
     def __post_init__(self):
         if not isinstance(self.kind, str) or self.kind not in KIND_CODE:
             raise ValueError(f"GroundMotion.kind must be one of {', '.join(KIND_CODE)}, got {self.kind!r}")
-        object.__setattr__(self, "amplitude", check_number("GroundMotion.amplitude", self.amplitude, "m/s^2"))
-        omega = check_number("GroundMotion.omega", self.omega, "rad/s")
-        if self.kind != "rectangular" and not omega > 0:
-            fail("GroundMotion.omega", omega, "it must be > 0", "rad/s")
-        object.__setattr__(self, "omega", omega)
-        object.__setattr__(self, "duration", check_range("GroundMotion.duration", self.duration, 0.0, MAX_TIME_SPAN,
-                                                         "s", low_open=True))
+        # each field's type and range (core.quantities); the steps only where there are samples
+        given = {"amplitude": self.amplitude, "omega": self.omega, "duration": self.duration}
+        if self.kind == "record":
+            given["record_dt"] = self.record_dt
+        if np.size(self.vertical):
+            given["vertical_dt"] = self.vertical_dt
+        checked = check_arguments("GroundMotion", given)
+        if self.kind != "rectangular" and not checked["omega"] > 0:
+            fail("GroundMotion.omega", checked["omega"], "it must be > 0", "rad/s")
+        for key in ("amplitude", "omega", "duration"):
+            object.__setattr__(self, key, checked[key])
         for name in ("record", "vertical"):
             try:
                 samples = np.ascontiguousarray(getattr(self, name), dtype=float)
@@ -212,11 +214,8 @@ class GroundMotion:
                 fail(f"GroundMotion.{name}", f"sample {bad} = {samples[bad]}", "every sample must be finite")
             object.__setattr__(self, name, samples)
         if self.kind == "record":
-            check_positive("GroundMotion.record_dt", self.record_dt, "s")
             if len(self.record) < 2:
                 fail("GroundMotion.record", f"{len(self.record)} sample(s)", "a record needs at least 2 samples")
-        if len(self.vertical):
-            check_positive("GroundMotion.vertical_dt", self.vertical_dt, "s")
 
     @property
     def code(self) -> int:

@@ -33,13 +33,13 @@ job computes it and in whatever order; every reading of a level uses the same dr
 from __future__ import annotations
 
 import math
-import numbers
 from dataclasses import dataclass
 
 import numpy as np
 
 from rockstudy.core import validation
 from rockstudy.core.constants import NOISE_DT
+from rockstudy.core.quantities import QUANTITIES, check_arguments
 from rockstudy.model.excitation import GroundMotion, analytic, excitation_duration, sample_count
 
 NOISE_LEVELS = {"R000": 0.0, "R001": 0.01, "R005": 0.05, "R010": 0.10}
@@ -59,15 +59,7 @@ def level_key(level: float) -> int:
 
 
 def _check_level(level) -> float:
-    if isinstance(level, bool) or not isinstance(level, numbers.Real) or not (0.0 <= level < 1.0):
-        raise ValueError(f"level must be a real number in [0, 1) (noise energy / baseline energy), got {level!r}")
-    return float(level)
-
-
-def _check_nonnegative_int(name: str, value) -> int:
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 0:
-        raise ValueError(f"{name} must be an integer >= 0, got {value!r}")
-    return int(value)
+    return QUANTITIES["noise_level"].check("level", level)
 
 
 DEFAULT_SEED = 20190101
@@ -123,17 +115,16 @@ class NoiseReading:
         """Refuse a bad field with a ``ValueError`` naming it ``names[field]`` (the caller's option or config
         key), else ``NoiseReading.<field>``; returns the numbers as floats."""
         name = validation.field_names("NoiseReading", names)
-        step = validation.check_positive(name("step"), step, "s", validation.MAX_NOISE_STEP)
+        checked = check_arguments("NoiseReading", {"step": step, "band": band, "span": span}, names)
+        step, band, span = checked["step"], checked["band"], checked["span"]
         _check_rescale(rescale, name("rescale"))
         if level_means not in LEVEL_MEANINGS:
             raise ValueError(f"{name('level_means')} must be one of {', '.join(map(repr, LEVEL_MEANINGS))}, "
                              f"got {level_means!r}")
         if band is not None:
-            band = validation.check_positive(name("band"), band, "Hz")
             if band >= 0.5 / step:
                 raise ValueError(f"{name('band')} must be below the Nyquist frequency 1/(2 {name('step')}) = "
                                  f"{0.5 / step:g} Hz, got {band!r} (use None for white noise)")
-        span = validation.check_nonnegative(name("span"), span, "s", validation.MAX_TIME_SPAN)
         return {"step": step, "band": band, "span": span}
 
     @property
@@ -211,9 +202,8 @@ def noise_generator(seed: int, level: float, realisation: int) -> np.random.Gene
     ValueError
         Naming the argument that is out of range.
     """
-    seed = _check_nonnegative_int("seed", seed)
-    level = _check_level(level)
-    realisation = _check_nonnegative_int("realisation", realisation)
+    checked = check_arguments("noise_generator", {"seed": seed, "level": level, "realisation": realisation})
+    seed, level, realisation = checked["seed"], checked["level"], checked["realisation"]
     sequence = np.random.SeedSequence(seed, spawn_key=(level_key(level), realisation))
     return np.random.default_rng(sequence)
 
@@ -373,7 +363,7 @@ def contaminate(baseline, dt: float, level: float, rng: np.random.Generator,
     dt = validation.check_positive("dt", dt, "s")
     level = _check_level(level)
     reading = _as_reading(reading)
-    extra_samples = _check_nonnegative_int("extra_samples", extra_samples)
+    extra_samples = QUANTITIES["sample_count"].check("extra_samples", extra_samples)
     base_energy = energy(b, dt)
     if base_energy == 0.0:
         raise ValueError("baseline must have non-zero energy: the noise is scaled relative to it")
@@ -477,6 +467,7 @@ def noisy_record(kind: str, omega: float, level: float, realisation: int, seed: 
         For ``level == 0`` the baseline samples themselves, with ratios 1. Samples at
         i·step, i = 0 … ceil(T_d/step) + round(span/step).
     """
+    check_arguments("noisy_record", {"omega": omega, "level": level, "realisation": realisation, "seed": seed})
     rng = noise_generator(seed, level, realisation)
     reading = _as_reading(reading)
     baseline, step = baseline_samples(kind, omega, reading.step)

@@ -41,7 +41,8 @@ from pathlib import Path
 import numpy as np
 
 from rockstudy.core.io import write_text
-from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, check_input_file, is_number
+from rockstudy.core.quantities import check_arguments
+from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, check_input_file
 from rockstudy.model.excitation import GroundMotion
 
 STANDARD_GRAVITY = 9.80665
@@ -126,8 +127,7 @@ class Record:
     unit: str = "m/s^2"
 
     def __post_init__(self):
-        if not (is_number(self.dt) and math.isfinite(self.dt) and self.dt > 0):
-            raise ValueError(f"Record.dt must be a positive number [s], got {self.dt!r}")
+        check_arguments("Record", {"dt": self.dt})
         acc = np.array(self.acceleration, dtype=float)
         if acc.ndim != 1 or acc.size < 2:
             raise ValueError(f"Record.acceleration must be a 1-D array of at least 2 samples, got shape {acc.shape}")
@@ -168,9 +168,8 @@ class Record:
             ``kind="record"`` with ``amplitude=scale``, ``record`` in m/s^2 and a nominal
             ``omega = 2π/duration`` (not used for records).
         """
-        if not (is_number(scale) and math.isfinite(scale)):
-            raise ValueError(f"scale must be a finite number, got {scale!r}")
-        return GroundMotion(kind="record", amplitude=float(scale), omega=2.0 * math.pi / self.duration,
+        scale = check_arguments("Record.motion", {"scale": scale}, {"scale": "scale"})["scale"]
+        return GroundMotion(kind="record", amplitude=scale, omega=2.0 * math.pi / self.duration,
                             duration=self.duration, record_dt=self.dt, record=self.acceleration)
 
     def scale_to_pga(self, pga: float) -> float:
@@ -419,8 +418,7 @@ def read_one_column(path, dt: float, unit: str | None = None) -> Record:
     ValueError
         If ``dt`` is not a positive finite number or ``unit`` is not one of :data:`UNITS`.
     """
-    if isinstance(dt, bool) or not isinstance(dt, (int, float)) or not (math.isfinite(dt) and dt > 0):
-        raise ValueError(f"dt must be a positive number of seconds, got {dt!r}")
+    check_arguments("read_one_column", {"dt": dt})
     from array import array
 
     path = Path(path)
@@ -526,6 +524,8 @@ def read_record(path, unit: str | None = None, dt: float | None = None) -> Recor
         :class:`RecordFormatError` for a malformed file or more samples than
         :data:`~rockstudy.core.validation.MAX_RECORD_SAMPLES`.
     """
+    if dt is not None:
+        check_arguments("read_record", {"dt": dt})
     path = check_input_file("record file", path, MAX_RECORD_BYTES)
     if path.suffix.lower() in AT2_SUFFIXES:
         if dt is not None:

@@ -33,6 +33,7 @@ from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturn
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.analysis.spectra import AmplitudeGrid, spectrum
 from rockstudy.analysis.utility_index import utility_index
+from rockstudy.core.quantities import check_arguments
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
@@ -49,8 +50,9 @@ def gravity_comment(block: Block) -> str:
 
 def pga_levels(start: float = 0.05, stop: float = 3.0, count: int = 30) -> np.ndarray:
     """Geometric PGA levels of the stripes, from ``start`` to ``stop`` in ``count`` points. [g]"""
-    if not (0 < start < stop and int(count) >= 2):
-        raise ValueError(f"PGA levels need 0 < start < stop and count >= 2, got {start}, {stop}, {count}")
+    check_arguments("pga_levels", {"start": start, "stop": stop, "count": count})
+    if not start < stop:
+        raise ValueError(f"PGA levels need start < stop, got {start} and {stop} [g]")
     return np.geomspace(start, stop, int(count))
 
 
@@ -113,6 +115,8 @@ def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, freque
     excitation, overturn_criterion, free_time
         As for :class:`rockstudy.analysis.scenario.Scenario`.
     """
+    check_arguments("block_point", {"R": R, "alpha": alpha, "amplitude_start": amplitude_start,
+                                    "amplitude_step": amplitude_step, "resolution": resolution, "a_max0_g": a_max0_g})
     if "FS" not in strategies:
         raise ValueError(f"strategies must include FS (the reference of J_OS), got {list(strategies)}")
     t0 = time.perf_counter()
@@ -158,6 +162,7 @@ def device_point(block: Block, kappa_max: float, damping_ratio: float, strategie
                  suite: str, kappa_min: float = 0.0, overturn_criterion: str = "flat",
                  free_time: float = DEFAULT_FREE_TIME) -> xr.Dataset:
     """One point of the device sweep: the fragility median [g] of each strategy with this device."""
+    check_arguments("device_point", {"kappa_max": kappa_max, "damping_ratio": damping_ratio, "kappa_min": kappa_min})
     t0 = time.perf_counter()
     anchorage = Anchorage(kappa_max=kappa_max, kappa_min=kappa_min, damping_ratio=damping_ratio)
     medians, betas, _, status, interval = fragility_medians_g(block, anchorage, [Control(s) for s in strategies],

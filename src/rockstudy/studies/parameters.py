@@ -14,6 +14,7 @@ import numpy as np
 
 from rockstudy.analysis.jos import a_max0_ratio  # noqa: F401 (the scripts' a_max,0 in g as a ratio)
 from rockstudy.core import validation
+from rockstudy.core.quantities import check_arguments
 from rockstudy.model.block import BLOCK_PRESETS, Block
 
 if TYPE_CHECKING:
@@ -57,12 +58,8 @@ def block_from_dict(spec: dict) -> Block:
     if missing:
         raise validation.InputError(f"block: missing key(s) {sorted(missing)}; give a preset or width, height "
                                     "and depth")
-    for field in ("width", "height", "depth", "density", "gravity"):
-        if field in spec:
-            validation.check_positive(f"block.{field}", spec[field])
+    check_arguments("Block", spec, {field: f"block.{field}" for field in spec})  # as Block checks them
     restitution = spec.get("restitution")
-    if restitution is not None:
-        validation.check_range("block.restitution", restitution, 0.0, 1.0, why="or null for Eq. 14")
     shape = Block(**{**spec, "restitution": 0.0})  # the proportions, before Eq. 14 is applied
     if restitution is None:  # a squat block would get e < 0 from Eq. (14)
         validation.check_block(SimpleNamespace(width=shape.width, height=shape.height, alpha=shape.alpha,
