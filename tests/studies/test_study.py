@@ -164,7 +164,7 @@ def test_jos_undefined_is_nan_with_n_star_zero_and_a_max0_above_the_scan_is_refu
     j, n = jos(never, never, 1.0).j_os, jos(never, never, 1.0).n_star
     assert np.isnan(j) and n == 0
     top_g = never.attrs["grid_amplitude_stop"] * math.tan(never.attrs["block_alpha"])
-    with pytest.raises(ValueError, match=r"a_max0 = .* g is not allowed.*scan"):
+    with pytest.raises(ValueError, match=r"a_max0_g = .* g is not allowed.*scan"):
         jos(never, never, 1.01 * top_g)
 
 

@@ -145,7 +145,7 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
         intervals, ``fit_status``; ``median_ratio`` θ/θ_FS with its bootstrap 95 % interval (NaN when no
         draw has a finite ratio) and ``median_shift_percent`` 100·(θ/θ_FS − 1), per strategy.
     """
-    check_arguments("fragility_dataset", {"n_boot": n_boot, "seed": seed})
+    check_arguments("fragility_dataset", {"n_boot": n_boot, "seed": seed, "free_time": free_time})
     _check_fragility_inputs(controls, n_boot)
     levels = np.asarray(levels, dtype=float)
     t0 = time.perf_counter()
@@ -179,7 +179,7 @@ def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records
         Factor applied to each record. [-]
     Others as for :func:`fragility_dataset`.
     """
-    check_arguments("fragility_from_stripes", {"n_boot": n_boot, "seed": seed})
+    check_arguments("fragility_from_stripes", {"n_boot": n_boot, "seed": seed, "free_time": free_time})
     strategies = _check_fragility_inputs(controls, n_boot)
     levels = np.asarray(levels, dtype=float)
     overturned = np.asarray(overturned, dtype=bool)
@@ -300,7 +300,8 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
         ``fragility_dispersion_other`` and the interval in the other measure; the records' catalogue as
         coordinates (suite, id, event, station, year, magnitude, distance, site class, PGA, PGV, pulse).
     """
-    check_arguments("suite_fragility_dataset", {"resolution": resolution, "n_boot": n_boot, "seed": seed})
+    check_arguments("suite_fragility_dataset", {"resolution": resolution, "n_boot": n_boot, "seed": seed,
+                                                "free_time": free_time})
     _check_fragility_inputs(controls, n_boot)
     if measure not in INTENSITY_MEASURES:
         raise ValueError(f"intensity measure must be one of {', '.join(INTENSITY_MEASURES)}, got {measure!r}")

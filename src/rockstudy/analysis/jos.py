@@ -67,7 +67,7 @@ class JosResult:
 
 
 def jos(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float = DEFAULT_A_MAX0, *,
-        a_max0_name: str = "a_max0") -> JosResult:
+        a_max0_name: str = "a_max0_g") -> JosResult:
     """Utility index J_OS of the spectrum ``system`` against the spectrum ``reference`` (Eq. 21).
 
     Parameters
@@ -91,10 +91,10 @@ def jos(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float = DEFAULT_A_M
         If the spectra are on different frequencies, or a_max,0 is not positive or lies above either
         spectrum's amplitude scan.
     """
+    check_arguments("jos", {"a_max0_g": a_max0_g}, {"a_max0_g": a_max0_name})
     if system.sizes["frequency_ratio"] != reference.sizes["frequency_ratio"] or not np.allclose(
             system["frequency_ratio"], reference["frequency_ratio"]):
         raise ValueError("J_OS needs the system and the reference on the same frequencies")
-    check_arguments("jos", {"a_max0_g": a_max0_g}, {"a_max0_g": a_max0_name})
     ratio = a_max0_ratio(system, a_max0_g, a_max0_name)
     a_max0_ratio(reference, a_max0_g, a_max0_name)
     a_sys, a_ref = system["threshold"].values, reference["threshold"].values

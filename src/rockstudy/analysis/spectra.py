@@ -8,6 +8,7 @@ resolution. All amplitudes are ratios a_p / (g·tanα); frequencies are ratios �
 """
 from __future__ import annotations
 
+import itertools
 import logging
 import math
 import time
@@ -110,7 +111,6 @@ def _check_call(scenario, grid) -> None:
 def _realisation_list(realisations) -> list[int]:
     """Distinct integer indices >= 0, at most :data:`~rockstudy.core.validation.MAX_REALISATIONS` of them
     (counted before an iterator is drawn further)."""
-    import itertools
     if isinstance(realisations, (str, bytes)) or not hasattr(realisations, "__iter__"):
         raise validation.InputError(f"realisations must be a sequence of integers, got {realisations!r}")
     try:
@@ -318,17 +318,15 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
         request. NaN thresholds mean "no overturning up to the grid's upper bound".
     """
     _check_call(scenario, grid)
-    try:
-        freqs = np.asarray(frequency_ratios, dtype=float)
-    except (TypeError, ValueError):
+    try:  # at most one value past the limit is drawn from an iterator
+        items = list(itertools.islice(iter(frequency_ratios), validation.MAX_GRID_POINTS + 1))
+    except TypeError:
         raise validation.InputError(
-            f"frequency_ratios must be a 1-D list of numbers, got {frequency_ratios!r}") from None
-    if freqs.ndim != 1 or len(freqs) == 0 or len(freqs) > validation.MAX_GRID_POINTS:
-        validation.fail("frequency_ratios", f"an array of shape {freqs.shape}",
+            f"frequency_ratios must be a 1-D list of numbers, got {type(frequency_ratios).__name__}") from None
+    if isinstance(frequency_ratios, (str, bytes)) or not 1 <= len(items) <= validation.MAX_GRID_POINTS:
+        validation.fail("frequency_ratios", f"{len(items)} values" if len(items) else "no value",
                         f"a 1-D list of 1 to {validation.MAX_GRID_POINTS} frequency ratios")
-    bad = np.flatnonzero(~(np.isfinite(freqs) & (freqs > 0) & (freqs <= QUANTITIES["frequency_ratio"].high)))
-    if bad.size:  # the first value out of the declared range, named by its index
-        QUANTITIES["frequency_ratio"].check(f"frequency_ratios[{bad[0]}]", float(freqs[bad[0]]))
+    freqs = np.array([QUANTITIES["frequency_ratio"].check(f"frequency_ratios[{i}]", f) for i, f in enumerate(items)])
     realisations = _realisation_list(realisations)
     if scenario.noise_level == 0 and len(realisations) > 1:
         realisations = realisations[:1]  # without noise every realisation is the same record

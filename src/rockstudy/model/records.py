@@ -524,8 +524,7 @@ def read_record(path, unit: str | None = None, dt: float | None = None) -> Recor
         :class:`RecordFormatError` for a malformed file or more samples than
         :data:`~rockstudy.core.validation.MAX_RECORD_SAMPLES`.
     """
-    if dt is not None:
-        check_arguments("read_record", {"dt": dt})
+    check_arguments("read_record", {"dt": dt})
     path = check_input_file("record file", path, MAX_RECORD_BYTES)
     if path.suffix.lower() in AT2_SUFFIXES:
         if dt is not None:

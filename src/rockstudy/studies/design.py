@@ -116,7 +116,8 @@ def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, freque
         As for :class:`rockstudy.analysis.scenario.Scenario`.
     """
     check_arguments("block_point", {"R": R, "alpha": alpha, "amplitude_start": amplitude_start,
-                                    "amplitude_step": amplitude_step, "resolution": resolution, "a_max0_g": a_max0_g})
+                                    "amplitude_step": amplitude_step, "resolution": resolution, "a_max0_g": a_max0_g,
+                                    "free_time": free_time})
     if "FS" not in strategies:
         raise ValueError(f"strategies must include FS (the reference of J_OS), got {list(strategies)}")
     t0 = time.perf_counter()
@@ -162,7 +163,8 @@ def device_point(block: Block, kappa_max: float, damping_ratio: float, strategie
                  suite: str, kappa_min: float = 0.0, overturn_criterion: str = "flat",
                  free_time: float = DEFAULT_FREE_TIME) -> xr.Dataset:
     """One point of the device sweep: the fragility median [g] of each strategy with this device."""
-    check_arguments("device_point", {"kappa_max": kappa_max, "damping_ratio": damping_ratio, "kappa_min": kappa_min})
+    check_arguments("device_point", {"kappa_max": kappa_max, "damping_ratio": damping_ratio, "kappa_min": kappa_min,
+                                     "free_time": free_time})
     t0 = time.perf_counter()
     anchorage = Anchorage(kappa_max=kappa_max, kappa_min=kappa_min, damping_ratio=damping_ratio)
     medians, betas, _, status, interval = fragility_medians_g(block, anchorage, [Control(s) for s in strategies],
