@@ -212,7 +212,7 @@ def device_point(block: Block, kappa_max: float, damping_ratio: float, strategie
     suite : str
         Name of the suite (stored).
     kappa_min : float, default 0.0
-        Dimensionless stiffness κ_min of the device when switched off. [-]
+        Dimensionless stiffness κ_min = 4 K_min b²/(m g R) of the device's "off" state. [-]
     overturn_criterion : {"flat", "alpha"}, default "flat"
         When a run counts as overturned.
     free_time : float, default DEFAULT_FREE_TIME

@@ -95,7 +95,7 @@ class CalibrationDesign:
         Parameters
         ----------
         alpha : float
-            Slenderness α of the block; θ_u = θ_u/α · α. [rad]
+            Slenderness α of the block; each θ_u is its ratio times α. [rad]
         """
         return [device(k, xi, r_th, r_k, alpha) for r_th in self.ultimate_rotation_ratio
                 for r_k in self.kappa_min_ratio for k in self.kappa_max for xi in self.damping_ratio]
@@ -456,9 +456,10 @@ def device_table(fs_spectra, device_spectra_list, levels: dict, a_max0_g: float)
     Parameters
     ----------
     fs_spectra : iterable of xarray.Dataset
-        Spectra of the free-standing block at every level, on the same grid.
+        Spectra of the free-standing block at every level, on the same grid; the first one's ``block_alpha``
+        converts a_max,0.
     device_spectra_list : iterable of xarray.Dataset
-        The device's spectra (:func:`device_spectra`); the first spectrum's ``block_alpha`` converts a_max,0.
+        The device's spectra (:func:`device_spectra`).
     levels : dict
         Level name -> noise level; it must hold the paper's R001, R005, R010 and one level equal to 0. [-]
     a_max0_g : float

@@ -130,8 +130,8 @@ def provenance(spectra) -> dict:
     Parameters
     ----------
     spectra : sequence of xarray.Dataset
-        The spectra the table compares; the first gives the seed, block, device, excitation and scan, each
-        one with ``noise_level`` > 0 its number of realisations.
+        The spectra the table compares: the first gives the seed, block, device, excitation and scan, the
+        noisy ones (``noise_level`` > 0) the number of realisations.
     """
     first = spectra[0]
     attrs = {k: val for k, val in first.attrs.items() if k.startswith(PROVENANCE_PREFIXES) or k in PROVENANCE_KEYS}
@@ -209,15 +209,15 @@ def timing_table(sweep, same_strategy, free_standing, variable: str, a_max0_g: f
     Parameters
     ----------
     sweep : sequence of xarray.Dataset
-        Spectra of the timing sweep, each with scalar ``strategy``, ``noise_level``, ``sampling_time`` and
-        ``variable`` coordinates.
+        Spectra of the timing sweep, each with scalar ``strategy``, ``noise_level`` and ``sampling_time``
+        coordinates and the coordinate named ``variable``.
     same_strategy : iterable of xarray.Dataset
         The references without that timing (continuous control, or sampled without delay), by strategy and
         noise level.
     free_standing : iterable of xarray.Dataset
         Spectra of the free-standing block (FS), by noise level.
     variable : str
-        The swept coordinate: ``"sampling_time"`` or ``"delay"``. [s]
+        Name of the swept coordinate, ``"sampling_time"`` or ``"delay"`` (its values in s).
     a_max0_g : float
         Protection level a_max,0. [g]
     reference : str, default "continuous_same_noise"
