@@ -44,27 +44,56 @@ VERDICT_MARK = {"PASS": "✓ PASS", "FAIL": "✗ FAIL", "n/a": "n/a"}
 
 
 def verdict_html(word: str) -> str:
-    """A verdict (PASS, FAIL or n/a) as marked, coloured text."""
+    """A verdict (PASS, FAIL or n/a) as marked, coloured text.
+
+    Parameters
+    ----------
+    word : str
+        ``"PASS"``, ``"FAIL"`` or ``"n/a"``; another word is shown as it is, in the n/a style.
+    """
     return f'<span class="{VERDICT_CLASS.get(word, "na")}">{html.escape(VERDICT_MARK.get(word, word))}</span>'
 
 
 def scrolling(fragment: str, style: str = "") -> str:
     """``fragment`` with every table wrapped in a box that scrolls sideways when the table is wider
-    than the column it sits in (``style``: the box's inline style, where no style sheet applies)."""
+    than the column it sits in.
+
+    Parameters
+    ----------
+    fragment : str
+        An HTML fragment.
+    style : str, default ""
+        Inline style of the boxes, for a page where no style sheet applies; empty: the ``scroll`` class
+        of :data:`STYLE`.
+    """
     box = f'<div class="scroll" style="{style}">' if style else '<div class="scroll">'
     return re.sub(r"<table\b", lambda m: box + m[0], fragment).replace("</table>", "</table></div>")
 
 
 def document(title: str, body: str) -> str:
     """A complete HTML page: ``title`` as its title and first heading, ``body`` (HTML) below, its
-    tables in boxes that scroll sideways (:func:`scrolling`)."""
+    tables in boxes that scroll sideways (:func:`scrolling`).
+
+    Parameters
+    ----------
+    title : str
+        The page's title and first heading (escaped).
+    body : str
+        The page's content, HTML.
+    """
     return ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
             f"<title>{html.escape(title)}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n"
             f"{scrolling(body)}\n</body>\n</html>\n")
 
 
 def markdown_html(text: str) -> str:
-    """Markdown (CommonMark with pipe tables) as an HTML fragment; verdicts marked as in :func:`verdict_html`."""
+    """Markdown (CommonMark with pipe tables) as an HTML fragment; verdicts marked as in :func:`verdict_html`.
+
+    Parameters
+    ----------
+    text : str
+        The Markdown; raw HTML in it is escaped.
+    """
     from markdown_it import MarkdownIt
 
     out = MarkdownIt("commonmark", {"html": False}).enable("table").render(text)
@@ -123,7 +152,13 @@ VERDICT_OF_FLAG = {1: "PASS", 0: "FAIL", -1: "n/a"}
 
 
 def claims_summary(claims: xr.Dataset) -> dict:
-    """Counts of PASS, FAIL and n/a of this run's verdicts."""
+    """Counts of PASS, FAIL and n/a of this run's verdicts.
+
+    Parameters
+    ----------
+    claims : xarray.Dataset
+        ``reproduction/claims.nc`` (:func:`rockstudy.studies.claims.claims_dataset`): ``passed`` over ``claim``.
+    """
     flags = np.asarray(claims["passed"].values, dtype=int)
     return {word: int(np.count_nonzero(flags == flag)) for flag, word in VERDICT_OF_FLAG.items()}
 
@@ -177,7 +212,13 @@ def _styled(text: str) -> str:
 
 
 def table1_compact_html(comparison: xr.Dataset) -> str:
-    """Table 1 of this run beside the paper's in one cell per noise level: "ours (paper)" J_OS in %."""
+    """Table 1 of this run beside the paper's in one cell per noise level: "ours (paper)" J_OS in %.
+
+    Parameters
+    ----------
+    comparison : xarray.Dataset
+        ``reproduction/table1_vs_paper.nc``: ``paper`` and ``ours`` over (row, noise_level).
+    """
     levels = [str(v) for v in comparison["noise_level"].values]
     head = "".join(f'<th class="num">{html.escape(lv)}: ours (paper)</th>' for lv in levels)
     rows = []
@@ -192,7 +233,13 @@ def table1_compact_html(comparison: xr.Dataset) -> str:
 
 
 def claims_compact_html(claims: xr.Dataset) -> str:
-    """The claims checklist without the evidence column: claim, this run's verdict, the paper's."""
+    """The claims checklist without the evidence column: claim, this run's verdict, the paper's.
+
+    Parameters
+    ----------
+    claims : xarray.Dataset
+        ``reproduction/claims.nc``: ``passed``, ``paper_passed``, ``section`` and ``statement`` over ``claim``.
+    """
     counts = claims_summary(claims)
     rows = []
     for i, name in enumerate(claims["claim"].values, start=1):
@@ -209,7 +256,15 @@ def claims_compact_html(claims: xr.Dataset) -> str:
 
 def overview_html(comparison: xr.Dataset, claims: xr.Dataset) -> str:
     """The headline results for the report's overview page: Table 1 beside the paper, then the claims
-    (compact forms of :func:`table1_beside_paper_html` and :func:`claims_html`, styled inline)."""
+    (compact forms of :func:`table1_beside_paper_html` and :func:`claims_html`, styled inline).
+
+    Parameters
+    ----------
+    comparison : xarray.Dataset
+        ``reproduction/table1_vs_paper.nc`` (:func:`rockstudy.studies.claims.table1_comparison`).
+    claims : xarray.Dataset
+        ``reproduction/claims.nc`` (:func:`rockstudy.studies.claims.claims_dataset`).
+    """
     return scrolling(_styled(table1_compact_html(comparison) + "\n" + claims_compact_html(claims)),
                      style=INLINE["scroll"])
 
@@ -288,7 +343,14 @@ of a fragility dataset they come from."""
 
 def run_numbers_csv(fragility: list) -> str:
     """The fragility numbers the docs quote, one row per (record set, strategy), at full precision,
-    from the run's ``fragility/<record set>.nc`` datasets."""
+    from the run's ``fragility/<record set>.nc`` datasets.
+
+    Parameters
+    ----------
+    fragility : list of xarray.Dataset
+        ``fragility/<record set>.nc`` of the run, each with the variables of :data:`RUN_NUMBERS` over
+        ``strategy``.
+    """
     lines = [",".join(["suite", "strategy", "n_records", *RUN_NUMBERS])]
     for ds in fragility:
         for s in ds["strategy"].values:
@@ -358,7 +420,13 @@ SWEEP_WORDS = {"J_OS against sampling_time": "J_OS against the sampling time T_s
 def in_paper_words(text: str) -> str:
     """Table headers and row names with the references of Table 1 in words: ``"no_noise: R005"``
     becomes ``"R005: J_OS vs. no noise"`` (the same strategy without noise) and ``"CS01 vs
-    fs_same_noise"`` becomes ``"CS01 vs. FS at the same noise"``."""
+    fs_same_noise"`` becomes ``"CS01 vs. FS at the same noise"``.
+
+    Parameters
+    ----------
+    text : str
+        Markdown or a row name of a J_OS table.
+    """
     for code, words in SWEEP_WORDS.items():
         text = text.replace(code, words)
     keys = "|".join(sorted(REFERENCE_WORDS, key=len, reverse=True))
@@ -368,7 +436,13 @@ def in_paper_words(text: str) -> str:
 
 def settings_text(settings) -> str:
     """A mapping of settings as plain words (``"step 0.0025, rescale energy, band none"``), for a
-    page or a table's header; anything else as ``str``."""
+    page or a table's header; anything else as ``str``.
+
+    Parameters
+    ----------
+    settings : dict or object
+        Setting name -> value (None is shown as "none"); anything else is shown with ``str``.
+    """
     if not isinstance(settings, dict):
         return str(settings)
     return ", ".join(f"{key.replace('_', ' ')} {'none' if value is None else value}" for key, value in settings.items())
@@ -416,7 +490,14 @@ def labels(result: str, paper: str = "") -> dict:
 
 # --- the fragility tables (Markdown) ---------------------------------------------------------------
 def fragility_markdown(ds: xr.Dataset) -> str:
-    """Markdown table of the fits: median (95 % interval), dispersion, median shift over FS (interval)."""
+    """Markdown table of the fits: median (95 % interval), dispersion, median shift over FS (interval).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A fragility dataset (``fragility/<record set>.nc``,
+        :func:`rockstudy.analysis.fragility.suite_fragility_dataset`).
+    """
     im = ds.attrs["intensity_measure_definition"]
     lines = [f"| strategy | median θ of {im} (95 % CI) | dispersion β (± se) | θ/θ_FS (bootstrap 95 % CI) "
              f"| median shift over FS | fit |", "|---|---|---|---|---|---|"]
@@ -456,7 +537,13 @@ def _two_fits(ds: xr.Dataset) -> list:
 
 
 def suite_summary_markdown(rows) -> str:
-    """Markdown table of :func:`suite_summary`."""
+    """Markdown table of :func:`rockstudy.analysis.fragility.suite_summary`.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The rows of :func:`rockstudy.analysis.fragility.suite_summary`; empty: an empty string.
+    """
     from rockstudy.analysis.fragility import INTENSITY_MEASURES
     if not rows:
         return ""
@@ -476,7 +563,14 @@ def suite_summary_markdown(rows) -> str:
 
 def threshold_markdown(ds: xr.Dataset) -> str:
     """Markdown table of every record's threshold: the smallest PGA [g] (and scale) that overturns the block,
-    per strategy; "—" where nothing up to the last level overturns it."""
+    per strategy; "—" where nothing up to the last level overturns it.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A fragility dataset with per-record thresholds (``threshold_pga``, ``threshold_scale``, the
+        ``record_*`` coordinates; :func:`rockstudy.analysis.fragility.suite_fragility_dataset`).
+    """
     strategies = [str(s) for s in ds.strategy.values]
     lines = ["| record | event | station | PGA [g] | " + " | ".join(f"{s}: PGA [g] (scale)" for s in strategies)
              + " |", "|---" * (4 + len(strategies)) + "|"]
@@ -507,7 +601,13 @@ def risk_markdown(ds: xr.Dataset) -> str:
     """Markdown table of a record set's risk (:func:`rockstudy.analysis.risk.risk_dataset`): per strategy the
     fragility used, P(overturn | scenario) for each scenario, and the annual rate and T-year probability
     for each hazard curve, each with its reduction over FS and the range that the median's 95 % interval
-    gives."""
+    gives.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A record set's risk (``risk/<record set>.nc``).
+    """
     strategies = [str(s) for s in ds.strategy.values]
     head = ["strategy", "stripes' fit: median θ [g] (95 % CI)", "β"]
     thresholds = "threshold_fit_median" in ds

@@ -21,6 +21,13 @@ def check_config(section: dict, config: dict) -> None:
     records' duration, step and samples), record files that are regular files of bounded size, the
     intensity stripes, the bootstrap draws and seeds, and the workload of one job.
 
+    Parameters
+    ----------
+    section : dict
+        The config's ``beyond:`` section (``probability`` and ``fragility``).
+    config : dict
+        The whole study config; its ``noise_levels`` and ``realisations`` bound the section's values.
+
     Raises
     ------
     ValueError
@@ -95,9 +102,12 @@ def _check_synthetic(syn: dict) -> int:
 def record_sets(records) -> dict:
     """The record sets of ``beyond.fragility.records``, each studied on its own.
 
-    ``records`` is a suite name, or a list whose items are suite names (one set each, named after
-    the suite), ``SUITE:ID`` names and files ``{path, unit}`` (these together form one set,
-    :data:`SELECTION`).
+    Parameters
+    ----------
+    records : str or list
+        ``beyond.fragility.records``: a suite name, or a list whose items are suite names (one set each,
+        named after the suite), ``SUITE:ID`` names and files ``{path, unit}`` (these together form one set,
+        :data:`SELECTION`).
 
     Returns
     -------
@@ -118,12 +128,26 @@ def record_sets(records) -> dict:
 
 
 def set_files(items) -> list:
-    """The record files a set of :func:`record_sets` reads (the ``{path, unit}`` items)."""
+    """The record files a set of :func:`record_sets` reads (the ``{path, unit}`` items).
+
+    Parameters
+    ----------
+    items : str or list
+        A record set of :func:`record_sets`: a suite name (no files), or a list of ``SUITE:ID`` names and
+        ``{path, unit}`` mappings.
+    """
     return [] if isinstance(items, str) else [item["path"] for item in items if isinstance(item, dict)]
 
 
 def check_records(records, key: str = "beyond.fragility.records") -> None:
     """Every suite name and ``SUITE:ID`` of ``records`` exists (the P695 ids are looked up in the package).
+
+    Parameters
+    ----------
+    records : str or list
+        ``beyond.fragility.records``, as :func:`record_sets` takes it; file mappings are skipped.
+    key : str, default "beyond.fragility.records"
+        The config key the messages name.
 
     Raises
     ------

@@ -133,8 +133,13 @@ def _timing(table: xr.Dataset | None, reference: str, strategy: str, variable: s
 def total_variation(thresholds, cap: float) -> float:
     """Total variation Σ|a_{i+1} − a_i| of a threshold curve over the frequency grid. [-]
 
-    NaN (no overturning up to the scan bound) and values above ``cap`` count as ``cap``, so a
-    spectrum that leaves the scan range is not rewarded or punished beyond the bound.
+    Parameters
+    ----------
+    thresholds : array_like
+        Threshold a_p/(g·tanα) at each frequency of the grid, in order. [-]
+    cap : float
+        The bound that NaN (no overturning up to the scan bound) and larger values count as, so a spectrum
+        that leaves the scan range is not rewarded or punished beyond the bound. [-]
     """
     a = np.asarray(thresholds, dtype=float)
     a = np.where(np.isnan(a) | (a > cap), cap, a)
@@ -143,6 +148,14 @@ def total_variation(thresholds, cap: float) -> float:
 
 # --- Table 1 claims ------------------------------------------------------------------------------
 def claim_fs_negative(table) -> ClaimResult:
+    """§5.1: noise makes the free-standing block less stable, J_OS of FS against FS without noise < 0 at
+    R001, R005 and R010.
+
+    Parameters
+    ----------
+    table : xarray.Dataset or None
+        Table 1 (:func:`rockstudy.studies.tables.table1`); None or a missing cell: not evaluated.
+    """
     ours, paper = _row(table, "no_noise", "FS"), _paper_row("no_noise", "FS")
     return ClaimResult(
         "fs_negative", "5.1", "Noise makes the free-standing block less stable: J_OS of FS against no noise < 0.",
@@ -152,6 +165,13 @@ def claim_fs_negative(table) -> ClaimResult:
 
 
 def claim_fs_falls(table) -> ClaimResult:
+    """§5.1: J_OS of the free-standing block against no noise decreases as the noise level grows.
+
+    Parameters
+    ----------
+    table : xarray.Dataset or None
+        Table 1 (:func:`rockstudy.studies.tables.table1`); None or a missing cell: not evaluated.
+    """
     ours, paper = _row(table, "no_noise", "FS"), _paper_row("no_noise", "FS")
     return ClaimResult(
         "fs_falls_with_noise", "5.1", "\"The value of J_OS of the free standing block decreases with increasing the "
@@ -161,6 +181,13 @@ def claim_fs_falls(table) -> ClaimResult:
 
 
 def claim_controlled_rises(table) -> ClaimResult:
+    """§5.1: J_OS of the controlled blocks (CS01, CS02) against no noise grows with the noise level.
+
+    Parameters
+    ----------
+    table : xarray.Dataset or None
+        Table 1 (:func:`rockstudy.studies.tables.table1`); None or a missing cell: not evaluated.
+    """
     rows = {s: _row(table, "no_noise", s) for s in ("CS01", "CS02")}
     paper = {s: _paper_row("no_noise", s) for s in ("CS01", "CS02")}
     ok = None if any(v is None for v in rows.values()) else all(_increasing(v) for v in rows.values())
@@ -174,6 +201,14 @@ def claim_controlled_rises(table) -> ClaimResult:
 
 
 def claim_controlled_less_sensitive(table) -> ClaimResult:
+    """§5.1: noise moves the threshold of the controlled blocks less than that of the free-standing block,
+    ``|J_OS(S vs no noise)| < |J_OS(FS vs no noise)|`` for S = CS01, CS02 at every level.
+
+    Parameters
+    ----------
+    table : xarray.Dataset or None
+        Table 1 (:func:`rockstudy.studies.tables.table1`); None or a missing cell: not evaluated.
+    """
     fs = _row(table, "no_noise", "FS")
     rows = {s: _row(table, "no_noise", s) for s in ("CS01", "CS02")}
 
@@ -192,6 +227,14 @@ def claim_controlled_less_sensitive(table) -> ClaimResult:
 
 
 def claim_both_beat_fs(table) -> ClaimResult:
+    """§5.1 and §6: both controlled blocks are more stable than the free-standing block at every noise
+    level (J_OS against FS at the same noise > 0).
+
+    Parameters
+    ----------
+    table : xarray.Dataset or None
+        Table 1 (:func:`rockstudy.studies.tables.table1`); None or a missing cell: not evaluated.
+    """
     rows = {s: _row(table, "fs_same_noise", s) for s in ("CS01", "CS02")}
     ok = None if any(v is None for v in rows.values()) else all(v > 0 for r in rows.values() for v in r)
     evidence = "n/a (Table 1 incomplete)" if ok is None else "; ".join(
@@ -203,6 +246,14 @@ def claim_both_beat_fs(table) -> ClaimResult:
 
 
 def claim_cs01_beats_cs02(table) -> ClaimResult:
+    """§5.1 and §6: the feedback strategy CS01 is more stable than the feedback-feedforward strategy CS02
+    (J_OS against FS larger at every level).
+
+    Parameters
+    ----------
+    table : xarray.Dataset or None
+        Table 1 (:func:`rockstudy.studies.tables.table1`); None or a missing cell: not evaluated.
+    """
     c1, c2 = _row(table, "fs_same_noise", "CS01"), _row(table, "fs_same_noise", "CS02")
     ok = None if c1 is None or c2 is None else all(a > b for a, b in zip(c1, c2))
     return ClaimResult(
@@ -213,6 +264,13 @@ def claim_cs01_beats_cs02(table) -> ClaimResult:
 
 
 def claim_gap_shrinks(table) -> ClaimResult:
+    """§5.1: the gap between CS01 and CS02 (J_OS against FS) shrinks as the noise level falls.
+
+    Parameters
+    ----------
+    table : xarray.Dataset or None
+        Table 1 (:func:`rockstudy.studies.tables.table1`); None or a missing cell: not evaluated.
+    """
     c1, c2 = _row(table, "fs_same_noise", "CS01"), _row(table, "fs_same_noise", "CS02")
     p1, p2 = _paper_row("fs_same_noise", "CS01"), _paper_row("fs_same_noise", "CS02")
     paper_gap = [a - b for a, b in zip(p1, p2)]
@@ -243,6 +301,17 @@ def _range_claim(table, strategy, low, high) -> ClaimResult:
 
 # --- convergence, smoothing ----------------------------------------------------------------------
 def claim_forty_enough(conv: xr.Dataset | None, a_max0_ratio: float) -> ClaimResult:
+    """§5.1: about 40 noise realisations give a stable aggregate threshold (the convergence study of Fig. 6a,
+    N = 40 against N = :data:`CONVERGENCE_FROM`, within :data:`CONVERGED`).
+
+    Parameters
+    ----------
+    conv : xarray.Dataset or None
+        The convergence dataset (:func:`rockstudy.studies.datasets.convergence_dataset`):
+        ``threshold_convergence`` over ``n_realisations``; None or fewer than 40 realisations: not evaluated.
+    a_max0_ratio : float
+        a_max,0 as an amplitude ratio a_p/(g·tanα), as in Table 1. [-]
+    """
     statement = ("\"The minimum number of contaminated signals to be taken into account to define a stable "
                  "a_min,OVER was in the range of 40.\"")
     definition = (f"the aggregate threshold of the convergence study (Fig. 6a) at N = 40 differs from the one at "
@@ -265,7 +334,19 @@ def claim_forty_enough(conv: xr.Dataset | None, a_max0_ratio: float) -> ClaimRes
 
 
 def claim_noise_smooths(spectra: dict, levels: dict, cap: float) -> ClaimResult:
-    """``spectra``: {(strategy, level name): thresholds}; ``levels``: {level name: value}."""
+    """§5.1: noise smooths the threshold curve of the controlled blocks: its :func:`total_variation` is
+    smaller at every noisy level than without noise, for CS01 and CS02.
+
+    Parameters
+    ----------
+    spectra : dict
+        (strategy, level name) -> aggregate threshold over the frequency grid, for CS01 and CS02 at every
+        level; a missing one: not evaluated. [-]
+    levels : dict
+        Level name -> noise level; the level equal to 0 is the one without noise. [-]
+    cap : float
+        Threshold cap of :func:`total_variation`. [-]
+    """
     statement = ("\"In the presence of noise a_min,OVER of the controlled block becomes more smoothed and spikes tend "
                  "to disappear.\"")
     definition = ("total variation TV = sum |a(w_i+1) - a(w_i)| of the aggregate threshold over the frequency grid "
@@ -287,6 +368,15 @@ def claim_noise_smooths(spectra: dict, levels: dict, cap: float) -> ClaimResult:
 
 # --- timing claims -------------------------------------------------------------------------------
 def claim_cs01_sampling(sampling: xr.Dataset | None) -> ClaimResult:
+    """§5.2: sampling changes CS01 appreciably (by :data:`APPRECIABLE` or more) only at the largest sampling
+    time, 0.2 s.
+
+    Parameters
+    ----------
+    sampling : xarray.Dataset or None
+        The sampling-time table (:func:`rockstudy.studies.tables.timing_table` over ``sampling_time``);
+        None or no T_s = 0.2 s: not evaluated.
+    """
     row = _timing(sampling, "continuous_same_noise", "CS01", "sampling_time")
     statement = ("\"The feedback strategy CS01 ... appreciable difference was found only for the largest sampling "
                  "time of 0.20 s.\"")
@@ -302,6 +392,15 @@ def claim_cs01_sampling(sampling: xr.Dataset | None) -> ClaimResult:
 
 
 def claim_cs02_sampling(sampling: xr.Dataset | None) -> ClaimResult:
+    """§5.2: CS02 deteriorates at a sampling time of 0.1 s: its J_OS against continuous control drops by
+    :data:`APPRECIABLE` or more.
+
+    Parameters
+    ----------
+    sampling : xarray.Dataset or None
+        The sampling-time table (:func:`rockstudy.studies.tables.timing_table` over ``sampling_time``);
+        None or no T_s = 0.1 s: not evaluated.
+    """
     row = _timing(sampling, "continuous_same_noise", "CS02", "sampling_time")
     statement = "\"Control strategy CS02 deteriorates its performance for sampling time as low as 0.10 s.\""
     definition = f"J_OS(CS02 at T_s = 0.1 s vs continuous) <= -{APPRECIABLE:g} %."
@@ -314,6 +413,15 @@ def claim_cs02_sampling(sampling: xr.Dataset | None) -> ClaimResult:
 
 
 def claim_cs01_less_affected(sampling: xr.Dataset | None) -> ClaimResult:
+    """§6: sampling affects the feedback strategy CS01 less than the feedback-feedforward strategy CS02
+    (at every T_s >= 0.1 s).
+
+    Parameters
+    ----------
+    sampling : xarray.Dataset or None
+        The sampling-time table (:func:`rockstudy.studies.tables.timing_table` over ``sampling_time``);
+        None: not evaluated.
+    """
     r1 = _timing(sampling, "continuous_same_noise", "CS01", "sampling_time")
     r2 = _timing(sampling, "continuous_same_noise", "CS02", "sampling_time")
     statement = "\"The feedback control strategy is less affected by sampling than the feedback-feedforward one.\""
@@ -330,6 +438,14 @@ def claim_cs01_less_affected(sampling: xr.Dataset | None) -> ClaimResult:
 
 
 def claim_cs01_stable_sampled(sampling: xr.Dataset | None) -> ClaimResult:
+    """§5.2: CS01 stays more stable than CS02 (J_OS against FS) at every sampling time of the sweep.
+
+    Parameters
+    ----------
+    sampling : xarray.Dataset or None
+        The sampling-time table (:func:`rockstudy.studies.tables.timing_table` over ``sampling_time``);
+        None: not evaluated.
+    """
     r1 = _timing(sampling, "fs_same_noise", "CS01", "sampling_time")
     r2 = _timing(sampling, "fs_same_noise", "CS02", "sampling_time")
     statement = "\"The feedback strategy CS01 was still the more stable\" over T_s from 2.5 ms to 0.20 s."
@@ -343,6 +459,14 @@ def claim_cs01_stable_sampled(sampling: xr.Dataset | None) -> ClaimResult:
 
 
 def claim_delay(delay: xr.Dataset | None) -> ClaimResult:
+    """§5.2 and §6: an actuation delay leaves both strategies' thresholds substantially the same
+    (``|J_OS|`` against the same sampling without delay below :data:`APPRECIABLE`).
+
+    Parameters
+    ----------
+    delay : xarray.Dataset or None
+        The delay table (:func:`rockstudy.studies.tables.timing_table` over ``delay``); None: not evaluated.
+    """
     statement = ("\"Both strategies perform well with respect to time-delay effects, as the threshold ... remained "
                  "substantially the same\" (delays 2.5 ms and 60 ms, T_s = 100 ms).")
     definition = (f"|J_OS(delayed vs the same sampling without delay)| < {APPRECIABLE:g} % for CS01 and CS02 at every "
@@ -410,7 +534,15 @@ def _verdict(value) -> str:
 
 
 def claims_dataset(results: list[ClaimResult], attrs: dict | None = None) -> xr.Dataset:
-    """The claims as a labelled dataset: ``passed`` (1 PASS, 0 FAIL, -1 not evaluated) and the texts."""
+    """The claims as a labelled dataset: ``passed`` (1 PASS, 0 FAIL, -1 not evaluated) and the texts.
+
+    Parameters
+    ----------
+    results : list of ClaimResult
+        The evaluated claims (:func:`evaluate_claims`), in order.
+    attrs : dict, optional
+        Further global attributes of the dataset.
+    """
     def code(v):
         return -1 if v is None else int(v)
     keys = [r.key for r in results]
@@ -438,7 +570,13 @@ COMPARISON_TITLE = "Table 1: paper vs this run"
 
 
 def table1_comparison(table1: xr.Dataset) -> xr.Dataset:
-    """Table 1 side by side: the paper's J_OS, ours and ours − paper per cell [%] (NaN where absent)."""
+    """Table 1 side by side: the paper's J_OS, ours and ours − paper per cell [%] (NaN where absent).
+
+    Parameters
+    ----------
+    table1 : xarray.Dataset
+        Table 1 of this run (:func:`rockstudy.studies.tables.table1`); it may lack cells (a tiny study).
+    """
     keys = list(PAPER_TABLE1)
     paper = np.array([PAPER_TABLE1[k] for k in keys])
     ours = np.full(paper.shape, np.nan)
@@ -465,7 +603,13 @@ def table1_comparison(table1: xr.Dataset) -> xr.Dataset:
 
 
 def comparison_markdown(comp: xr.Dataset) -> str:
-    """Table 1 side by side as Markdown: per row and level, paper / ours / difference."""
+    """Table 1 side by side as Markdown: per row and level, paper / ours / difference.
+
+    Parameters
+    ----------
+    comp : xarray.Dataset
+        The comparison of :func:`table1_comparison`.
+    """
     levels = list(comp["noise_level"].values)
     head = ["Table 1 row"] + [f"{lv} paper / ours / diff" for lv in levels] + ["max abs diff"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
@@ -481,7 +625,17 @@ def comparison_markdown(comp: xr.Dataset) -> str:
 
 
 def claims_markdown(results: list[ClaimResult], comp: xr.Dataset | None = None, header: str = "") -> str:
-    """The checklist as Markdown (one line per claim, then details), with Table 1 side by side."""
+    """The checklist as Markdown (one line per claim, then details), with Table 1 side by side.
+
+    Parameters
+    ----------
+    results : list of ClaimResult
+        The evaluated claims (:func:`evaluate_claims`), in order.
+    comp : xarray.Dataset, optional
+        The comparison of :func:`table1_comparison`; None: no side-by-side table.
+    header : str, default ""
+        Markdown put under the title (e.g. the run's settings); empty: none.
+    """
     n_pass = sum(r.passed is True for r in results)
     n_fail = sum(r.passed is False for r in results)
     out = ["# Claims of the paper checked on this run", ""]
@@ -501,7 +655,13 @@ def claims_markdown(results: list[ClaimResult], comp: xr.Dataset | None = None, 
 
 
 def claims_csv(results: list[ClaimResult]) -> str:
-    """The checklist as CSV (one row per claim) for the HTML report."""
+    """The checklist as CSV (one row per claim) for the HTML report.
+
+    Parameters
+    ----------
+    results : list of ClaimResult
+        The evaluated claims (:func:`evaluate_claims`), in order.
+    """
     import csv
     import io as _io
     buf = _io.StringIO()
@@ -515,9 +675,23 @@ def claims_csv(results: list[ClaimResult]) -> str:
 
 def evaluate_run(table1: xr.Dataset, spectra, levels: dict, a_max0_g: float, *, convergence=None, sampling=None,
                  delay=None) -> list[ClaimResult]:
-    """:func:`evaluate_claims` on a run's datasets: ``spectra`` is a list of gathered spectrum datasets.
+    """:func:`evaluate_claims` on a run's datasets, a_max,0 given in g and converted with the block's α.
 
-    ``a_max0_g`` is a_max,0 in units of g (converted with the block's α from the spectra). [g]
+    Parameters
+    ----------
+    table1 : xarray.Dataset
+        Table 1 (:func:`rockstudy.studies.tables.table1`).
+    spectra : iterable of xarray.Dataset
+        The gathered spectra (:func:`rockstudy.studies.datasets.gather_spectra`), with scalar ``strategy`` and
+        ``noise_level`` coordinates; at least one. The first one's ``block_alpha`` converts a_max,0.
+    levels : dict
+        Level name -> noise level; spectra at other levels are left out. [-]
+    a_max0_g : float
+        Protection level a_max,0. [g]
+    convergence : xarray.Dataset, optional
+        The convergence dataset of Fig. 6a (:func:`rockstudy.studies.datasets.convergence_dataset`).
+    sampling, delay : xarray.Dataset, optional
+        The timing tables (:func:`rockstudy.studies.tables.timing_table`).
     """
     spectra = list(spectra)
     if not spectra:

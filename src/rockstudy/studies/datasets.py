@@ -39,7 +39,13 @@ MISSING_MEANINGS = {
 
 def document_missing(ds: xr.Dataset) -> xr.Dataset:
     """Add ``missing_value_meaning`` (what a NaN means) to every variable of ``ds`` listed in
-    :data:`MISSING_MEANINGS`; returns ``ds``."""
+    :data:`MISSING_MEANINGS`; returns ``ds``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset; its variables' attributes are changed in place.
+    """
     for name, meaning in MISSING_MEANINGS.items():
         if name in ds.variables:
             ds[name].attrs["missing_value_meaning"] = meaning
@@ -53,6 +59,19 @@ def noise_dataset(scenario: Scenario, frequency_ratios, realisations, reference_
     Records are regenerated exactly by ``noisy_record(excitation, ω_p, level, k, seed, reading)``
     with ``SeedSequence(seed, spawn_key=(level_key, k))``; the first ``n_records`` unit records
     at ``reference_frequency_ratio`` are stored with the baseline for Fig. 4.
+
+    Parameters
+    ----------
+    scenario : rockstudy.analysis.scenario.Scenario
+        The scenario whose noise level, seed, reading, excitation and block make the records.
+    frequency_ratios : array_like of float
+        The frequency ratios ω_p/p at which the energy and PGA ratios are computed. [-]
+    realisations : iterable of int
+        The noise realisations k.
+    reference_frequency_ratio : float
+        The frequency ratio ω_p/p of the stored baseline and unit records. [-]
+    n_records : int
+        How many unit records to store (those of the first ``n_records`` realisations).
     """
     from rockstudy.model.noise import baseline_samples, level_key, noisy_record
 
@@ -108,6 +127,12 @@ def gather_spectra(parts) -> xr.Dataset:
 
     ``threshold`` is the lowest threshold over all realisations (the paper's a_min,OVER),
     ``threshold_mean``/``threshold_std`` the mean and std over the realisations with a threshold.
+
+    Parameters
+    ----------
+    parts : iterable of xarray.Dataset
+        The realisation chunks of one spectrum (non-empty, in any order); they must share every setting and
+        no realisation.
     """
     parts = sorted(parts, key=lambda d: int(d["realisation"].values[0]))
     first = parts[0]
@@ -134,7 +159,14 @@ def gather_spectra(parts) -> xr.Dataset:
 
 
 def convergence_dataset(ds: xr.Dataset) -> xr.Dataset:
-    """Fig. 6a: the lowest threshold over the first N realisations, N = 1 … n."""
+    """Fig. 6a: the lowest threshold over the first N realisations, N = 1 … n.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A gathered spectrum (:func:`gather_spectra`), with ``threshold_realisation`` and scalar ``strategy`` and
+        ``noise_level`` coordinates.
+    """
     from rockstudy.analysis.spectra import convergence
 
     out = convergence(ds).to_dataset()
@@ -151,7 +183,25 @@ def history_dataset(result, scenario: Scenario, motion, frequency_ratio: float, 
     steps and events, each once, the state just after a jump), the velocities just before and
     after each impact on the ``impact`` dimension, and the ground motion Ẍ_g/(g·tanα) of
     ``motion`` sampled every ``dt`` [s] (on ``t_ground``); the layout of
-    :meth:`SimulationResult.to_dataset` with the scenario's attributes."""
+    :meth:`SimulationResult.to_dataset` with the scenario's attributes.
+
+    Parameters
+    ----------
+    result : rockstudy.engine.simulation_result.SimulationResult
+        A run made with ``record_history=True``.
+    scenario : rockstudy.analysis.scenario.Scenario
+        The scenario of the run; its block, anchorage and attributes label the dataset.
+    motion : rockstudy.model.excitation.GroundMotion
+        The ground motion that drove the run.
+    frequency_ratio : float
+        The run's ω_p/p. [-]
+    amplitude_ratio : float
+        The run's a_p/(g·tanα). [-]
+    realisation : int, default 0
+        The run's noise realisation k.
+    dt : float, default NOISE_DT
+        Sampling step of the ground motion on ``t_ground``. [s]
+    """
     from rockstudy.model.excitation import excitation_duration
 
     ds = result.to_dataset(scenario.block, scenario.anchorage, motion, dt)
@@ -166,13 +216,33 @@ def history_dataset(result, scenario: Scenario, motion, frequency_ratio: float, 
 
 def time_history(scenario: Scenario, frequency_ratio: float, amplitude_ratio: float,
                  realisation: int = 0) -> xr.Dataset:
-    """Simulate one (frequency, amplitude, realisation) case and return its labelled history."""
+    """Simulate one (frequency, amplitude, realisation) case and return its labelled history.
+
+    Parameters
+    ----------
+    scenario : rockstudy.analysis.scenario.Scenario
+        The scenario to simulate.
+    frequency_ratio : float
+        Frequency ratio ω_p/p. [-]
+    amplitude_ratio : float
+        Amplitude ratio a_p/(g·tanα). [-]
+    realisation : int, default 0
+        Noise realisation k (0 without noise).
+    """
     run = scenario.simulate(frequency_ratio, amplitude_ratio, realisation, record_history=True)
     return history_dataset(run.result, scenario, run.motion, frequency_ratio, amplitude_ratio, realisation)
 
 
 def check_noise(noise: xr.Dataset, scenario: Scenario) -> None:
-    """The noise file and the scenario describe the same realisations (seed, level, reading)."""
+    """The noise file and the scenario describe the same realisations (seed, level, reading).
+
+    Parameters
+    ----------
+    noise : xarray.Dataset
+        A noise file (:func:`noise_dataset`).
+    scenario : rockstudy.analysis.scenario.Scenario
+        The scenario that uses it.
+    """
     expected = {"noise_seed": scenario.seed, "noise_level": scenario.noise_level,
                 "excitation": scenario.excitation, **scenario.noise.to_attrs()}
     for attr, value in expected.items():
@@ -189,11 +259,21 @@ def expected_attrs(scenario: Scenario, kind: str = "spectrum", *, realisations=N
     """What a dataset of ``kind`` made for ``scenario`` must say about itself (the expectations that
     :func:`rockstudy.core.io.check_dataset` compares), as plain JSON-able values.
 
-    ``kind``: ``"noise"`` (seed, level, excitation, reading, block), ``"spectrum"``, ``"history"``,
-    ``"map"`` or ``"study"`` (block, excitation, seed, criterion, free time: what a table inherits).
-    ``realisations``, ``frequency_ratios``: the coordinates; ``amplitude_grid``: an
-    :class:`~rockstudy.analysis.spectra.AmplitudeGrid` or a dict with start/stop/step/resolution;
-    ``extra``: more attributes (e.g. ``noise_realisation`` of a history).
+    Parameters
+    ----------
+    scenario : rockstudy.analysis.scenario.Scenario
+        The scenario the dataset is made for.
+    kind : {"spectrum", "noise", "history", "map", "study"}, default "spectrum"
+        ``"noise"``: seed, level, excitation, reading and block; ``"study"``: block, excitation, seed,
+        criterion and free time (what a table inherits); the others: every attribute of the scenario.
+    realisations : iterable of int, optional
+        The ``realisation`` coordinate.
+    frequency_ratios : iterable of float, optional
+        The ``frequency_ratio`` coordinate. [-]
+    amplitude_grid : rockstudy.analysis.spectra.AmplitudeGrid or dict, optional
+        The amplitude scan, or a dict with ``start``, ``stop``, ``step``, ``resolution``. [-]
+    **extra : dict
+        More attributes (e.g. ``noise_realisation`` of a history).
     """
     attrs = scenario.to_attrs()
     if kind == "noise":
@@ -314,6 +394,13 @@ def check_invariants(ds: xr.Dataset, path) -> xr.Dataset:
     overturn, ``n_records`` counts them, and each record's threshold lies within
     ``threshold_resolution`` above its last safe intensity. A record set's ``pga`` is the peak of each
     record's samples.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset read from ``path``.
+    path : str or pathlib.Path
+        The file it was read from, named in the message.
 
     Raises
     ------

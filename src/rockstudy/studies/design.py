@@ -43,13 +43,27 @@ from rockstudy.model.records import STANDARD_GRAVITY, STANDARD_GRAVITY_UNITS
 
 def gravity_comment(block: Block) -> str:
     """Both values of g a design point uses: the PGA levels are in units of standard gravity (the records'),
-    the block's uplift acceleration g·tan(alpha) uses the block's own g."""
+    the block's uplift acceleration g·tan(alpha) uses the block's own g.
+
+    Parameters
+    ----------
+    block : rockstudy.model.block.Block
+        The design point's block; its ``gravity`` is quoted.
+    """
     return (f"PGA in units of standard gravity g_n = {STANDARD_GRAVITY:g} m s-2 (the records' g); the block's "
             f"model uses g = {block.gravity:g} m s-2 (block_gravity)")
 
 
 def pga_levels(start: float = 0.05, stop: float = 3.0, count: int = 30) -> np.ndarray:
-    """Geometric PGA levels of the stripes, from ``start`` to ``stop`` in ``count`` points. [g]"""
+    """Geometric PGA levels of the stripes, from ``start`` to ``stop`` in ``count`` points. [g]
+
+    Parameters
+    ----------
+    start, stop : float, default 0.05 and 3.0
+        First and last level, start < stop, each in [1e-4, 100]. [g]
+    count : int, default 30
+        Number of levels, 2 to 200.
+    """
     check_arguments("pga_levels", {"start": start, "stop": stop, "count": count})
     if not start < stop:
         raise ValueError(f"PGA levels need start < stop, got {start} and {stop} [g]")
@@ -59,6 +73,23 @@ def pga_levels(start: float = 0.05, stop: float = 3.0, count: int = 30) -> np.nd
 def fragility_medians_g(block: Block, anchorage: Anchorage, controls, records, levels_g, *,
                         overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME):
     """Fragility median [g] of each control over ``records`` scaled to the PGA ``levels_g`` (stripes, MLE).
+
+    Parameters
+    ----------
+    block : rockstudy.model.block.Block
+        The block.
+    anchorage : rockstudy.model.anchorage.Anchorage
+        Its restrainers (the device).
+    controls : sequence of rockstudy.model.control.Control
+        The control laws compared, one median each.
+    records : sequence of rockstudy.model.records.Record
+        The record suite; each record is scaled to every level.
+    levels_g : array_like of float
+        PGA levels of the stripes, in units of standard gravity. [g]
+    overturn_criterion : {"flat", "alpha"}, default "flat"
+        When a run counts as overturned (:func:`rockstudy.engine.simulate.overturn_rotation`).
+    free_time : float, default DEFAULT_FREE_TIME
+        Free rocking allowed after each record. [s]
 
     Returns
     -------
@@ -97,7 +128,8 @@ def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, freque
         Half diagonal of the block. [m]
     alpha : float
         Slenderness angle. [rad]
-    anchorage : Anchorage
+    anchorage : rockstudy.model.anchorage.Anchorage
+        The restrainers (the device), the same for every strategy.
     strategies : sequence of str
         FS among them (the reference of J_OS).
     frequency_ratios : array_like
@@ -106,14 +138,18 @@ def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, freque
         The amplitude scan a_p/(g·tanα); it stops one step above a_max,0 (thresholds above it are capped). [-]
     a_max0_g : float
         a_max,0 of J_OS. [g]
-    records : sequence of Record
+    records : sequence of rockstudy.model.records.Record
         The suite of the fragility.
     levels_g : array_like
         PGA levels of the stripes. [g]
     suite : str
         Name of the suite (stored).
-    excitation, overturn_criterion, free_time
-        As for :class:`rockstudy.analysis.scenario.Scenario`.
+    excitation : {"modulated", "one-sine"}, default "modulated"
+        Baseline excitation of the spectra, as for :class:`rockstudy.analysis.scenario.Scenario`.
+    overturn_criterion : {"flat", "alpha"}, default "flat"
+        When a run counts as overturned.
+    free_time : float, default DEFAULT_FREE_TIME
+        Free rocking allowed after the excitation or record. [s]
     """
     check_arguments("block_point", {"R": R, "alpha": alpha, "amplitude_start": amplitude_start,
                                     "amplitude_step": amplitude_step, "resolution": resolution, "a_max0_g": a_max0_g,
@@ -162,7 +198,31 @@ def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, freque
 def device_point(block: Block, kappa_max: float, damping_ratio: float, strategies, records, levels_g, *,
                  suite: str, kappa_min: float = 0.0, overturn_criterion: str = "flat",
                  free_time: float = DEFAULT_FREE_TIME) -> xr.Dataset:
-    """One point of the device sweep: the fragility median [g] of each strategy with this device."""
+    """One point of the device sweep: the fragility median [g] of each strategy with this device.
+
+    Parameters
+    ----------
+    block : rockstudy.model.block.Block
+        The block.
+    kappa_max : float
+        Dimensionless restrainer stiffness κ_max = 4 K_max b²/(m g R) of the device. [-]
+    damping_ratio : float
+        Damping ratio ξ of the device. [-]
+    strategies : sequence of str
+        The control strategies (``"FS"``, ``"CS01"``, ...), one median each.
+    records : sequence of rockstudy.model.records.Record
+        The record suite of the fragility.
+    levels_g : array_like of float
+        PGA levels of the stripes. [g]
+    suite : str
+        Name of the suite (stored).
+    kappa_min : float, default 0.0
+        Dimensionless stiffness κ_min = 4 K_min b²/(m g R) of the device's "off" state. [-]
+    overturn_criterion : {"flat", "alpha"}, default "flat"
+        When a run counts as overturned.
+    free_time : float, default DEFAULT_FREE_TIME
+        Free rocking allowed after each record. [s]
+    """
     check_arguments("device_point", {"kappa_max": kappa_max, "damping_ratio": damping_ratio, "kappa_min": kappa_min,
                                      "free_time": free_time})
     t0 = time.perf_counter()
@@ -193,7 +253,14 @@ def device_point(block: Block, kappa_max: float, damping_ratio: float, strategie
 
 
 def gather_blocks(points) -> xr.Dataset:
-    """The block sweep over (R, alpha) from its points (:func:`block_point`)."""
+    """The block sweep over (R, alpha) from its points (:func:`block_point`).
+
+    Parameters
+    ----------
+    points : iterable of xarray.Dataset
+        The datasets of :func:`block_point`, one per (R, alpha), sharing strategies and settings; the
+        first one's attributes label the result.
+    """
     points = list(points)
     Rs = sorted({float(p.R) for p in points})
     alphas = sorted({float(p.alpha) for p in points})
@@ -217,7 +284,14 @@ def gather_blocks(points) -> xr.Dataset:
 
 
 def gather_devices(points) -> xr.Dataset:
-    """The device sweep over (kappa_max, damping_ratio) from its points (:func:`device_point`)."""
+    """The device sweep over (kappa_max, damping_ratio) from its points (:func:`device_point`).
+
+    Parameters
+    ----------
+    points : iterable of xarray.Dataset
+        The datasets of :func:`device_point`, one per (kappa_max, damping_ratio), sharing strategies; the
+        first one's block and suite label the result.
+    """
     points = list(points)
     kappas = sorted({float(p.kappa_max) for p in points})
     xis = sorted({float(p.damping_ratio) for p in points})
@@ -241,7 +315,19 @@ def gather_devices(points) -> xr.Dataset:
 
 
 def smallest_kappa(devices: xr.Dataset, strategy: str, damping_ratio: float, target_g: float) -> float:
-    """Smallest κ_max of the sweep whose fragility median reaches ``target_g`` [g] (NaN: none does). [-]"""
+    """Smallest κ_max of the sweep whose fragility median reaches ``target_g`` [g] (NaN: none does). [-]
+
+    Parameters
+    ----------
+    devices : xarray.Dataset
+        The device sweep (:func:`gather_devices`).
+    strategy : str
+        The strategy, a value of its ``strategy`` coordinate.
+    damping_ratio : float
+        The damping ratio ξ, a value of its ``damping_ratio`` coordinate. [-]
+    target_g : float
+        The target median PGA. [g]
+    """
     medians = devices.fragility_median.sel(strategy=strategy, damping_ratio=damping_ratio).values
     reached = np.flatnonzero(np.nan_to_num(medians, nan=-np.inf) >= target_g)
     return float(devices.kappa_max.values[reached[0]]) if reached.size else math.nan
@@ -249,7 +335,17 @@ def smallest_kappa(devices: xr.Dataset, strategy: str, damping_ratio: float, tar
 
 def design_markdown(devices: xr.Dataset, target_g: float, block_label: str) -> str:
     """The device table (median [g] per strategy, κ_max, ξ) and one sentence per strategy and ξ: the
-    smallest κ_max that keeps the median at or above the target."""
+    smallest κ_max that keeps the median at or above the target.
+
+    Parameters
+    ----------
+    devices : xarray.Dataset
+        The device sweep (:func:`gather_devices`).
+    target_g : float
+        The target median PGA. [g]
+    block_label : str
+        Words naming the block, put in the table's caption.
+    """
     strategies = [str(s) for s in devices.strategy.values]
     lines = [f"Fragility median PGA [g] on {devices.attrs['record_suite']} ({devices.attrs['n_records']} records), "
              f"{block_label}.", "", "| κ_max | ξ | " + " | ".join(strategies) + " |",
@@ -309,6 +405,11 @@ def _interval_note(devices: xr.Dataset, strategy: str, kappa_max: float, damping
 def check_config(section: dict) -> None:
     """The config's ``design:`` section is consistent (after the schema): FS among the strategies,
     increasing PGA levels, a suite whose records can be read.
+
+    Parameters
+    ----------
+    section : dict
+        The config's ``design:`` section (``suite``, ``strategies``, ``pga_levels_g``, ``blocks``, ``devices``).
 
     Raises
     ------

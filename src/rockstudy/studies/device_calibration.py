@@ -88,9 +88,14 @@ class CalibrationDesign:
                 len(self.damping_ratio))
 
     def devices(self, alpha: float) -> list[dict]:
-        """The anchorage dicts (keys of ``Anchorage``) for a block of slenderness ``alpha`` [rad].
+        """The anchorage dicts (keys of ``Anchorage``) for a block of slenderness ``alpha``.
 
         Order: θ_u/α outermost, then κ_min/κ_max, κ_max, ξ (C order of :attr:`shape`).
+
+        Parameters
+        ----------
+        alpha : float
+            Slenderness α of the block; each θ_u is its ratio times α. [rad]
         """
         return [device(k, xi, r_th, r_k, alpha) for r_th in self.ultimate_rotation_ratio
                 for r_k in self.kappa_min_ratio for k in self.kappa_max for xi in self.damping_ratio]
@@ -99,6 +104,19 @@ class CalibrationDesign:
 def device(kappa_max: float, damping_ratio: float, ultimate_rotation_ratio: float, kappa_min_ratio: float,
            alpha: float) -> dict:
     """One anchorage dict: κ_min = ratio·κ_max, θ_K,u = θ_D,u = ratio·α (None, i.e. α, for a ratio of 1).
+
+    Parameters
+    ----------
+    kappa_max : float
+        κ_max = 4·K_max·b²/(m·g·R). [-]
+    damping_ratio : float
+        ξ. [-]
+    ultimate_rotation_ratio : float
+        θ_u/α with θ_u = θ_K,u = θ_D,u. [-]
+    kappa_min_ratio : float
+        κ_min/κ_max, in [0, 1]. [-]
+    alpha : float
+        Slenderness α of the block. [rad]
 
     Raises
     ------
@@ -120,13 +138,25 @@ def paper_rows() -> np.ndarray:
 
 
 def rows_of(table: xr.Dataset) -> np.ndarray:
-    """CS01/CS02 rows of a Table 1 dataset (:func:`rockstudy.studies.tables.table1`) at R001-R010. [%]"""
+    """CS01/CS02 rows of a Table 1 dataset (:func:`rockstudy.studies.tables.table1`) at R001-R010. [%]
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        Table 1 with the CS01 and CS02 rows against both references at R001, R005 and R010.
+    """
     return np.array([[[float(table["j_os"].sel(reference=ref, strategy=s, noise_level=lv)) for lv in PAPER_LEVELS]
                       for ref in REFERENCES] for s in STRATEGIES])
 
 
 def score(rows: np.ndarray) -> tuple[float, float]:
-    """RMS and largest absolute difference of 12 J_OS values to the paper's. [points of %]"""
+    """RMS and largest absolute difference of 12 J_OS values to the paper's. [points of %]
+
+    Parameters
+    ----------
+    rows : array_like, shape (strategy, reference, noise_level)
+        The 12 J_OS values in the layout of :func:`paper_rows`; a NaN gives NaN scores. [%]
+    """
     d = np.asarray(rows, float) - paper_rows()
     if np.any(np.isnan(d)):
         return math.nan, math.nan
@@ -134,7 +164,13 @@ def score(rows: np.ndarray) -> tuple[float, float]:
 
 
 def conclusions_hold(rows: np.ndarray) -> np.ndarray:
-    """Per level: J_OS(CS01 vs FS) > J_OS(CS02 vs FS) > 0 (the paper's ranking). [bool]"""
+    """Per level: J_OS(CS01 vs FS) > J_OS(CS02 vs FS) > 0 (the paper's ranking). [bool]
+
+    Parameters
+    ----------
+    rows : array_like, shape (strategy, reference, noise_level)
+        The 12 J_OS values in the layout of :func:`paper_rows`. [%]
+    """
     vs_fs = np.asarray(rows)[:, REFERENCES.index("fs_same_noise"), :]
     return (vs_fs[0] > vs_fs[1]) & (vs_fs[1] > 0)
 
@@ -146,8 +182,16 @@ GRID_AXES = ("ultimate_rotation_ratio", "kappa_min_ratio", "kappa_max", "damping
 def grid_dataset(design: CalibrationDesign, tables, alpha: float, attrs: dict | None = None) -> xr.Dataset:
     """The screened grid: J_OS, residuals, score and the share of devices keeping the paper's ranking.
 
-    ``tables`` are Table 1 datasets, one per device in the order of ``design.devices(alpha)``;
-    ``alpha`` is the block's slenderness [rad] (θ_u = ratio·α).
+    Parameters
+    ----------
+    design : CalibrationDesign
+        The screened devices.
+    tables : iterable of xarray.Dataset
+        Table 1 datasets (:func:`device_table`), one per device in the order of ``design.devices(alpha)``.
+    alpha : float
+        Slenderness α of the block (θ_u = ratio·α). [rad]
+    attrs : dict, optional
+        Further global attributes of the dataset.
     """
     shape = design.shape
     nd = len(shape)
@@ -186,39 +230,93 @@ def grid_dataset(design: CalibrationDesign, tables, alpha: float, attrs: dict | 
 
 
 def device_at(grid: xr.Dataset, index: tuple) -> dict:
-    """The anchorage dict of the grid point ``index`` (positions along :data:`GRID_AXES`)."""
+    """The anchorage dict of the grid point ``index`` (positions along :data:`GRID_AXES`).
+
+    Parameters
+    ----------
+    grid : xarray.Dataset
+        The screened grid (:func:`grid_dataset`).
+    index : tuple of int
+        Positions along :data:`GRID_AXES`.
+    """
     values = [float(grid[axis].values[i]) for axis, i in zip(GRID_AXES, index)]
     r_th, r_k, k, xi = values
     return device(k, xi, r_th, r_k, float(grid.attrs["block_alpha"]))
 
 
 def ordered(values: np.ndarray) -> list[tuple]:
-    """Grid indices sorted by ``values`` ascending (NaN last, ties in C order)."""
+    """Grid indices sorted by ``values`` ascending (NaN last, ties in C order).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        Values over the grid's axes (e.g. the RMS residual).
+    """
     flat = np.argsort(np.where(np.isnan(values), np.inf, values), axis=None, kind="stable")
     return [tuple(int(i) for i in np.unravel_index(f, values.shape)) for f in flat]
 
 
 def best_devices(grid: xr.Dataset, n: int) -> list[tuple[dict, float]]:
-    """The ``n`` devices with the smallest RMS residual: (anchorage dict, RMS residual [%]), best first."""
+    """The ``n`` devices with the smallest RMS residual: (anchorage dict, RMS residual [%]), best first.
+
+    Parameters
+    ----------
+    grid : xarray.Dataset
+        The screened grid (:func:`grid_dataset`).
+    n : int
+        How many devices to return.
+    """
     rms = grid["rms_residual"].transpose(*GRID_AXES).values
     return [(device_at(grid, index), float(rms[index])) for index in ordered(rms)[:n]]
 
 
 def row_distance(grid: xr.Dataset, strategy: str, reference: str) -> xr.DataArray:
-    """RMS over the three levels of one row of Table 1 (e.g. CS02 against no noise) to the paper's. [points]"""
+    """RMS over the three levels of one row of Table 1 (e.g. CS02 against no noise) to the paper's. [points]
+
+    Parameters
+    ----------
+    grid : xarray.Dataset
+        The screened grid (:func:`grid_dataset`).
+    strategy : {"CS01", "CS02"}
+        The row's strategy.
+    reference : {"no_noise", "fs_same_noise"}
+        The row's reference.
+    """
     resid = grid["residual"].sel(strategy=strategy, reference=reference)
     return np.sqrt((resid ** 2).mean("noise_level", skipna=False))
 
 
 def physical(block: Block, anchorage: Anchorage) -> dict:
-    """K_max [N/m], K_min [N/m], D [N s/m] and θ_u [rad] a device means for ``block``."""
+    """K_max [N/m], K_min [N/m], D [N s/m] and θ_u [rad] a device means for ``block``.
+
+    Parameters
+    ----------
+    block : rockstudy.model.block.Block
+        The block the device anchors.
+    anchorage : rockstudy.model.anchorage.Anchorage
+        The dimensionless device.
+    """
     return {"K_max_N_per_m": anchorage.K_max(block), "K_min_N_per_m": anchorage.K_min(block),
             "D_N_s_per_m": anchorage.D(block), "theta_K_u_rad": anchorage.theta_spring(block),
             "theta_D_u_rad": anchorage.theta_damper(block)}
 
 
 def candidates_dataset(block: Block, devices: list[dict], tables, coarse_rms, attrs: dict | None = None) -> xr.Dataset:
-    """The refined candidates: their 12 J_OS values, residuals, score and physical parameters."""
+    """The refined candidates: their 12 J_OS values, residuals, score and physical parameters.
+
+    Parameters
+    ----------
+    block : rockstudy.model.block.Block
+        The study's block (for the physical parameters).
+    devices : list of dict
+        The candidates' anchorage dicts (:func:`device`), best of the screening first.
+    tables : iterable of xarray.Dataset
+        Table 1 of each candidate with the study's full settings (:func:`device_table`), in the same order.
+    coarse_rms : array_like of float
+        Each candidate's RMS residual in the coarse screening. [%]
+    attrs : dict, optional
+        Further global attributes of the dataset.
+    """
     rows = np.array([rows_of(t) for t in tables])  # (candidate, strategy, reference, level)
     resid = rows - paper_rows()[None]
     anchorages = [Anchorage(**d) for d in devices]
@@ -255,7 +353,17 @@ def candidates_dataset(block: Block, devices: list[dict], tables, coarse_rms, at
 
 
 def calibration_markdown(grid: xr.Dataset, candidates: xr.Dataset | None = None, runtime_s: float | None = None) -> str:
-    """Summary: best devices with their 12 residuals and physical parameters, the ranking share."""
+    """Summary: best devices with their 12 residuals and physical parameters, the ranking share.
+
+    Parameters
+    ----------
+    grid : xarray.Dataset
+        The screened grid (:func:`grid_dataset`).
+    candidates : xarray.Dataset, optional
+        The refined candidates (:func:`candidates_dataset`); None: the section is left out.
+    runtime_s : float, optional
+        Run time of the calibration jobs; None: not stated. [s]
+    """
     out = ["# Device calibration", ""]
     out.append("Share of screened devices where J_OS(CS01 vs FS) > J_OS(CS02 vs FS) > 0: " + ", ".join(
         f"{lv} {100 * float(v):.0f} %" for lv, v in zip(grid["noise_level"].values, grid["ranking_share"].values))
@@ -308,9 +416,24 @@ def device_spectra(scenario_spec: dict, anchorage: dict, strategies, levels: dic
                    realisations: int, grid) -> list[xr.Dataset]:
     """Spectra of one device for each strategy and noise level (the noise-free level with one realisation).
 
-    ``scenario_spec`` is a :func:`rockstudy.studies.parameters.scenario_from_dict` dict without ``anchorage``,
-    ``control`` and ``noise_level``, optionally with ``control_options`` (the config's ``control:``
-    keys, e.g. the sensor, applied to every strategy); ``grid`` an :class:`rockstudy.analysis.spectra.AmplitudeGrid`.
+    Parameters
+    ----------
+    scenario_spec : dict
+        A :func:`rockstudy.studies.parameters.scenario_from_dict` dict without ``anchorage``, ``control`` and
+        ``noise_level``, optionally with ``control_options`` (the config's ``control:`` keys, e.g. the sensor,
+        applied to every strategy).
+    anchorage : dict
+        The device: keyword arguments of :class:`~rockstudy.model.anchorage.Anchorage` (:func:`device`).
+    strategies : iterable of str
+        The control strategies, e.g. ``("CS01", "CS02")``.
+    levels : dict
+        Level name -> noise level. [-]
+    frequency_ratios : array_like of float
+        ω_p/p of the spectra. [-]
+    realisations : int
+        Noise realisations of each noisy spectrum (the noise-free one has one).
+    grid : rockstudy.analysis.spectra.AmplitudeGrid
+        The amplitude scan.
     """
     spec = {k: v for k, v in scenario_spec.items() if k != "control_options"}
     options = dict(scenario_spec.get("control_options") or {})
@@ -329,6 +452,18 @@ def device_table(fs_spectra, device_spectra_list, levels: dict, a_max0_g: float)
 
     A J_OS that Eq. 21 leaves undefined (N* = 0: neither spectrum overturns below a_max,0 at any
     frequency, e.g. a stiff device with and without noise) is NaN; such a device gets no score.
+
+    Parameters
+    ----------
+    fs_spectra : iterable of xarray.Dataset
+        Spectra of the free-standing block at every level, on the same grid; the first one's ``block_alpha``
+        converts a_max,0.
+    device_spectra_list : iterable of xarray.Dataset
+        The device's spectra (:func:`device_spectra`).
+    levels : dict
+        Level name -> noise level; it must hold the paper's R001, R005, R010 and one level equal to 0. [-]
+    a_max0_g : float
+        Protection level a_max,0. [g]
     """
     missing = [lv for lv in PAPER_LEVELS if lv not in levels]
     if missing:
@@ -370,6 +505,15 @@ def check_config(section: dict, alpha: float, sims_per_case: int | None = None) 
     every value within the anchorage's limits, at most :data:`~rockstudy.core.validation.MAX_DEVICES`
     devices, ``candidates`` among them, the coarse realisations and frequency grid within the limits and,
     given ``sims_per_case`` (simulations of one threshold), a coarse job within the workload limit.
+
+    Parameters
+    ----------
+    section : dict
+        The config's ``calibration:`` section.
+    alpha : float
+        Slenderness α of the study's block. [rad]
+    sims_per_case : int, optional
+        Simulations of one threshold (the amplitude scan); None: the coarse job's workload is not checked.
 
     Raises
     ------

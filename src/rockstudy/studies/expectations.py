@@ -22,7 +22,21 @@ from rockstudy.studies.datasets import expected_attrs
 
 def scenario_spec(config: dict, strategy: str, level: str, sampling_time=0.0, delay=0.0) -> dict:
     """The scenario (as :func:`rockstudy.studies.parameters.scenario_from_dict` reads it) of a job of the
-    study: ``strategy`` under the noise level named ``level``, with a sampling time and a delay [s]."""
+    study: ``strategy`` under the noise level named ``level``, with a sampling time and a delay.
+
+    Parameters
+    ----------
+    config : dict
+        The study config.
+    strategy : str
+        The control strategy (``"FS"``, ``"CS01"``, ...).
+    level : str
+        Name of the noise level, a key of ``noise_levels``.
+    sampling_time : float, default 0.0
+        Sampling time T_s of the controller; 0: continuous control. [s]
+    delay : float, default 0.0
+        Actuation delay of the controller. [s]
+    """
     return {
         "block": config["block"],
         "anchorage": config["anchorage"],
@@ -39,7 +53,19 @@ def scenario_spec(config: dict, strategy: str, level: str, sampling_time=0.0, de
 
 def reading_scenario_spec(config: dict, strategy: str, reading: str, level: str) -> dict:
     """The scenario of the readings study's spectrum of ``strategy`` under the noise reading ``reading``
-    (``reproduction.readings``; missing keys take the library's defaults) at ``level``."""
+    at ``level`` (a reading's missing keys take the library's defaults).
+
+    Parameters
+    ----------
+    config : dict
+        The study config.
+    strategy : str
+        The control strategy.
+    reading : str
+        Name of the noise reading, a key of ``reproduction.readings``.
+    level : str
+        Name of the noise level, a key of ``noise_levels``.
+    """
     spec = scenario_spec(config, strategy, level)
     spec["noise"] = dict(config["reproduction"]["readings"][reading])
     return spec
@@ -47,7 +73,14 @@ def reading_scenario_spec(config: dict, strategy: str, reading: str, level: str)
 
 def record_set_members(members) -> str:
     """The ``record_set_members`` attribute of a record set: its config entry (a suite name, or the list
-    of ``SUITE:ID`` names and files) as text."""
+    of ``SUITE:ID`` names and files) as text.
+
+    Parameters
+    ----------
+    members : str or list
+        The set's config entry: a suite name, or the list of ``SUITE:ID`` names and ``{path, unit}`` files
+        (:func:`rockstudy.studies.beyond.record_sets`).
+    """
     return members if isinstance(members, str) else repr(list(members))
 
 
@@ -71,15 +104,40 @@ class StudyExpectations:
         return [float(f) for f in parameters.frequency_ratios(self.config["frequency_grid"])]
 
     def chunks(self, level: str) -> list[list[int]]:
-        """The realisation chunks of a level's spectra (one chunk of realisation 0 without noise)."""
+        """The realisation chunks of a level's spectra (one chunk of realisation 0 without noise).
+
+        Parameters
+        ----------
+        level : str
+            Name of the noise level, a key of ``noise_levels``.
+        """
         return parameters.realisation_chunks(self.config["realisations"], self.config["realisations_per_job"],
                                              self.levels[level] > 0)
 
     def realisations(self, level: str) -> list[int]:
-        """Every realisation of a level's spectra."""
+        """Every realisation of a level's spectra.
+
+        Parameters
+        ----------
+        level : str
+            Name of the noise level, a key of ``noise_levels``.
+        """
         return [k for chunk in self.chunks(level) for k in chunk]
 
     def scenario(self, strategy: str, level: str, sampling_time=0.0, delay=0.0):
+        """The :class:`~rockstudy.analysis.scenario.Scenario` of a job of the study (:func:`scenario_spec`).
+
+        Parameters
+        ----------
+        strategy : str
+            The control strategy.
+        level : str
+            Name of the noise level, a key of ``noise_levels``.
+        sampling_time : float or str, default 0.0
+            Sampling time T_s of the controller (a wildcard's text is converted); 0: continuous control. [s]
+        delay : float or str, default 0.0
+            Actuation delay of the controller. [s]
+        """
         return parameters.scenario_from_dict(scenario_spec(self.config, strategy, level, sampling_time, delay))
 
     def _grids(self) -> dict:
@@ -87,25 +145,77 @@ class StudyExpectations:
 
     # --- the paper's study ----------------------------------------------------------------------------
     def noise(self, level: str) -> dict:
-        """The noise realisations of ``level`` (rule noise)."""
+        """The noise realisations of ``level`` (rule noise).
+
+        Parameters
+        ----------
+        level : str
+            Name of the noise level, a key of ``noise_levels``.
+        """
         return expected_attrs(self.scenario("FS", level), "noise", realisations=self.realisations(level))
 
     def spectrum(self, strategy: str, level: str, sampling_time=0.0, delay=0.0) -> dict:
-        """A whole spectrum (its convergence too): every realisation of ``level``."""
+        """A whole spectrum (its convergence too): every realisation of ``level``.
+
+        Parameters
+        ----------
+        strategy : str
+            The control strategy.
+        level : str
+            Name of the noise level, a key of ``noise_levels``.
+        sampling_time : float or str, default 0.0
+            Sampling time T_s of the controller; 0: continuous control. [s]
+        delay : float or str, default 0.0
+            Actuation delay of the controller. [s]
+        """
         return expected_attrs(self.scenario(strategy, level, sampling_time, delay),
                               realisations=self.realisations(level), **self._grids())
 
     def chunk(self, strategy: str, level: str, sampling_time, delay, chunk) -> dict:
-        """One realisation chunk of a spectrum (rule spectrum_chunk)."""
+        """One realisation chunk of a spectrum (rule spectrum_chunk).
+
+        Parameters
+        ----------
+        strategy : str
+            The control strategy.
+        level : str
+            Name of the noise level, a key of ``noise_levels``.
+        sampling_time : float or str
+            Sampling time T_s of the controller; 0: continuous control. [s]
+        delay : float or str
+            Actuation delay of the controller. [s]
+        chunk : int or str
+            Index of the chunk among :meth:`chunks` of ``level``.
+        """
         return expected_attrs(self.scenario(strategy, level, sampling_time, delay),
                               realisations=self.chunks(level)[int(chunk)], **self._grids())
 
     def map(self, strategy: str) -> dict:
-        """The noise-free overturning map of ``strategy``."""
+        """The noise-free overturning map of ``strategy``.
+
+        Parameters
+        ----------
+        strategy : str
+            The control strategy.
+        """
         return expected_attrs(self.scenario(strategy, self.free), "map", **self._grids())
 
     def history(self, strategy: str, level: str, realisation, frequency_ratio, amplitude_ratio) -> dict:
-        """The time history of one case."""
+        """The time history of one case.
+
+        Parameters
+        ----------
+        strategy : str
+            The control strategy.
+        level : str
+            Name of the noise level, a key of ``noise_levels``.
+        realisation : int or str
+            The noise realisation k.
+        frequency_ratio : float or str
+            The case's ω_p/p. [-]
+        amplitude_ratio : float or str
+            The case's a_p/(g·tanα). [-]
+        """
         return expected_attrs(self.scenario(strategy, level), "history", noise_realisation=int(realisation),
                               frequency_ratio=float(frequency_ratio), amplitude_ratio=float(amplitude_ratio))
 
@@ -119,7 +229,13 @@ class StudyExpectations:
         return {**self.table(), "strategy": list(self.config["table1"]["strategies"])}
 
     def timing_table(self, sweep: str) -> dict:
-        """The J_OS table of the ``"sampling"`` or ``"delay"`` sweep: its strategies and sampling times (delays)."""
+        """The J_OS table of the ``"sampling"`` or ``"delay"`` sweep: its strategies and sampling times (delays).
+
+        Parameters
+        ----------
+        sweep : {"sampling", "delay"}
+            The sweep: ``sampling_sweep`` or ``delay_sweep`` of the config.
+        """
         if sweep == "sampling":
             spec = self.config["sampling_sweep"]
             return {**self.table(), "strategy": list(spec["strategies"]),
@@ -141,8 +257,18 @@ class StudyExpectations:
 
     # --- the readings study ---------------------------------------------------------------------------
     def reading_spectrum(self, strategy: str, reading: str, level: str) -> dict:
-        """The spectrum of ``strategy`` under the noise reading ``reading`` at ``level``
-        (``reproduction.readings``; missing keys take the library's defaults)."""
+        """The spectrum of ``strategy`` under the noise reading ``reading`` at ``level`` (a reading's missing
+        keys take the library's defaults).
+
+        Parameters
+        ----------
+        strategy : str
+            The control strategy.
+        reading : str
+            Name of the noise reading, a key of ``reproduction.readings``.
+        level : str
+            Name of the noise level, a key of ``noise_levels``.
+        """
         spec = reading_scenario_spec(self.config, strategy, reading, level)
         realisations = list(range(self.config["reproduction"]["realisations"])) if self.levels[level] > 0 else [0]
         return expected_attrs(parameters.scenario_from_dict(spec), realisations=realisations, **self._grids())
@@ -163,11 +289,23 @@ class StudyExpectations:
         return design.devices(parameters.block_from_dict(self.config["block"]).alpha)
 
     def calibration_fs(self, level: str) -> dict:
-        """The FS spectrum of ``level`` on the calibration's coarse grid."""
+        """The FS spectrum of ``level`` on the calibration's coarse grid.
+
+        Parameters
+        ----------
+        level : str
+            Name of the noise level, a key of ``noise_levels``.
+        """
         return {**self.table(), "control_strategy": "FS", "noise_level": self.levels[level]}
 
     def calibration_device(self, device) -> dict:
-        """The coarse Table 1 of the calibration's device number ``device``."""
+        """The coarse Table 1 of the calibration's device number ``device``.
+
+        Parameters
+        ----------
+        device : int or str
+            Index of the device in :attr:`calibration_devices`.
+        """
         anchorage = self.calibration_devices[int(device)]
         return {"a_max0_g": float(self.config["a_max0"]), **{f"anchorage_{k}": v for k, v in anchorage.items()}}
 
@@ -177,13 +315,31 @@ class StudyExpectations:
                 "noise_reading": str(self.config["noise"])}
 
     def calibration_refined(self, rank, strategy: str, level: str) -> dict:
-        """The spectrum of the ``rank``-th best screened device under ``strategy`` at ``level``."""
+        """The spectrum of the ``rank``-th best screened device under ``strategy`` at ``level``.
+
+        Parameters
+        ----------
+        rank : int or str
+            Rank of the device in the screening, 0 for the best.
+        strategy : str
+            The control strategy.
+        level : str
+            Name of the noise level, a key of ``noise_levels``.
+        """
         return {**self.table(), "calibration_rank": int(rank), "control_strategy": strategy,
                 "noise_level": self.levels[level]}
 
     # --- beyond the paper -----------------------------------------------------------------------------
     def probability(self, strategy: str, level: str) -> dict:
-        """A P(overturn) surface (``beyond.probability``) over the study's realisations."""
+        """A P(overturn) surface (``beyond.probability``) over the study's realisations.
+
+        Parameters
+        ----------
+        strategy : str
+            The control strategy.
+        level : str
+            Name of the noise level, a key of ``noise_levels``.
+        """
         prob = self.config["beyond"]["probability"]
         return expected_attrs(self.scenario(strategy, level), "spectrum",
                               frequency_ratios=parameters.frequency_ratios(prob["frequency_grid"]),
@@ -191,11 +347,25 @@ class StudyExpectations:
                               n_realisations=int(self.config["realisations"]))
 
     def record_set(self, name: str, members) -> dict:
-        """The record set ``name`` of ``beyond.fragility.records`` with these members."""
+        """The record set ``name`` of ``beyond.fragility.records`` with these members.
+
+        Parameters
+        ----------
+        name : str
+            Name of the set (:func:`rockstudy.studies.beyond.record_sets`).
+        members : str or list
+            The set's config entry (:func:`record_set_members`).
+        """
         return {"record_set": name, "record_set_members": record_set_members(members)}
 
     def fragility(self, name: str) -> dict:
-        """The fragility of every strategy over the record set ``name`` (``beyond.fragility``)."""
+        """The fragility of every strategy over the record set ``name`` (``beyond.fragility``).
+
+        Parameters
+        ----------
+        name : str
+            Name of the record set.
+        """
         frag = self.config["beyond"]["fragility"]
         scenario = self.scenario("FS", self.free)
         keep = {"overturn_criterion", "free_time_s"}
@@ -207,7 +377,13 @@ class StudyExpectations:
                 "n_bootstrap": int(frag["bootstrap"]), "bootstrap_seed": int(frag["seed"])}
 
     def risk(self, name: str) -> dict:
-        """The risk of every strategy of the record set ``name`` at the config's sites (``risk:``)."""
+        """The risk of every strategy of the record set ``name`` at the config's sites (``risk:``).
+
+        Parameters
+        ----------
+        name : str
+            Name of the record set.
+        """
         from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS
         risk = self.config["risk"]
         return {"record_suite": name, "strategy": list(self.config["beyond"]["fragility"]["strategies"]),
@@ -220,13 +396,29 @@ class StudyExpectations:
                 "pga_levels_g": [float(v) for v in pga_levels(**design["pga_levels_g"])]}
 
     def design_block(self, R, alpha) -> dict:
-        """One point (R, alpha) of the design's block sweep."""
+        """One point (R, alpha) of the design's block sweep.
+
+        Parameters
+        ----------
+        R : float or str
+            Half diagonal of the block. [m]
+        alpha : float or str
+            Slenderness angle. [rad]
+        """
         design = self.config["design"]
         return {**self._design(), "R": float(R), "alpha": float(alpha), "excitation": self.config["excitation"],
                 "a_max0_g": float(design["blocks"]["a_max0"])}
 
     def design_device(self, kappa_max, damping_ratio) -> dict:
-        """One point (kappa_max, xi) of the design's device sweep, on the study's block."""
+        """One point (kappa_max, xi) of the design's device sweep, on the study's block.
+
+        Parameters
+        ----------
+        kappa_max : float or str
+            κ_max = 4 K_max b²/(m g R) of the device. [-]
+        damping_ratio : float or str
+            Damping ratio ξ of the device. [-]
+        """
         block = parameters.block_from_dict(self.config["block"])
         return {**self._design(), "kappa_max": float(kappa_max), "damping_ratio": float(damping_ratio),
                 **block.to_attrs()}
@@ -249,6 +441,13 @@ class StudyExpectations:
 
 def paired(paths, expectations) -> dict:
     """``{path: expectation}`` of a rule's input files and their expectations, in the same order.
+
+    Parameters
+    ----------
+    paths : iterable of str or pathlib.Path
+        A rule's input files.
+    expectations : iterable of dict
+        Their expectations (the methods of :class:`StudyExpectations`), in the same order.
 
     Raises
     ------

@@ -15,7 +15,14 @@ the tests compare with the fast engine."""
 
 
 def fingerprint_files(*parts: str) -> list[Path]:
-    """The source files :func:`source_fingerprint` hashes, relative to the package, in a fixed order."""
+    """The source files :func:`source_fingerprint` hashes, relative to the package, in a fixed order.
+
+    Parameters
+    ----------
+    *parts : str
+        Subpackage folders (``"engine"``) or module files (``"plotting.py"``), relative to the package;
+        none given: :data:`SIMULATION_LAYERS` without :data:`NOT_SIMULATED`.
+    """
     root = Path(__file__).resolve().parents[1]
     files = []
     for part in parts or SIMULATION_LAYERS:
@@ -35,7 +42,14 @@ def source_fingerprint(*parts: str) -> str:
     :data:`NOT_SIMULATED`.
 
     Snakemake passes it to a rule as a parameter, so the rule reruns when that code changes. Folders,
-    not file lists: a new module is covered by its layer's fingerprint without editing the workflow."""
+    not file lists: a new module is covered by its layer's fingerprint without editing the workflow.
+
+    Parameters
+    ----------
+    *parts : str
+        Subpackage folders or module files as in :func:`fingerprint_files`; none given: the simulation
+        layers.
+    """
     root = Path(__file__).resolve().parents[1]
     digest = hashlib.sha256()
     for name in fingerprint_files(*parts):

@@ -23,7 +23,13 @@ except ImportError:  # not on Windows: the resources line then gives the run tim
 
 def log_to(path) -> logging.Logger:
     """Send the "rockstudy" logger (progress, ETA) to ``path``; when the job's process ends, its last
-    line gives the job's resources (:func:`resources`: run time, CPU time, peak memory)."""
+    line gives the job's resources (:func:`resources`: run time, CPU time, peak memory).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The job's log file; it is overwritten.
+    """
     handler = logging.FileHandler(path, mode="w")
     handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s"))
     logger = logging.getLogger("rockstudy")
@@ -81,6 +87,11 @@ class Job:
         (:func:`rockstudy.core.io.read_checked`) and against its own invariants
         (:func:`rockstudy.studies.datasets.check_invariants`).
 
+        Parameters
+        ----------
+        path : str or pathlib.Path
+            A netCDF input of the job; a key of the rule's ``params.expect``.
+
         Raises
         ------
         KeyError
@@ -95,12 +106,26 @@ class Job:
         return check_invariants(io.read_checked(path, self.expectations), path)
 
     def read_all(self, paths) -> list:
-        """:meth:`read` of every path, in order."""
+        """:meth:`read` of every path, in order.
+
+        Parameters
+        ----------
+        paths : iterable of str or pathlib.Path
+            The netCDF inputs, each a key of the rule's ``params.expect``.
+        """
         return [self.read(path) for path in paths]
 
     def stamp(self, ds, fingerprint: str = "library"):
         """``ds`` with the source fingerprint it was made with (the rule's ``params.<fingerprint>``) in its
-        ``rockstudy_source_sha256`` attribute; returns ``ds``."""
+        ``rockstudy_source_sha256`` attribute; returns ``ds``.
+
+        Parameters
+        ----------
+        ds : xarray.Dataset
+            The dataset the job writes; its attributes are changed in place.
+        fingerprint : str, default "library"
+            Name of the rule's parameter that holds the fingerprint (``params.<fingerprint>``).
+        """
         ds.attrs["rockstudy_source_sha256"] = getattr(self.params, fingerprint)
         return ds
 
@@ -111,8 +136,14 @@ def open_job(snakemake, *, compiled: bool = False) -> Job:
     input against the rule's ``params.expect`` (``{file: expected attributes}``, from
     :class:`rockstudy.studies.expectations.StudyExpectations`).
 
-    ``snakemake`` is the object Snakemake gives a script, or any object with the same attributes
-    (``log``, ``params``, ``threads``): a test calls a script's ``main`` with a stand-in."""
+    Parameters
+    ----------
+    snakemake : snakemake.script.Snakemake
+        The object Snakemake gives a script, or any object with the same attributes (``log``, ``params``,
+        ``threads``): a test calls a script's ``main`` with a stand-in.
+    compiled : bool, default False
+        Whether the job runs numba-compiled code; then numba uses the job's ``threads``.
+    """
     logger = log_to(snakemake.log[0])
     if compiled:
         import numba

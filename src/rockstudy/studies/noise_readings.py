@@ -26,7 +26,13 @@ PAPER_FS_ROW = dict(zip(PAPER_LEVELS, PAPER_TABLE1[("no_noise", "FS")]))
 def jos_against(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float) -> tuple[float, int]:
     """J_OS [%] and N* of a spectrum against a reference spectrum on the same grid (Eq. 21).
 
-    ``a_max0_g`` is a_max,0 in units of g; the block's α is read from the reference's attributes.
+    Parameters
+    ----------
+    system, reference : xarray.Dataset
+        Overturning spectra (``threshold`` over ``frequency_ratio``) on the same frequencies; the block's α
+        is read from the reference's ``block_alpha`` attribute.
+    a_max0_g : float
+        Protection level a_max,0. [g]
     """
     if not np.allclose(system["frequency_ratio"], reference["frequency_ratio"]):
         raise ValueError("J_OS needs the system and the reference on the same frequencies")
@@ -35,7 +41,13 @@ def jos_against(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float) -> t
 
 
 def distance(ours, paper) -> tuple[float, float]:
-    """Largest absolute difference and RMS difference between two rows of J_OS. [points of %]"""
+    """Largest absolute difference and RMS difference between two rows of J_OS. [points of %]
+
+    Parameters
+    ----------
+    ours, paper : array_like
+        The two rows of J_OS, of equal length; a NaN in either gives NaN distances. [%]
+    """
     d = np.asarray(ours, float) - np.asarray(paper, float)
     if d.size == 0 or np.any(np.isnan(d)):
         return math.nan, math.nan
@@ -114,20 +126,41 @@ def readings_table(spectra: dict, reference: xr.Dataset, readings: dict, levels:
 
 
 def closest_reading_of(names, distances) -> str:
-    """The name with the smallest RMS difference (ties: smallest max abs difference)."""
+    """The name with the smallest RMS difference (ties: smallest max abs difference).
+
+    Parameters
+    ----------
+    names : sequence of str
+        The readings' names.
+    distances : sequence of tuple of float
+        (largest absolute difference, RMS difference) of each reading, as :func:`distance` gives them; NaN
+        RMS differences are skipped. [%]
+    """
     usable = [(d[1], d[0], i) for i, d in enumerate(distances) if not math.isnan(d[1])]
     return names[min(usable)[2]] if usable else ""
 
 
 def closest_reading(table: xr.Dataset) -> str:
-    """The reading of a :func:`readings_table` closest to the paper (smallest RMS difference)."""
+    """The reading of a :func:`readings_table` closest to the paper (smallest RMS difference).
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A table of :func:`readings_table`.
+    """
     names = list(table["reading"].values)
     dist = list(zip(table["max_abs_difference"].values, table["rms_difference"].values))
     return closest_reading_of(names, dist)
 
 
 def readings_markdown(table: xr.Dataset) -> str:
-    """The readings table as Markdown, closest reading first."""
+    """The readings table as Markdown, closest reading first.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A table of :func:`readings_table`.
+    """
     levels = list(table["noise_level"].values)
     order = np.argsort(np.where(np.isnan(table["rms_difference"].values), np.inf, table["rms_difference"].values),
                        kind="stable")
@@ -149,7 +182,13 @@ def readings_markdown(table: xr.Dataset) -> str:
 
 
 def readings_csv(table: xr.Dataset) -> str:
-    """One row per (reading, noise level): the reading, J_OS, paper, difference and the reading's distance."""
+    """One row per (reading, noise level): the reading, J_OS, paper, difference and the reading's distance.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A table of :func:`readings_table`.
+    """
     rows = ["reading,label,step_s,rescale,level_means,band_hz,span_s,noise_level,j_os_percent,paper_percent,"
             "difference_points,n_star,energy_ratio,pga_ratio,max_abs_difference_points,rms_difference_points"]
     for name in table["reading"].values:
@@ -166,17 +205,31 @@ def readings_csv(table: xr.Dataset) -> str:
 
 
 def reading_dict(reading: NoiseReading) -> dict:
-    """The config form of a reading (the keys of the ``noise:`` section)."""
+    """The config form of a reading (the keys of the ``noise:`` section).
+
+    Parameters
+    ----------
+    reading : rockstudy.model.noise.NoiseReading
+        The reading.
+    """
     return {"step": reading.step, "rescale": reading.rescale, "level_means": reading.level_means,
             "band": reading.band, "span": reading.span}
 
 
 def check_config(section: dict, study=None) -> None:
     """The config's ``reproduction:`` section: every reading of ``reproduction.readings`` is a valid
-    :class:`NoiseReading`, ``reproduction.realisations`` is within the limits and, given ``study`` (a dict
-    with the study's ``block`` (a Block), ``excitation``, ``free_time``, ``frequency_ratios`` and
-    ``sims_per_case``), every reading's records fit one simulation (span, samples) and its spectrum job
-    (all realisations at once) fits the workload and memory limits.
+    :class:`NoiseReading`, ``reproduction.realisations`` is within the limits and, given ``study``, every
+    reading's records fit one simulation (span, samples) and its spectrum job (all realisations at once)
+    fits the workload and memory limits.
+
+    Parameters
+    ----------
+    section : dict
+        The config's ``reproduction:`` section (``realisations``, ``readings``).
+    study : dict, optional
+        The study's ``block`` (a :class:`~rockstudy.model.block.Block`), ``excitation``, ``free_time`` [s],
+        ``frequency_ratios`` [-] and ``sims_per_case``; None: only the readings and the number of
+        realisations are checked.
 
     Raises
     ------

@@ -41,7 +41,15 @@ def __getattr__(name):
 
 
 def block_from_dict(spec: dict) -> Block:
-    """A :class:`Block` from ``{"preset": name}`` or from its dimensions (``width``, ``height``, ...)."""
+    """A :class:`Block` from ``{"preset": name}`` or from its dimensions (``width``, ``height``, ...).
+
+    Parameters
+    ----------
+    spec : dict
+        ``{"preset": name}`` (a key of :data:`~rockstudy.model.block.BLOCK_PRESETS`), or the block's
+        dimensions: ``width``, ``height``, ``depth`` [m] and optionally ``density``, ``gravity``,
+        ``restitution`` (None: Eq. 14).
+    """
     spec = dict(spec)
     preset = spec.pop("preset", None)
     if preset is not None:
@@ -71,9 +79,16 @@ def block_from_dict(spec: dict) -> Block:
 def scenario_from_dict(spec: dict) -> Scenario:
     """A :class:`Scenario` from ``block``, ``anchorage``, ``control``, ``noise`` dicts and scalar settings.
 
-    ``noise`` is the noise reading (``step``, ``rescale``, ``level_means``, ``band``, ``span``;
-    :class:`rockstudy.model.noise.NoiseReading`); absent: the library's default reading
-    (:data:`rockstudy.model.noise.DEFAULT_READING`)."""
+    Parameters
+    ----------
+    spec : dict
+        ``block`` (for :func:`block_from_dict`), optionally ``anchorage`` and ``control`` (the fields of
+        :class:`~rockstudy.model.anchorage.Anchorage` and :class:`~rockstudy.model.control.Control`), ``noise``
+        (``step``, ``rescale``, ``level_means``, ``band``, ``span``;
+        :class:`rockstudy.model.noise.NoiseReading`; absent: :data:`rockstudy.model.noise.DEFAULT_READING`) and
+        the scalar fields of :class:`~rockstudy.analysis.scenario.Scenario` (``excitation``, ``noise_level``,
+        ``seed``, ``overturn_criterion``, ``free_time``).
+    """
     from rockstudy.analysis.scenario import Scenario
     from rockstudy.model.anchorage import Anchorage
     from rockstudy.model.control import Control
@@ -93,7 +108,15 @@ def scenario_from_dict(spec: dict) -> Scenario:
 
 def amplitude_grid(spec: dict, key: str = "amplitude_grid") -> AmplitudeGrid:
     """:class:`AmplitudeGrid` from ``start``, ``stop``, ``step``, ``resolution`` (ratios a_p/(g·tanα)),
-    refused (naming ``<key>.<field>``) beyond the limits of :mod:`rockstudy.core.validation`."""
+    refused (naming ``<key>.<field>``) beyond the limits of :mod:`rockstudy.core.validation`.
+
+    Parameters
+    ----------
+    spec : dict
+        ``start``, ``stop``, ``step`` and ``resolution``, ratios a_p/(g·tanα). [-]
+    key : str, default "amplitude_grid"
+        The config key the messages name.
+    """
     validation.check_amplitude_grid(spec["start"], spec["stop"], spec["step"], spec["resolution"],
                                     names=tuple(f"{key}.{field}" for field in ("start", "stop", "step", "resolution")))
     from rockstudy.analysis.spectra import AmplitudeGrid
@@ -103,7 +126,15 @@ def amplitude_grid(spec: dict, key: str = "amplitude_grid") -> AmplitudeGrid:
 
 def frequency_ratios(spec: dict, key: str = "frequency_grid") -> np.ndarray:
     """Frequency ratios ω_p/p from ``start``, ``stop``, ``step``, refused (naming ``<key>.<field>``)
-    above :data:`rockstudy.core.validation.MAX_GRID_POINTS` points before the grid is built. [-]"""
+    above :data:`rockstudy.core.validation.MAX_GRID_POINTS` points before the grid is built. [-]
+
+    Parameters
+    ----------
+    spec : dict
+        ``start``, ``stop`` and ``step`` of the ratios ω_p/p. [-]
+    key : str, default "frequency_grid"
+        The config key the messages name.
+    """
     validation.check_grid(key, spec["start"], spec["stop"], spec["step"], high=validation.MAX_FREQUENCY_RATIO)
     from rockstudy.analysis.spectra import frequency_grid
 
@@ -112,7 +143,15 @@ def frequency_ratios(spec: dict, key: str = "frequency_grid") -> np.ndarray:
 
 def intensity_levels(spec: dict, key: str = "beyond.fragility.intensity_levels") -> np.ndarray:
     """Intensity levels (the fragility's stripes) from ``start``, ``stop``, ``step``, refused (naming
-    ``<key>.<field>``) like :func:`frequency_ratios`. [-]"""
+    ``<key>.<field>``) like :func:`frequency_ratios`. [-]
+
+    Parameters
+    ----------
+    spec : dict
+        ``start``, ``stop`` and ``step`` of the levels. [-]
+    key : str, default "beyond.fragility.intensity_levels"
+        The config key the messages name.
+    """
     validation.check_grid(key, spec["start"], spec["stop"], spec["step"], high=validation.MAX_AMPLITUDE_RATIO)
     from rockstudy.analysis.spectra import frequency_grid
 
@@ -120,7 +159,17 @@ def intensity_levels(spec: dict, key: str = "beyond.fragility.intensity_levels")
 
 
 def realisation_chunks(n_realisations: int, per_job: int, noisy: bool = True) -> list[list[int]]:
-    """Realisation indices split into jobs of at most ``per_job`` (one job [0] without noise)."""
+    """Realisation indices split into jobs of at most ``per_job`` (one job [0] without noise).
+
+    Parameters
+    ----------
+    n_realisations : int
+        Number of noise realisations, >= 1.
+    per_job : int
+        Largest number of realisations in one job, >= 1.
+    noisy : bool, default True
+        False for the noise-free level: one job with realisation 0.
+    """
     if n_realisations < 1 or per_job < 1:
         raise ValueError(f"n_realisations and per_job must be >= 1, got {n_realisations}, {per_job}")
     if not noisy:
@@ -129,7 +178,13 @@ def realisation_chunks(n_realisations: int, per_job: int, noisy: bool = True) ->
 
 
 def noise_free_level(levels: dict) -> str:
-    """Name of the noise level whose value is 0 (the paper's R000)."""
+    """Name of the noise level whose value is 0 (the paper's R000).
+
+    Parameters
+    ----------
+    levels : dict
+        Noise level name -> noise level (noise energy over baseline energy); exactly one is 0. [-]
+    """
     names = [name for name, value in levels.items() if value == 0]
     if len(names) != 1:
         raise ValueError(f"noise_levels needs exactly one level equal to 0 (R000), got {levels!r}")
@@ -137,5 +192,11 @@ def noise_free_level(levels: dict) -> str:
 
 
 def grid_size_points(spec: dict) -> int:
-    """Number of points of an amplitude grid ``{start, stop, step}`` (the simulations of one map row)."""
+    """Number of points of an amplitude grid ``{start, stop, step}`` (the simulations of one map row).
+
+    Parameters
+    ----------
+    spec : dict
+        ``start``, ``stop`` and ``step`` of the amplitude grid (other keys are ignored). [-]
+    """
     return validation.grid_size(spec["start"], spec["stop"], spec["step"])

@@ -25,6 +25,11 @@ def check_sizes(config: dict) -> None:
     """No list or mapping of the config is longer than declared (:mod:`rockstudy.core.declarations`), and the
     config has at most :data:`~rockstudy.core.config_files.MAX_NODES` values (YAML aliases expanded).
 
+    Parameters
+    ----------
+    config : dict
+        The study config, as loaded from YAML (plain ``dict``/``list`` values).
+
     Raises
     ------
     ValueError
@@ -43,6 +48,12 @@ def check_study(config: dict) -> None:
     that becomes an array size, a loop count or a time span (grid points, simulations and noise
     memory of one spectrum job, time span and integrator steps of one simulation, controller
     samples); and the cross-key rules (noise levels, strategies, a_max,0 within the scan).
+
+    Parameters
+    ----------
+    config : dict
+        The whole study config (plain ``dict``/``list`` values, every key of config.yaml); each section is
+        passed on to its own check.
 
     Raises
     ------

@@ -33,6 +33,13 @@ def check_spectrum_file(ds: xr.Dataset, name: str) -> None:
     """``ds`` is a rockstudy spectrum J_OS can use: a 1-D ``threshold`` over ``frequency_ratio`` and finite
     block slenderness (0 < block_alpha < pi/2) and amplitude scan attributes.
 
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset read from the file.
+    name : str
+        The file's name, as the messages give it.
+
     Raises
     ------
     ValueError
@@ -82,7 +89,13 @@ def spectrum_mismatches(system: xr.Dataset, reference: xr.Dataset) -> list[tuple
     """(attribute, system's value, reference's value) of every setting in which two spectra differ and that
     J_OS needs equal: the block, the device, :data:`JOS_SETTINGS` and, when both are noisy,
     :data:`NOISY_SETTINGS`. The strategy, its timing and sensor, and the noise level may differ: they are
-    what J_OS compares."""
+    what J_OS compares.
+
+    Parameters
+    ----------
+    system, reference : xarray.Dataset
+        The two spectra J_OS compares (:func:`rockstudy.analysis.jos.jos`).
+    """
     from rockstudy.core.io import same_value
     keys = sorted({k for ds in (system, reference) for k in ds.attrs if k.startswith(PROVENANCE_PREFIXES)},
                   key=lambda k: (not k.startswith("block_"), k))  # the block first: the device's attrs follow it
@@ -112,7 +125,14 @@ PROVENANCE_KEYS = ("noise_seed", "excitation", "overturn_criterion", "free_time_
 
 def provenance(spectra) -> dict:
     """Attributes a table inherits from the spectra it compares: the seed, the block, the device
-    (anchorage), the excitation and scan, and the number of noise realisations of the noisy spectra."""
+    (anchorage), the excitation and scan, and the number of noise realisations of the noisy spectra.
+
+    Parameters
+    ----------
+    spectra : sequence of xarray.Dataset
+        The spectra the table compares: the first gives the seed, block, device, excitation and scan, the
+        noisy ones (``noise_level`` > 0) the number of realisations.
+    """
     first = spectra[0]
     attrs = {k: val for k, val in first.attrs.items() if k.startswith(PROVENANCE_PREFIXES) or k in PROVENANCE_KEYS}
     noisy = sorted({int(ds.sizes["realisation"]) for ds in spectra if float(ds["noise_level"]) > 0})
@@ -142,7 +162,21 @@ def _table(values: np.ndarray, n_star: np.ndarray, coords: dict, attrs: dict) ->
 def table1(spectra, strategies, noise_levels: dict, a_max0_g: float) -> xr.Dataset:
     """Table 1: J_OS of each strategy at each noisy level against (a) the same strategy without
     noise and (b) the free-standing block at the same noise level (for FS itself J_OS = 0 over the
-    N* frequencies where it overturns below a_max,0, as ``rockstudy jos`` gives; NaN only where N* = 0)."""
+    N* frequencies where it overturns below a_max,0, as ``rockstudy jos`` gives; NaN only where N* = 0).
+
+    Parameters
+    ----------
+    spectra : iterable of xarray.Dataset
+        Overturning spectra with scalar ``strategy`` and ``noise_level`` coordinates: every strategy at
+        every level, and FS at every noisy level.
+    strategies : sequence of str
+        The strategies of the table's rows, in order.
+    noise_levels : dict
+        Noise level name -> value (noise energy over baseline energy); the level equal to 0 is the
+        reference without noise, the others are the table's columns. [-]
+    a_max0_g : float
+        Protection level a_max,0. [g]
+    """
     free = noise_free_level(noise_levels)
     noisy = [name for name in noise_levels if name != free]
     j = np.full((len(REFERENCES), len(strategies), len(noisy)), np.nan)
@@ -170,7 +204,25 @@ def timing_table(sweep, same_strategy, free_standing, variable: str, a_max0_g: f
                  reference: str = "continuous_same_noise") -> xr.Dataset:
     """J_OS of sampled (or delayed) control against the same strategy without that timing
     (``same_strategy``: continuous control, or sampled without delay) and against the
-    free-standing block, both at the sweep's noise level (§5.2, Figs. 7–8)."""
+    free-standing block, both at the sweep's noise level (§5.2, Figs. 7–8).
+
+    Parameters
+    ----------
+    sweep : sequence of xarray.Dataset
+        Spectra of the timing sweep, each with scalar ``strategy``, ``noise_level`` and ``sampling_time``
+        coordinates and the coordinate named ``variable``.
+    same_strategy : iterable of xarray.Dataset
+        The references without that timing (continuous control, or sampled without delay), by strategy and
+        noise level.
+    free_standing : iterable of xarray.Dataset
+        Spectra of the free-standing block (FS), by noise level.
+    variable : str
+        Name of the swept coordinate, ``"sampling_time"`` or ``"delay"`` (its values in s).
+    a_max0_g : float
+        Protection level a_max,0. [g]
+    reference : str, default "continuous_same_noise"
+        Label of the ``same_strategy`` reference on the table's ``reference`` coordinate.
+    """
     strategies = sorted({ds["strategy"].item() for ds in sweep})
     values = sorted({float(ds[variable]) for ds in sweep})
     j = np.full((len(REFERENCES), len(strategies), len(values)), np.nan)
@@ -192,7 +244,13 @@ def timing_table(sweep, same_strategy, free_standing, variable: str, a_max0_g: f
 
 
 def table_markdown(table: xr.Dataset) -> str:
-    """The table as Markdown: rows strategies, columns reference × last dimension, J_OS in %."""
+    """The table as Markdown: rows strategies, columns reference × last dimension, J_OS in %.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A J_OS table of :func:`table1` or :func:`timing_table`.
+    """
     column = table["j_os"].dims[-1]
     head = ["strategy"] + [f"{r}: {c}" for r in table["reference"].values for c in table[column].values]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
@@ -204,5 +262,11 @@ def table_markdown(table: xr.Dataset) -> str:
 
 
 def table_csv(table: xr.Dataset) -> str:
-    """The table in long form: one row per (reference, strategy, column) with J_OS [%] and N*."""
+    """The table in long form: one row per (reference, strategy, column) with J_OS [%] and N*.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A J_OS table of :func:`table1` or :func:`timing_table`.
+    """
     return table.to_dataframe().reset_index().to_csv(index=False, float_format="%.4f")
