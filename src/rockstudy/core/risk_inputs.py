@@ -23,7 +23,15 @@ class Bound:
     high_open: bool = False
 
     def check(self, name: str, value) -> float:
-        """``value`` as a float, or :class:`~rockstudy.core.validation.InputError` naming ``name``."""
+        """``value`` as a float, or :class:`~rockstudy.core.validation.InputError` naming ``name``.
+
+        Parameters
+        ----------
+        name : str
+            The input's name, as the error message gives it.
+        value : float
+            The value to check: a finite real number (not a bool) within this bound, in :attr:`unit`.
+        """
         return validation.check_range(name, value, self.low, self.high, self.unit, low_open=self.low_open,
                                       high_open=self.high_open)
 
