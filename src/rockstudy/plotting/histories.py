@@ -24,7 +24,8 @@ def velocity_with_impacts(hist):
     Parameters
     ----------
     hist : xarray.Dataset
-        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with ``velocity_ratio`` on ``t`` and, per impact, ``impact_time`` [s] and
+        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with
+        ``velocity_ratio`` on ``t`` and, per impact, ``impact_time`` [s] and
         ``velocity_before_impact_ratio``.
 
     Returns
@@ -53,7 +54,8 @@ def plot_history(ax, hist):
     ax : matplotlib.axes.Axes
         The axes to draw on.
     hist : xarray.Dataset
-        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with ``ground_ratio`` on ``t_ground``, ``rotation_ratio`` and ``velocity_ratio``
+        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with
+        ``ground_ratio`` on ``t_ground``, ``rotation_ratio`` and ``velocity_ratio``
         on ``t``.
     """
     t = hist["t"].values
@@ -72,7 +74,8 @@ def plot_stiffness(ax, hist):
     ax : matplotlib.axes.Axes
         The axes to draw on.
     hist : xarray.Dataset
-        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with ``stiffness_ratio`` on ``t``.
+        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with
+        ``stiffness_ratio`` on ``t``.
     """
     (line,) = ax.step(hist["t"].values, hist["stiffness_ratio"].values, where="post",
                       **HISTORY_STYLES["stiffness"], label=r"$K/K_{max}$")
@@ -143,7 +146,8 @@ def mark_switch_burst(ax, axk, hist, end: float):
     axk : matplotlib.axes.Axes
         The stiffness panel (:func:`plot_stiffness`).
     hist : xarray.Dataset
-        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with ``stiffness_ratio`` on ``t`` and ``impact_time`` [s].
+        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with
+        ``stiffness_ratio`` on ``t`` and ``impact_time`` [s].
     end : float
         Last time shown. [s]
     """
@@ -168,7 +172,8 @@ def figure_control_history(hist, paper_figure: str):
     Parameters
     ----------
     hist : xarray.Dataset
-        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with the variables of :func:`plot_history` and :func:`plot_stiffness` and the
+        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with
+        the variables of :func:`plot_history` and :func:`plot_stiffness` and the
         attributes ``excitation_end_s``, ``control_strategy``, ``frequency_ratio``, ``amplitude_ratio``,
         ``status`` and ``noise_level``.
     paper_figure : str
