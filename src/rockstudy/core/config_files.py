@@ -22,7 +22,15 @@ def replace_sections(config: dict, overlay: dict) -> dict:
     """Give ``config`` (already deep-merged with ``overlay``, as Snakemake merges a ``--configfile``) the
     overlay's own value of every key of :data:`REPLACED_BY_OVERLAY` it sets: an overlay's ``block:`` with
     dimensions replaces the preset instead of being merged into it. Returns ``config`` (changed in place).
-    A YTE template (``__use_yte__: true``) is left to Snakemake's merge: its text is not the values it makes."""
+    A YTE template (``__use_yte__: true``) is left to Snakemake's merge: its text is not the values it makes.
+
+    Parameters
+    ----------
+    config : dict
+        The merged config; the keys of :data:`REPLACED_BY_OVERLAY` that ``overlay`` sets are replaced in place.
+    overlay : dict
+        The overlay config file's own values, as read from it (before any merge).
+    """
     if overlay.get("__use_yte__"):
         return config
     for path in REPLACED_BY_OVERLAY:
@@ -43,7 +51,17 @@ LONG_LISTS = {"beyond.fragility.records": v.MAX_SUITE_RECORDS}
 def count_nodes(value, limit: int = MAX_NODES, name: str = "config") -> int:
     """Nodes of a parsed config, aliases expanded, refused (:class:`InputError`) beyond ``limit`` as soon as
     the count passes it (the walk never visits more than ``limit`` nodes), and no list or mapping longer
-    than :data:`~rockstudy.core.validation.MAX_LIST_ITEMS` entries (:data:`LONG_LISTS`), naming its key path."""
+    than :data:`~rockstudy.core.validation.MAX_LIST_ITEMS` entries (:data:`LONG_LISTS`), naming its key path.
+
+    Parameters
+    ----------
+    value : dict, list or scalar
+        The parsed config (or any part of it) to walk.
+    limit : int, default MAX_NODES
+        Most nodes allowed; the walk stops with :class:`InputError` as soon as the count passes it.
+    name : str, default "config"
+        What the messages call the config (a file name, say).
+    """
     count, stack = 0, [(value, "")]
     while stack:
         node, path = stack.pop()
@@ -67,7 +85,15 @@ def count_nodes(value, limit: int = MAX_NODES, name: str = "config") -> int:
 
 def load_yaml(path, name: str | None = None) -> dict:
     """A YAML (or JSON) config file as a dict, refused when it is not a bounded mapping (:func:`count_nodes`),
-    not a regular file of at most 1 MiB, or not valid YAML; the message names the file."""
+    not a regular file of at most 1 MiB, or not valid YAML; the message names the file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The YAML or JSON file to read.
+    name : str, optional
+        What the messages call the file; ``str(path)`` when not given.
+    """
     import yaml
     name = name or str(path)
     p = v.check_input_file(name, path, 2**20)

@@ -29,7 +29,13 @@ if TYPE_CHECKING:  # xarray is imported where a dataset is read (writers get one
 
 
 def netcdf_attr(value):
-    """A value netCDF can hold as an attribute (bools → int, None → "none", dicts → str)."""
+    """A value netCDF can hold as an attribute (bools → int, None → "none", dicts → str).
+
+    Parameters
+    ----------
+    value : object
+        An attribute value; numbers, strings and lists of numbers are returned as they are.
+    """
     if isinstance(value, (bool, np.bool_)):
         return int(value)
     if value is None:
@@ -40,6 +46,13 @@ def netcdf_attr(value):
 
 
 def clean_attrs(attrs: dict) -> dict:
+    """``attrs`` with every value made one netCDF can hold (:func:`netcdf_attr`).
+
+    Parameters
+    ----------
+    attrs : dict
+        Attributes of a dataset or a variable, by name.
+    """
     return {k: netcdf_attr(v) for k, v in attrs.items()}
 
 
@@ -103,6 +116,12 @@ def cf_attributes(attrs: dict) -> dict:
     the references the data set names itself), ``title`` (kept if present) and ``history``: a line
     naming the writer appended to any history already there. The history line carries no time
     stamp, so that a rerun writes the same file.
+
+    Parameters
+    ----------
+    attrs : dict
+        The dataset's own global attributes; kept, except that ``Conventions`` is replaced and
+        ``history`` and ``references`` are extended.
     """
     line = f"written by rockstudy {__version__} (rockstudy.core.io.write_netcdf)"
     history = str(attrs.get("history", "")).strip()
@@ -122,7 +141,13 @@ def cf_attributes(attrs: dict) -> dict:
 
 def check_coordinates(ds: xr.Dataset) -> None:
     """Raise ``ValueError`` unless every numeric one-dimensional coordinate variable (a variable
-    named after its dimension) is strictly monotonic, as CF §1.2 requires."""
+    named after its dimension) is strictly monotonic, as CF §1.2 requires.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset to check; it is not changed.
+    """
     for name in ds.dims:
         if name not in ds.variables or ds[name].dtype.kind not in "fiu" or ds[name].size < 2:
             continue
@@ -138,6 +163,20 @@ def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
     Global attributes get :func:`cf_attributes`; coordinates are written without ``_FillValue``
     (CF §2.5.1) and must be strictly monotonic (:func:`check_coordinates`); data variables are
     zlib-compressed when ``compress``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset to write; a copy gets the CF attributes, ``ds`` itself is not changed.
+    path : str or pathlib.Path
+        The netCDF file to write; its folder is created as needed.
+    compress : bool, default True
+        Compress the numeric data variables with zlib (level 4).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
     """
     check_coordinates(ds)
     ds = ds.copy()
@@ -154,7 +193,13 @@ def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
 
 def read_netcdf(path) -> xr.Dataset:
     """Open a rockstudy netCDF file fully into memory (and close the file); a folder, a FIFO or a device
-    is refused at once (``ValueError`` naming the path), never opened."""
+    is refused at once (``ValueError`` naming the path), never opened.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The netCDF file to read.
+    """
     import stat
     if not stat.S_ISREG(os.stat(path).st_mode):
         raise ValueError(f"{path}: not a regular file (a folder, a FIFO or a device); give a netCDF file")
@@ -165,7 +210,20 @@ def read_netcdf(path) -> xr.Dataset:
 
 
 def write_text(text: str, path) -> Path:
-    """Write a text file (CSV, Markdown) atomically (:func:`atomic_write`), UTF-8."""
+    """Write a text file (CSV, Markdown) atomically (:func:`atomic_write`), UTF-8.
+
+    Parameters
+    ----------
+    text : str
+        The whole content of the file.
+    path : str or pathlib.Path
+        The file to write; its folder is created as needed.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     def write(tmp):
         with open(tmp, "w", encoding="utf-8") as fh:
             fh.write(text)
@@ -189,7 +247,15 @@ class DatasetMismatch(ValueError):
 
 
 def same_value(found, expected) -> bool:
-    """Equal values: numbers within 1e-9 relative, lists element by element, "none" equal to None."""
+    """Equal values: numbers within 1e-9 relative, lists element by element, "none" equal to None.
+
+    Parameters
+    ----------
+    found : object
+        The value read from a dataset (an attribute or a coordinate's values).
+    expected : object
+        The value the step expects: a number, a string, None or a list of them.
+    """
     if isinstance(expected, (list, tuple, np.ndarray)):
         found = np.asarray(found).ravel().tolist() if isinstance(found, (list, tuple, np.ndarray)) else [found]
         return len(found) == len(expected) and all(same_value(f, e) for f, e in zip(found, expected))
@@ -221,6 +287,15 @@ def check_dataset(ds: xr.Dataset, path, expected: dict | None) -> xr.Dataset:
     attribute, a scalar coordinate or (``realisation``, ``frequency_ratio``) a coordinate of ``ds`` with
     the expected value (numbers to 1e-9 relative). Returns ``ds``.
 
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset read.
+    path : str or pathlib.Path
+        The file ``ds`` was read from, named in the error message.
+    expected : dict or None
+        Expected values by attribute or coordinate name; None or empty checks nothing.
+
     Raises
     ------
     DatasetMismatch
@@ -237,6 +312,13 @@ def read_checked(path, expectations: dict | None) -> xr.Dataset:
     """:func:`read_netcdf` then :func:`check_dataset` against ``expectations[str(path)]``: a mapping from
     file names to expected attributes, as the workflow's ``expect`` parameter gives it for every input.
 
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The netCDF file to read; ``str(path)`` must be a key of ``expectations``.
+    expectations : dict
+        Expected attributes (a dict, see :func:`check_dataset`) by file name.
+
     Raises
     ------
     KeyError
@@ -250,5 +332,11 @@ def read_checked(path, expectations: dict | None) -> xr.Dataset:
 
 
 def reader(expectations: dict) -> Callable:
-    """``read(path)``: :func:`read_checked` with these ``expectations`` (one per workflow step)."""
+    """``read(path)``: :func:`read_checked` with these ``expectations`` (one per workflow step).
+
+    Parameters
+    ----------
+    expectations : dict
+        Expected attributes by file name, as :func:`read_checked` takes them.
+    """
     return lambda path: read_checked(path, expectations)

@@ -39,7 +39,16 @@ __all__ = ["simulate", "pack_parameters", "kernel_record", "overturn_rotation", 
 
 
 def overturn_rotation(block: Block, criterion: str) -> float:
-    """Rotation at which the block counts as overturned: π/2 ("flat") or α ("alpha"). [rad]"""
+    """Rotation at which the block counts as overturned: π/2 ("flat") or α ("alpha"). [rad]
+
+    Parameters
+    ----------
+    block : rockstudy.Block
+        The rocking block; its slenderness α is the "alpha" rotation.
+    criterion : {"flat", "alpha"}
+        Overturned when lying flat (|θ| ≥ π/2) or once past the uplift-free limit (|θ| ≥ α);
+        anything else raises ``ValueError``.
+    """
     if criterion == "flat":
         return math.pi / 2
     if criterion == "alpha":
@@ -63,6 +72,32 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
     runs only: the history and event log after that point are not computed). ``stepper`` is how the
     engine steps between the knots of a record: ``"taylor"`` (Taylor series of degree 6, one sine
     and cosine a step) or ``"dopri"`` (Dormand–Prince 5(4), as everywhere else; docs/model.md).
+
+    Parameters
+    ----------
+    block : rockstudy.Block
+        The rocking block (p, α, g, coefficient of restitution).
+    anchorage : rockstudy.Anchorage
+        The restrainers: κ_max, κ_min, damping ratio and the rotations at which spring and damper break.
+    control : rockstudy.Control
+        The control strategy, its sampling time, delay and sensor.
+    motion : rockstudy.GroundMotion
+        The ground motion: its kind, amplitude, frequency, duration and record steps.
+    overturn_criterion : {"flat", "alpha"}, default "flat"
+        The overturning rotation, :func:`overturn_rotation`.
+    free_time : float, default DEFAULT_FREE_TIME
+        Time allowed after the excitation ends, finite and >= 0 (else ``ValueError``). [s]
+    initial_rotation, initial_velocity : float, default 0
+        Initial θ [rad] and θ̇ [rad/s].
+    rest_velocity : float, optional
+        |θ̇⁺| below which an impact ends the motion (Eq. 15); None for
+        :func:`rockstudy.core.constants.rest_velocity`. [rad/s]
+    rtol, atol : float, default FAST_RTOL, FAST_ATOL
+        Relative and absolute tolerances of the step-size control. [-]
+    energy_bound : bool, default False
+        End the run once it provably can no longer overturn (for outcome-only runs).
+    stepper : {"taylor", "dopri"}, default "taylor"
+        How the engine steps between record knots (see above); anything else raises ``ValueError``.
     """
     if stepper not in STEPPERS:
         raise ValueError(f"stepper must be one of {', '.join(STEPPERS)}, got {stepper!r}")
@@ -117,6 +152,13 @@ def kernel_record(control: Control, motion: GroundMotion) -> np.ndarray:
     Without a sensor (``control.sensor_band`` None) this is ``motion.record`` itself. With one, the
     unit-amplitude sensed samples of :func:`rockstudy.model.sensor.sensed_samples` follow the record's
     (slots ``I_SENSE``, ``I_SOFF``, ``I_SDT`` of :func:`pack_parameters`).
+
+    Parameters
+    ----------
+    control : rockstudy.Control
+        The control; only its ``sensor_band`` is read (None: the ideal sensor).
+    motion : rockstudy.GroundMotion
+        The ground motion whose ``record`` drives the block.
     """
     if control.sensor_band is None:
         return motion.record
@@ -159,6 +201,32 @@ def check_inputs(block, anchorage, control, motion, *, engine="fast", overturn_c
     numbers, tolerances in :data:`RTOL_RANGE`/:data:`ATOL_RANGE`, and a run within the limits of
     :mod:`rockstudy.core.validation` (time span, record samples).
 
+    Parameters
+    ----------
+    block : rockstudy.Block
+        Must be a :class:`~rockstudy.Block`.
+    anchorage : rockstudy.Anchorage
+        Must be a :class:`~rockstudy.Anchorage`.
+    control : rockstudy.Control
+        Must be a :class:`~rockstudy.Control`.
+    motion : rockstudy.GroundMotion
+        Must be a :class:`~rockstudy.GroundMotion`; its end time plus ``free_time`` is bounded by
+        :data:`~rockstudy.core.validation.MAX_TIME_SPAN`.
+    engine : {"fast", "reference"}, default "fast"
+        One of :data:`ENGINES`.
+    overturn_criterion : {"flat", "alpha"}, default "flat"
+        One of :data:`OVERTURN_CRITERIA`.
+    free_time : float, default DEFAULT_FREE_TIME
+        Time after the excitation, >= 0 and at most :data:`~rockstudy.core.validation.MAX_FREE_TIME`. [s]
+    initial_rotation : float, default 0
+        Initial θ, within [-π/2, π/2]. [rad]
+    initial_velocity : float, default 0
+        Initial θ̇, any finite number. [rad/s]
+    rest_velocity : float, optional
+        Rest velocity of Eq. (15), >= 0 when given. [rad/s]
+    rtol, atol : float, optional
+        Tolerances, within :data:`RTOL_RANGE` and :data:`ATOL_RANGE` when given. [-]
+
     Raises
     ------
     ValueError
@@ -192,8 +260,14 @@ def simulate(block: Block, anchorage: Anchorage, control: Control, motion: Groun
 
     Parameters
     ----------
-    block, anchorage, control, motion
-        The block, its restrainers, the control law and timing, and the ground motion.
+    block : rockstudy.Block
+        The rocking block.
+    anchorage : rockstudy.Anchorage
+        Its restrainers (springs and dampers, their stiffness and breaking rotations).
+    control : rockstudy.Control
+        The control law and its timing (sampling time, delay, sensor).
+    motion : rockstudy.GroundMotion
+        The ground motion.
     engine : {"fast", "reference"}
         Compiled event-accurate Dormand–Prince engine, or scipy ``solve_ivp`` reference.
     overturn_criterion : {"flat", "alpha"}

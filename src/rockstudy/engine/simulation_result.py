@@ -76,6 +76,17 @@ class SimulationResult:
         """The history as a labelled Dataset, in the layout of the history netCDF files.
 
         See :func:`history_dataset`; requires a run with ``record_history=True``.
+
+        Parameters
+        ----------
+        block : Block, optional
+            Adds the paper's normalisations θ/α and θ̇/(p·α).
+        anchorage : Anchorage, optional
+            Adds ``stiffness_ratio`` κ/κ_max.
+        motion : GroundMotion, optional
+            With ``block``, adds the ground motion Ẍ_g/(g·tanα) on its own time axis ``t_ground``.
+        ground_dt : float, default NOISE_DT
+            Time step of ``t_ground``. [s]
         """
         return history_dataset(self, block, anchorage, motion, ground_dt)
 
@@ -128,6 +139,16 @@ def unique_times(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     The engines record an instant where the state jumps (an impact reverses θ̇, the control
     switches κ) twice, before and after the jump; ``last`` keeps each instant once with the state
     after the jump, ``first`` points at the state before it.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Recorded times, non-decreasing (equal neighbours mark a jump). [s]
+
+    Returns
+    -------
+    first, last : numpy.ndarray of int
+        Index of the first and of the last sample of each distinct time, in order.
     """
     t = np.asarray(t, dtype=float)
     if len(t) == 0:
@@ -162,8 +183,10 @@ def history_dataset(result: SimulationResult, block=None, anchorage=None, motion
     anchorage : Anchorage, optional
         Adds ``stiffness_ratio`` κ/κ_max (κ itself when κ_max = 0).
     motion : GroundMotion, optional
-        With ``block``, adds the ground motion Ẍ_g/(g·tanα) sampled every ``ground_dt`` [s] on
+        With ``block``, adds the ground motion Ẍ_g/(g·tanα) sampled every ``ground_dt`` on
         ``t_ground`` (``ground_ratio``).
+    ground_dt : float, default NOISE_DT
+        Time step of ``t_ground``, from 0 to the end of the run. [s]
     """
     if result.history is None:
         raise ValueError("the simulation has no history: run it with record_history=True")

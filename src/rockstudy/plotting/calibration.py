@@ -21,9 +21,18 @@ from rockstudy.plotting.style import (
 def plot_readings(ax, table, closest: str | None = None):
     """FS J_OS against the noise level, one line per noise reading, the paper's values as markers.
 
-    ``table`` is a readings table (:func:`rockstudy.studies.noise_readings.readings_table`); the closest reading
-    is drawn thicker. Readings whose J_OS values coincide at every level (:func:`same_curve`) are drawn
+    Readings whose J_OS values coincide at every level (:func:`same_curve`) are drawn
     once, with one legend entry naming all of them ("A = B"). Returns the lines drawn.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    table : xarray.Dataset
+        A readings table (:func:`rockstudy.studies.noise_readings.readings_table`): ``j_os`` [%] over
+        (reading, level), ``level_value``, ``label`` and the paper's ``paper`` values.
+    closest : str, optional
+        Name of the reading closest to the paper, drawn thicker.
     """
     x = 100 * np.asarray(table["level_value"].values, dtype=float)
     curves = [(str(name), table["j_os"].sel(reading=name)) for name in table["reading"].values]
@@ -45,7 +54,14 @@ def plot_readings(ax, table, closest: str | None = None):
 
 @styled
 def figure_readings(table):
-    """The readings study: FS row of Table 1 under each reading of the noise model."""
+    """The readings study: FS row of Table 1 under each reading of the noise model.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A readings table, as :func:`plot_readings` takes it; its attribute ``closest_reading`` (if any)
+        is drawn thicker.
+    """
     fig, ax = plt.subplots(figsize=(8, 5), constrained_layout=True)
     plot_readings(ax, table, table.attrs.get("closest_reading"))
     ax.set_title("Utility index of the free-standing block against the noise level, under each reading of the "
@@ -58,14 +74,27 @@ def figure_readings(table):
 def figure_calibration(grid, best: dict | None = None):
     """J_OS of CS01 and CS02 against FS over kappa_max x xi (one panel per strategy and noise level).
 
-    ``grid`` is a calibration grid dataset (:func:`rockstudy.studies.device_calibration.grid_dataset`) with
-    ``j_os`` over (strategy, reference, noise_level, ultimate_rotation_ratio, kappa_min_ratio,
-    kappa_max, damping_ratio). The maps are drawn at the θ_u/α and κ_min/κ_max of ``best`` (an
-    anchorage dict, marked with a star; without it, at the first values of the design); the
-    paper's value of each panel is in its title. With a single ξ (or a single κ_max) a map has no
+    The maps are drawn at the θ_u/α and κ_min/κ_max of ``best`` (marked with a star; without it, at the
+    first values of the design); the paper's value of each panel is in its title. With a single ξ (or a
+    single κ_max) a map has no
     area: each panel is then J_OS against κ_max (or ξ), one line per ξ (or κ_max), with the paper's
     value as a dashed line. Only panels with at least one J_OS are drawn (Eq. 21 leaves J_OS
     undefined where neither spectrum overturns below a_max,0).
+
+    Parameters
+    ----------
+    grid : xarray.Dataset
+        A calibration grid dataset (:func:`rockstudy.studies.device_calibration.grid_dataset`) with
+        ``j_os`` [%] over (strategy, reference, noise_level, ultimate_rotation_ratio, kappa_min_ratio,
+        kappa_max, damping_ratio).
+    best : dict, optional
+        The best anchorage (keys ``kappa_max``, ``kappa_min``, ``damping_ratio``,
+        ``spring_ultimate_rotation`` [rad] or None for α).
+
+    Raises
+    ------
+    ValueError
+        If the grid has no J_OS at all.
     """
     at = {"ultimate_rotation_ratio": 0, "kappa_min_ratio": 0}
     if best is not None:

@@ -18,7 +18,25 @@ from rockstudy.plotting.style import (
 
 
 def plot_design_map(ax, values, R, alpha, cmap="viridis", vmin=None, vmax=None, fmt="{:.0f}"):
-    """A map over (alpha, R) of one quantity with its values written in the cells; returns the mesh."""
+    """A map over (alpha, R) of one quantity with its values written in the cells; returns the mesh.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    values : numpy.ndarray
+        The quantity, shape (len(R), len(alpha)); NaN cells are left unwritten.
+    R : sequence of float
+        Half diagonals of the blocks, one row each. [m]
+    alpha : sequence of float
+        Slenderness angles of the blocks, one column each. [rad]
+    cmap : str or matplotlib.colors.Colormap, default "viridis"
+        Colour map of the cells.
+    vmin, vmax : float, optional
+        Ends of the colour scale (the data's when None).
+    fmt : str, default "{:.0f}"
+        Format of the value written in each cell (``""`` writes nothing).
+    """
     mesh = ax.pcolormesh(np.arange(len(alpha) + 1), np.arange(len(R) + 1), values, cmap=cmap, vmin=vmin, vmax=vmax)
     for i in range(len(R)):
         for j in range(len(alpha)):
@@ -33,7 +51,16 @@ def plot_design_map(ax, values, R, alpha, cmap="viridis", vmin=None, vmax=None, 
 
 
 def figure_design_jos_maps(blocks, strategies=("CS01", "CS02")):
-    """J_OS over FS (noise-free Eq. 23) and the fragility median shift over FS, over (R, alpha)."""
+    """J_OS over FS (noise-free Eq. 23) and the fragility median shift over FS, over (R, alpha).
+
+    Parameters
+    ----------
+    blocks : xarray.Dataset
+        The block sweep (:func:`rockstudy.studies.design.gather_blocks`): ``jos`` [%] and ``fragility_median``
+        [g] over (strategy, R, alpha), with the attribute ``record_suite``.
+    strategies : sequence of str, default ("CS01", "CS02")
+        The strategies compared with FS, one column of panels each.
+    """
     R, alpha = blocks.R.values, blocks.alpha.values
     suite = plain_text(blocks.attrs["record_suite"])
     fig, axes = plt.subplots(2, len(strategies), figsize=(4.6 * len(strategies), 7.6), squeeze=False)
@@ -51,7 +78,14 @@ def figure_design_jos_maps(blocks, strategies=("CS01", "CS02")):
 
 
 def figure_design_winner(blocks):
-    """Which strategy wins where: the highest J_OS (left) and the highest fragility median (right) over (R, alpha)."""
+    """Which strategy wins where: the highest J_OS (left) and the highest fragility median (right) over (R, alpha).
+
+    Parameters
+    ----------
+    blocks : xarray.Dataset
+        The block sweep (:func:`rockstudy.studies.design.gather_blocks`): ``jos`` [%] and ``fragility_median``
+        [g] over (strategy, R, alpha), with the attribute ``record_suite``.
+    """
     R, alpha = blocks.R.values, blocks.alpha.values
     suite = plain_text(blocks.attrs["record_suite"])
     strategies = [str(s) for s in blocks.strategy.values if str(s) != "FS"]
@@ -97,11 +131,27 @@ def _median_panels(ds, panel, x, xlabel, title, panel_size, target_g=None):
 
 
 def figure_design_size_effect(blocks):
-    """The size effect: fragility median [g] against R for every strategy, one panel per alpha."""
+    """The size effect: fragility median [g] against R for every strategy, one panel per alpha.
+
+    Parameters
+    ----------
+    blocks : xarray.Dataset
+        The block sweep (:func:`rockstudy.studies.design.gather_blocks`): ``jos`` [%] and ``fragility_median``
+        [g] over (strategy, R, alpha), with the attribute ``record_suite``.
+    """
     return _median_panels(blocks, "alpha", "R", "R [m]", r"$\alpha$ = {:g} rad", (2.6, 3.4))
 
 
 def figure_design_devices(devices, target_g: float):
-    """Fragility median [g] of every strategy against kappa_max, one panel per xi, with the target."""
+    """Fragility median [g] of every strategy against kappa_max, one panel per xi, with the target.
+
+    Parameters
+    ----------
+    devices : xarray.Dataset
+        The device sweep (:func:`rockstudy.studies.design.gather_devices`): ``fragility_median`` [g] over
+        (strategy, kappa_max, damping_ratio), with the attribute ``record_suite``.
+    target_g : float
+        The design target, a median PGA drawn as a dashed line. [g]
+    """
     return _median_panels(devices, "damping_ratio", "kappa_max", r"$\kappa_{max}$ [-]", r"$\xi$ = {:g}", (4.2, 3.6),
                           target_g=target_g)

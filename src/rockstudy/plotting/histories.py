@@ -19,7 +19,20 @@ from rockstudy.plotting.style import (
 def velocity_with_impacts(hist):
     """Times and θ̇/(p·α) of a history with the velocity just before each impact put back in front of
     the value just after it, so that a line shows the jump (older files without an ``impact``
-    dimension are returned as they are)."""
+    dimension are returned as they are).
+
+    Parameters
+    ----------
+    hist : xarray.Dataset
+        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with
+        ``velocity_ratio`` on ``t`` and, per impact, ``impact_time`` [s] and
+        ``velocity_before_impact_ratio``.
+
+    Returns
+    -------
+    t, velocity_ratio : numpy.ndarray
+        Times [s] and θ̇/(p·α) [-], in time order.
+    """
     t, v = hist["t"].values, hist["velocity_ratio"].values
     if "velocity_before_impact_ratio" not in hist or hist.sizes.get("impact", 0) == 0:
         return t, v
@@ -32,7 +45,19 @@ def velocity_with_impacts(hist):
 
 
 def plot_history(ax, hist):
-    """Normalised ground motion Ẍ_g/(g·tanα), rotation θ/α and velocity θ̇/(p·α) against time."""
+    """Normalised ground motion Ẍ_g/(g·tanα), rotation θ/α and velocity θ̇/(p·α) against time.
+
+    Returns the three lines.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    hist : xarray.Dataset
+        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with
+        ``ground_ratio`` on ``t_ground``, ``rotation_ratio`` and ``velocity_ratio``
+        on ``t``.
+    """
     t = hist["t"].values
     tv, v = velocity_with_impacts(hist)
     return [ax.plot(hist["t_ground"].values, hist["ground_ratio"], **HISTORY_STYLES["ground"],
@@ -42,7 +67,16 @@ def plot_history(ax, hist):
 
 
 def plot_stiffness(ax, hist):
-    """Anchorage stiffness K/K_max set by the control law (piecewise constant)."""
+    """Anchorage stiffness K/K_max set by the control law (piecewise constant); returns the line.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    hist : xarray.Dataset
+        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with
+        ``stiffness_ratio`` on ``t``.
+    """
     (line,) = ax.step(hist["t"].values, hist["stiffness_ratio"].values, where="post",
                       **HISTORY_STYLES["stiffness"], label=r"$K/K_{max}$")
     ax.set_ylim(-0.15, 1.15)
@@ -51,7 +85,19 @@ def plot_stiffness(ax, hist):
 
 
 def plot_excitation(ax, time, values, **kwargs):
-    """A unit-amplitude excitation Ẍ_g/a_p against time."""
+    """A unit-amplitude excitation Ẍ_g/a_p against time; returns the line.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    time : array_like
+        Times of the samples. [s]
+    values : array_like
+        The excitation Ẍ_g/a_p at those times. [-]
+    **kwargs : dict
+        Passed to ``ax.plot`` (colour, line style, label).
+    """
     (line,) = ax.plot(time, values, **kwargs)
     ax.set_xlabel("time $t$ [s]")
     ax.set_ylabel(r"$\ddot X_g/a_p$ [-]")
@@ -62,6 +108,19 @@ def switch_bursts(time, stiffness, end: float, min_switches: int = 20, gap_fract
     """Stretches of ``time`` up to ``end`` in which the stiffness switches so often that its step
     line fills a solid band: at least ``min_switches`` switches, each within ``gap_fraction`` of
     ``end`` of the previous one. Returns a list of (first switch, last switch, number of switches) [s].
+
+    Parameters
+    ----------
+    time : array_like
+        Times of the history. [s]
+    stiffness : array_like
+        Stiffness at those times (any scale: K/K_max, say); a change between samples is a switch.
+    end : float
+        Last time looked at; also the scale of the gaps. [s]
+    min_switches : int, default 20
+        Fewest switches a stretch has.
+    gap_fraction : float, default 0.005
+        Longest gap between two switches of a stretch, as a fraction of ``end``. [-]
     """
     time, stiffness = np.asarray(time, float), np.asarray(stiffness, float)
     switches = time[1:][np.diff(stiffness) != 0]
@@ -78,7 +137,20 @@ def mark_switch_burst(ax, axk, hist, end: float):
     """Shade the stretch of ``hist`` where K switches most densely (:func:`switch_bursts`) on both
     panels and say why in a note under the figure: there the block makes many ever-smaller rocks,
     one impact each, and the law switches K with every one (e.g. CS01, Eq. 16: K_max moving
-    outward, K_min coming back). Returns the note's text, or None when there is no such stretch."""
+    outward, K_min coming back). Returns the note's text, or None when there is no such stretch.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The response panel (:func:`plot_history`); the note goes under its figure.
+    axk : matplotlib.axes.Axes
+        The stiffness panel (:func:`plot_stiffness`).
+    hist : xarray.Dataset
+        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with
+        ``stiffness_ratio`` on ``t`` and ``impact_time`` [s].
+    end : float
+        Last time shown. [s]
+    """
     bursts = switch_bursts(hist["t"].values, hist["stiffness_ratio"].values, end)
     if not bursts:
         return None
@@ -95,8 +167,19 @@ def mark_switch_burst(ax, axk, hist, end: float):
 
 @styled
 def figure_control_history(hist, paper_figure: str):
-    """Figs. 2–3: normalised time history of a controlled block and its stiffness K (``paper_figure``
-    names the paper's figure in the file, not in the title, which says what is shown)."""
+    """Figs. 2–3: normalised time history of a controlled block and its stiffness K.
+
+    Parameters
+    ----------
+    hist : xarray.Dataset
+        A run's history (:func:`rockstudy.studies.datasets.history_dataset`), with
+        the variables of :func:`plot_history` and :func:`plot_stiffness` and the
+        attributes ``excitation_end_s``, ``control_strategy``, ``frequency_ratio``, ``amplitude_ratio``,
+        ``status`` and ``noise_level``.
+    paper_figure : str
+        The paper's figure reproduced (``"2"``, ``"3"``); not drawn: the caller's file name carries it, and
+        the title says what is shown.
+    """
     fig, (ax, axk) = plt.subplots(2, 1, sharex=True, figsize=(7, 4.6), height_ratios=(3, 1))
     plot_history(ax, hist)
     ax.axhline(0, **ZERO_LINE)
@@ -118,7 +201,15 @@ def figure_control_history(hist, paper_figure: str):
 
 @styled
 def figure_excitation(noise):
-    """Fig. 4: (a) baseline Eq. 23 excitation; (b) the same contaminated with noise."""
+    """Fig. 4: (a) baseline Eq. 23 excitation; (b) the same contaminated with noise.
+
+    Parameters
+    ----------
+    noise : xarray.Dataset
+        The noise realisations of one level (:func:`rockstudy.studies.datasets.noise_dataset`): ``baseline``
+        and ``record`` on ``t``, ``energy_ratio`` and ``pga_ratio``, attributes ``noise_level`` and
+        ``reference_frequency_ratio``.
+    """
     fig, (a, b) = plt.subplots(2, 1, sharex=True, sharey=True, figsize=(7, 4.8))
     t = noise["t"].values
     plot_excitation(a, t, noise["baseline"].values, **HISTORY_STYLES["baseline"], label="baseline, Eq. (23)")

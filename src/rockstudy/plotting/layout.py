@@ -8,8 +8,19 @@ from rockstudy.plotting.style import LABEL_ARROW, LABEL_BOX
 
 
 def limits_of(curves, include=(), margin: float = 0.05) -> tuple[float, float]:
-    """Axis limits that hold every finite value of ``curves`` (arrays) and the values ``include``
-    (e.g. guide lines), widened by ``margin`` of their span on each side."""
+    """Axis limits that hold every finite value of ``curves`` and ``include``, widened by ``margin``.
+
+    Without a finite value the limits are (-1, 1); with a single value, ±0.5 around it.
+
+    Parameters
+    ----------
+    curves : sequence of array_like
+        The values drawn (any shapes); NaN and inf are left out.
+    include : sequence of float, default ()
+        Further values to hold, e.g. guide lines.
+    margin : float, default 0.05
+        Padding on each side, as a fraction of the values' span. [-]
+    """
     values = np.concatenate([np.ravel(np.asarray(c, dtype=float)) for c in curves] + [np.asarray(include, float)])
     values = values[np.isfinite(values)]
     if values.size == 0:
@@ -24,11 +35,23 @@ LABEL_OFFSETS = ((14, 18), (-14, 18), (14, -22), (-14, -22), (28, 0), (-28, 0))
 
 
 def label_clear_of_lines(ax, xy, text: str, offsets=LABEL_OFFSETS):
-    """Write ``text`` next to the point ``xy`` (data coordinates), with a thin line to the point, at
-    the one of ``offsets`` (points from ``xy``) where the
-    label's box lies inside the axes, off the legend, and farthest from every line drawn on ``ax``;
-    measured on the page with the layout as it is now, so call it after the figure's layout is
-    done. Returns the annotation."""
+    """Write ``text`` next to the point ``xy``, with a thin line to the point, clear of the lines drawn.
+
+    The label goes at the one of ``offsets`` where its box lies inside the axes, off the legend, and
+    farthest from every line drawn on ``ax``; measured on the page with the layout as it is now, so
+    call it after the figure's layout is done. Returns the annotation.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes with the lines to keep clear of.
+    xy : (float, float)
+        The point labelled, in data coordinates.
+    text : str
+        The label.
+    offsets : sequence of (float, float), default LABEL_OFFSETS
+        Candidate positions of the label, from ``xy``. [pt]
+    """
     ax.autoscale_view()
     renderer = ax.figure.canvas.get_renderer()
     inside = ax.get_window_extent(renderer)

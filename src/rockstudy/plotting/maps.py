@@ -22,7 +22,20 @@ from rockstudy.plotting.style import (
 
 
 def plot_outcome_map(ax, ds, realisation: int = 0):
-    """Outcome at every (ω_p/p, a_p/(g·tanα)) grid point, with the safe islands visible."""
+    """Outcome at every (ω_p/p, a_p/(g·tanα)) grid point, with the safe islands visible.
+
+    Returns the mesh and one legend handle per outcome.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    ds : xarray.Dataset
+        A spectrum computed with its map (:func:`rockstudy.analysis.spectra.spectrum`, ``with_map=True``):
+        ``outcome`` over (realisation, frequency_ratio, amplitude_ratio) with ``flag_meanings``.
+    realisation : int, default 0
+        Position (not label) along ``realisation`` of the noise realisation drawn.
+    """
     meanings = ds["outcome"].attrs["flag_meanings"].split()
     cmap = ListedColormap([OUTCOME_COLOURS[m] for m in meanings])
     norm = BoundaryNorm(np.arange(len(meanings) + 1) - 0.5, cmap.N)
@@ -36,7 +49,16 @@ def plot_outcome_map(ax, ds, realisation: int = 0):
 @styled
 def figure_maps(maps, a_max0: float):
     """Overturning maps (outcome per grid point) of the noise-free strategies, threshold on top;
-    :data:`MAP_COLUMNS` panels a row (four maps: a 2 × 2 grid, readable printed a page wide)."""
+    :data:`MAP_COLUMNS` panels a row (four maps: a 2 × 2 grid, readable printed a page wide).
+
+    Parameters
+    ----------
+    maps : sequence of xarray.Dataset
+        One spectrum with its map per panel (as :func:`plot_outcome_map` takes it), with ``threshold``
+        and a scalar ``strategy``.
+    a_max0 : float
+        The protection level a_max,0 as an amplitude ratio a/(g·tanα), drawn as a dashed line. [-]
+    """
     ncols = min(len(maps), MAP_COLUMNS)
     nrows = -(-len(maps) // ncols)
     fig, axes = plt.subplots(nrows, ncols, figsize=(MAP_PANEL_SIZE[0] * ncols, MAP_PANEL_SIZE[1] * nrows + 0.9),
@@ -62,7 +84,18 @@ def figure_maps(maps, a_max0: float):
 
 def plot_probability(ax, ds, levels=(0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0)):
     """P(overturn) over the noise realisations at every (ω_p/p, a_p/(g·tanα)) point, with the
-    P = 0.5 contour; returns the mesh (for a colour bar)."""
+    P = 0.5 contour; returns the mesh (for a colour bar).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    ds : xarray.Dataset
+        A probability surface (:func:`rockstudy.analysis.probability.probability_from_outcomes`):
+        ``probability`` over (frequency_ratio, amplitude_ratio).
+    levels : sequence of float, default (0, 0.1, 0.25, 0.5, 0.75, 0.9, 1)
+        Not used: the colour scale runs continuously from 0 to 1 and only the P = 0.5 contour is drawn.
+    """
     p = ds["probability"].transpose("amplitude_ratio", "frequency_ratio")
     x, y = ds["frequency_ratio"].values, ds["amplitude_ratio"].values
     mesh = ax.pcolormesh(x, y, p.values, cmap=PROBABILITY_CMAP, vmin=0.0, vmax=1.0, shading="nearest", rasterized=True)
@@ -73,7 +106,16 @@ def plot_probability(ax, ds, levels=(0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0)):
 
 @styled
 def figure_probability(surfaces, a_max0: float):
-    """P(overturn) surfaces: one row per noise level, one column per strategy, lower envelope on top."""
+    """P(overturn) surfaces: one row per noise level, one column per strategy, lower envelope on top.
+
+    Parameters
+    ----------
+    surfaces : sequence of xarray.Dataset
+        Probability surfaces (as :func:`plot_probability` takes them), each with ``threshold``, scalar
+        ``strategy`` and ``noise_level`` coordinates and ``n_realisations``.
+    a_max0 : float
+        The protection level a_max,0 as an amplitude ratio a/(g·tanα), drawn as a dashed line. [-]
+    """
     levels = sorted({float(ds["noise_level"]) for ds in surfaces})
     strategies = list(dict.fromkeys(str(ds["strategy"].values) for ds in surfaces))
     fig, axes = plt.subplots(len(levels), len(strategies), figsize=(1.0 + 4.2 * len(strategies),

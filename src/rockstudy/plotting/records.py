@@ -24,7 +24,22 @@ from rockstudy.plotting.style import (
 
 
 def plot_fragility(ax, ds, strategy: str, **kwargs):
-    """Fraction of the records that overturn the block (markers) and the fitted lognormal (line)."""
+    """Fraction of the records that overturn the block (markers) and the fitted lognormal (line).
+
+    Returns the markers and the line.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    ds : xarray.Dataset
+        A fragility dataset (:func:`rockstudy.analysis.fragility.fragility_dataset`): ``fraction`` over
+        (strategy, intensity), ``fragility_median`` and ``fragility_dispersion`` per strategy.
+    strategy : str
+        The strategy drawn, a value of ``ds.strategy``; it sets the default colour.
+    **kwargs : dict
+        Passed to ``ax.plot`` for the fitted line; ``color`` also colours the markers.
+    """
     d = ds.sel(strategy=strategy)
     colour = kwargs.pop("color", STRATEGY_COLOURS.get(strategy, None))
     x = ds["intensity"].values
@@ -42,7 +57,16 @@ def plot_fragility(ax, ds, strategy: str, **kwargs):
 
 
 def plot_median_shift(ax, ds):
-    """Fragility median over FS's, θ/θ_FS, with the bootstrap 95 % interval over records."""
+    """Fragility median over FS's, θ/θ_FS, with the bootstrap 95 % interval over records; returns the bars.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    ds : xarray.Dataset
+        A fragility dataset (:func:`rockstudy.analysis.fragility.fragility_dataset`): ``median_ratio``,
+        ``median_ratio_low`` and ``median_ratio_high`` over ``strategy``.
+    """
     strategies = list(ds["strategy"].values)
     ratio = ds["median_ratio"].values
     low, high = ds["median_ratio_low"].values, ds["median_ratio_high"].values
@@ -61,7 +85,15 @@ def plot_median_shift(ax, ds):
 
 def pga_in_g_axis(ax, tan_alpha: float):
     """A secondary x axis on top of a PGA/(g·tanα) axis giving the same intensity as PGA in g
-    (PGA/g = ratio·tanα); returns the secondary axis."""
+    (PGA/g = ratio·tanα); returns the secondary axis.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes whose x axis is PGA/(g·tanα).
+    tan_alpha : float
+        tanα of the block, finite and > 0 (else ``ValueError``). [-]
+    """
     if not (np.isfinite(tan_alpha) and tan_alpha > 0):
         raise ValueError(f"tan_alpha must be a positive number, got {tan_alpha!r}")
     sec = ax.secondary_xaxis("top", functions=(lambda r: r * tan_alpha, lambda g: g / tan_alpha))
@@ -72,7 +104,15 @@ def pga_in_g_axis(ax, tan_alpha: float):
 @styled
 def figure_fragility(ds):
     """Fragility curves of each strategy over a record suite, and the median shift over FS; with
-    the intensity PGA/(g·tanα), a top axis gives it as PGA in g."""
+    the intensity PGA/(g·tanα), a top axis gives it as PGA in g.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A fragility dataset (:func:`rockstudy.analysis.fragility.fragility_dataset`), as :func:`plot_fragility` and
+        :func:`plot_median_shift` take it, with the attributes ``intensity_measure``, ``n_records`` and
+        ``n_bootstrap`` (and ``block_alpha`` for the top axis).
+    """
     fig, (ax, axr) = plt.subplots(1, 2, figsize=(10, 4.6), width_ratios=(2.2, 1))
     for s in ds["strategy"].values:
         plot_fragility(ax, ds, str(s))
@@ -96,7 +136,13 @@ def figure_fragility(ds):
 
 def record_row_offsets(n: int) -> np.ndarray:
     """Offsets of ``n`` strategies' markers within a record's row (rows are 1 apart), spread over
-    :data:`RECORD_ROW_SPREAD` so that markers at the same PGA sit one above the other, not on top."""
+    :data:`RECORD_ROW_SPREAD` so that markers at the same PGA sit one above the other, not on top.
+
+    Parameters
+    ----------
+    n : int
+        Number of strategies; one gives a single offset 0.
+    """
     return np.linspace(-0.5, 0.5, n) * RECORD_ROW_SPREAD if n > 1 else np.zeros(1)
 
 
@@ -104,7 +150,17 @@ def plot_record_thresholds(ax, ds):
     """Threshold PGA [g] of every record (rows, sorted by FS's threshold) for each strategy (markers,
     each strategy at its own height within the row: :func:`record_row_offsets`), and the record's own
     PGA (grey bar): a marker left of the bar's end means the record as recorded overturns the block
-    with that strategy. Returns the markers' artists."""
+    with that strategy. Returns the markers' artists.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    ds : xarray.Dataset
+        A record set's fragility (:func:`rockstudy.analysis.fragility.suite_fragility_dataset`):
+        ``threshold_pga`` [g] over (strategy, record), ``record_pga`` [g], ``record_id`` and
+        ``record_event``.
+    """
     fs = ds["threshold_pga"].sel(strategy="FS").values if "FS" in ds.strategy.values else None
     order = np.argsort(np.where(np.isfinite(fs), fs, np.inf)) if fs is not None else np.arange(ds.sizes["record"])
     y = np.arange(order.size)
@@ -128,7 +184,15 @@ def plot_record_thresholds(ax, ds):
 @styled
 def figure_record_thresholds(ds):
     """Every record's threshold per strategy over one record set (see :func:`plot_record_thresholds`),
-    :data:`RECORD_ROW_HEIGHT` per record."""
+    :data:`RECORD_ROW_HEIGHT` per record.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A record set's fragility (:func:`rockstudy.analysis.fragility.suite_fragility_dataset`):
+        ``threshold_pga`` [g] and ``threshold_scale`` [-] over (strategy, record), ``record_pga`` [g],
+        ``record_id`` and ``record_event``.
+    """
     n = ds.sizes["record"]
     fig, ax = plt.subplots(figsize=(7.5, 1.4 + RECORD_ROW_HEIGHT * n))
     plot_record_thresholds(ax, ds)

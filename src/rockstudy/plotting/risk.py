@@ -8,7 +8,16 @@ from rockstudy.plotting.style import CURVE_COLOURS, CURVE_DASHES, STRATEGY_COLOU
 
 
 def plot_hazard_curves(ax, risk):
-    """The risk dataset's hazard curves, annual rate of exceedance against PGA (log-log)."""
+    """The risk dataset's hazard curves, annual rate of exceedance against PGA (log-log); returns the lines.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    risk : xarray.Dataset
+        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`) with hazard curves: ``hazard_pga`` [g] and
+        ``hazard_rate`` [1/yr] over (hazard, hazard_point), NaN-padded.
+    """
     lines = []
     for j, name in enumerate(risk["hazard"].values):
         x, rate = risk["hazard_pga"].values[j], risk["hazard_rate"].values[j]
@@ -24,7 +33,17 @@ def plot_hazard_curves(ax, risk):
 
 def plot_risk_fragilities(ax, risk):
     """The lognormal fragility in PGA [g] each strategy's risk uses, and each scenario's median PGA (dotted)
-    with its ±1 σ range (shaded)."""
+    with its ±1 σ range (shaded); returns the fragility lines.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    risk : xarray.Dataset
+        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`): ``fragility_median`` [g] and
+        ``fragility_dispersion`` [-] over ``strategy``; with scenarios, ``median_pga`` [g] and ``ln_std_pga`` [-]
+        over ``scenario``.
+    """
     from scipy.stats import norm
     medians = risk["fragility_median"].values
     top = 3.0 * float(np.nanmax(medians)) if np.any(np.isfinite(medians)) else 3.0
@@ -51,7 +70,18 @@ def plot_risk_fragilities(ax, risk):
 
 
 def plot_disaggregation(ax, risk, hazard: int = 0):
-    """Share of each strategy's annual rate of overturning from each PGA band (stacked bars)."""
+    """Share of each strategy's annual rate of overturning from each PGA band (stacked bars); returns the bars.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    risk : xarray.Dataset
+        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`) with hazard curves: ``disaggregation`` [-] over
+        (strategy, hazard, pga_band), ``pga_band_low`` and ``pga_band_high`` [g].
+    hazard : int, default 0
+        Position of the hazard curve along ``hazard``.
+    """
     shares = risk["disaggregation"].values[:, hazard, :]
     low, high = risk["pga_band_low"].values, risk["pga_band_high"].values
     strategies = [str(s) for s in risk["strategy"].values]
@@ -69,7 +99,18 @@ def plot_disaggregation(ax, risk, hazard: int = 0):
 
 
 def plot_scenario_probabilities(ax, risk):
-    """P(overturn | scenario) of each strategy (bars) with the range from the median's 95 % interval."""
+    """P(overturn | scenario) of each strategy (bars) with the range from the median's 95 % interval.
+
+    Returns the bars, one container per scenario.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    risk : xarray.Dataset
+        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`) with scenarios: ``scenario_probability``,
+        ``scenario_probability_low`` and ``scenario_probability_high`` [-] over (strategy, scenario).
+    """
     strategies = [str(s) for s in risk["strategy"].values]
     names = list(risk["scenario"].values)
     width = 0.8 / len(names)
@@ -92,7 +133,15 @@ def plot_scenario_probabilities(ax, risk):
 @styled
 def figure_risk(risk):
     """Risk of overturning on one record set: the hazard curves (if any), the fragilities used with the
-    scenarios' median PGA, and the disaggregation over PGA bands (hazard) or the scenario probabilities."""
+    scenarios' median PGA, and the disaggregation over PGA bands (hazard) or the scenario probabilities.
+
+    Parameters
+    ----------
+    risk : xarray.Dataset
+        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`); with a ``hazard`` coordinate, the panels of
+        :func:`plot_hazard_curves` and :func:`plot_disaggregation` (first hazard curve), else those of
+        :func:`plot_scenario_probabilities`.
+    """
     has_hazard = "hazard" in risk.coords
     panels = 3 if has_hazard else 2
     fig, axes = plt.subplots(1, panels, figsize=(4.4 * panels, 4.0))

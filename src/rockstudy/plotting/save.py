@@ -11,7 +11,20 @@ from rockstudy.core.io import atomic_write
 
 def save_figure(fig, *paths) -> list[Path]:
     """Save ``fig`` to each path atomically (format from the suffix; :func:`rockstudy.core.io.atomic_write`)
-    and close it."""
+    and close it.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure; it is closed once written.
+    *paths : str or pathlib.Path
+        The files to write (e.g. ``.png`` and ``.pdf``), at 150 dpi; a PDF carries no creation date.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     written = []
     for path in map(Path, paths):
         fmt = path.suffix.lstrip(".").lower()

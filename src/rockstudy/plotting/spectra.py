@@ -25,9 +25,14 @@ from rockstudy.plotting.style import (
 
 
 def same_curve(a, b) -> bool:
-    """True when two curves (DataArrays, e.g. thresholds over ω_p/p or J_OS over the noise level) are
-    the same: the same dimensions, the same coordinate values along them and the same values (NaN
-    where both have none, e.g. no overturning)."""
+    """True when two curves are the same: the same dimensions, the same coordinate values along them
+    and the same values (NaN where both have none, e.g. no overturning).
+
+    Parameters
+    ----------
+    a, b : xarray.DataArray
+        The two curves, e.g. thresholds over ω_p/p or J_OS over the noise level.
+    """
     if a.dims != b.dims or a.sizes != b.sizes:
         return False
     for dim in a.dims:
@@ -39,7 +44,13 @@ def same_curve(a, b) -> bool:
 
 def group_same_curves(curves):
     """Group ``(name, threshold)`` pairs whose thresholds are the same curve (:func:`same_curve`),
-    in order of first appearance; returns a list of (names, threshold)."""
+    in order of first appearance; returns a list of (names, threshold).
+
+    Parameters
+    ----------
+    curves : iterable of (str, xarray.DataArray)
+        Name and curve of each compared case, in legend order.
+    """
     groups = []
     for name, thr in curves:
         for names, first in groups:
@@ -52,7 +63,15 @@ def group_same_curves(curves):
 
 
 def spectrum_axes(ax, title: str | None = None):
-    """Label an overturning-spectrum axis: ω_p/p against a_p/(g·tanα)."""
+    """Label an overturning-spectrum axis: ω_p/p against a_p/(g·tanα); returns ``ax``.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to label (a grid is switched on).
+    title : str, optional
+        The axes' title (none when None or empty).
+    """
     ax.set_xlabel(FREQUENCY_LABEL)
     ax.set_ylabel(AMPLITUDE_LABEL)
     ax.grid(True)
@@ -66,6 +85,18 @@ def plot_threshold(ax, threshold, mark_above: bool = True, **kwargs):
 
     NaN (no overturning up to the scan's upper bound) leaves a gap in the line and, with
     ``mark_above``, a small triangle in the line's colour at the top edge of the axes.
+    Returns the line.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    threshold : xarray.DataArray
+        Lower threshold a_min,OVER/(g·tanα) over ``frequency_ratio``; NaN where nothing overturned. [-]
+    mark_above : bool, default True
+        Mark the NaN points with triangles at the top edge (gid :data:`ABOVE_GID`).
+    **kwargs : dict
+        Passed to ``ax.plot`` (colour, line style, label).
     """
     x = threshold["frequency_ratio"].values
     y = threshold.values
@@ -83,7 +114,15 @@ ABOVE_GID = "no-overturning-up-to-the-scan-top"
 
 def spectrum_legend(ax, **kwargs):
     """The axis legend, with an entry for the top-edge triangles of :func:`plot_threshold` when
-    there are any; returns the legend."""
+    there are any; returns the legend.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes whose labelled artists make the legend.
+    **kwargs : dict
+        Passed to ``ax.legend`` (e.g. ``loc``).
+    """
     from matplotlib.lines import Line2D
     handles, labels = ax.get_legend_handles_labels()
     if any(line.get_gid() == ABOVE_GID for line in ax.get_lines()):
@@ -93,7 +132,17 @@ def spectrum_legend(ax, **kwargs):
 
 
 def plot_a_max0(ax, value: float, label: str = r"$a_{max,0}$"):
-    """Horizontal line at the protection level a_max,0 (as an amplitude ratio)."""
+    """Horizontal line at the protection level a_max,0 (as an amplitude ratio); returns the line.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    value : float
+        a_max,0/(g·tanα). [-]
+    label : str, default "$a_{max,0}$"
+        The line's legend entry.
+    """
     return ax.axhline(value, **A_MAX0_STYLE, label=label)
 
 
@@ -101,8 +150,13 @@ def plot_threshold_family(ax, curves, prefix: str = "", reference=None, suffix: 
                           reference_last: bool = False):
     """Several thresholds on one axis, with curves that coincide named together.
 
+    Curves whose thresholds are the same (:func:`same_curve`, computed from the data) are drawn
+    once with a legend entry naming all of them (``"Δτ = 0 = 2.5 ms"``).
+
     Parameters
     ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
     curves : list of (str, DataArray)
         Name (e.g. ``"2.5 ms"``) and threshold of each compared curve, in legend order; coloured
         from :data:`CURVE_COLOURS`, the first drawn widest and each next one narrower
@@ -118,9 +172,6 @@ def plot_threshold_family(ax, curves, prefix: str = "", reference=None, suffix: 
     reference_last : bool
         The reference comes after the curves in the order of names (e.g. the largest N), not
         before them (T_s = 0, Δτ = 0, no noise).
-
-    Curves whose thresholds are the same (:func:`same_curve`, computed from the data) are drawn
-    once with a legend entry naming all of them (``"Δτ = 0 = 2.5 ms"``).
 
     Returns
     -------
@@ -149,7 +200,16 @@ def plot_threshold_family(ax, curves, prefix: str = "", reference=None, suffix: 
 
 @styled
 def figure_spectrum(ds, label: str | None = None):
-    """One overturning spectrum: the lower threshold (the aggregate over realisations) and a_max,0."""
+    """One overturning spectrum: the lower threshold (the aggregate over realisations) and a_max,0.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A spectrum (:func:`rockstudy.analysis.spectra.spectrum`) with ``threshold`` and the attribute
+        ``a_max0_ratio``.
+    label : str, optional
+        Legend entry of the threshold.
+    """
     fig, ax = plt.subplots(figsize=(6, 4))
     plot_threshold(ax, ds["threshold"], label=label, color=CURVE_COLOURS[0])
     plot_a_max0(ax, ds.attrs["a_max0_ratio"])
@@ -160,7 +220,20 @@ def figure_spectrum(ds, label: str | None = None):
 
 @styled
 def figure_realisations(spectrum, histories, point: dict):
-    """Fig. 5: (a) thresholds for two noise realisations; (b) rotation histories at "Ex01"."""
+    """Fig. 5: (a) thresholds for two noise realisations; (b) rotation histories at "Ex01".
+
+    Parameters
+    ----------
+    spectrum : xarray.Dataset
+        A noisy spectrum with ``threshold_realisation`` over (realisation, frequency_ratio) and scalar
+        ``strategy`` and ``noise_level``.
+    histories : sequence of xarray.Dataset
+        One history per realisation compared (:func:`rockstudy.studies.datasets.history_dataset`), with
+        ``rotation_ratio`` and the attributes ``noise_realisation``, ``status`` and ``excitation_end_s``.
+    point : dict
+        The example point: ``label``, ``frequency_ratio`` [-], ``amplitude_ratio`` [-] and
+        ``a_max0_ratio`` [-].
+    """
     fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
     names = [f"N°{i + 1} (k = {h.attrs['noise_realisation']})" for i, h in enumerate(histories)]
     plot_threshold_family(a, [(name, spectrum["threshold_realisation"].sel(realisation=h.attrs["noise_realisation"]))
@@ -194,7 +267,23 @@ def figure_realisations(spectrum, histories, point: dict):
 @styled
 def figure_noise_sensitivity(convergence, spectra, a_max0: float, panels=("FS", "CS01", "CS02"),
                              shown=(1, 5, 10, 20, 40)):
-    """Fig. 6: (a) threshold against the number of realisations N; (b–d) thresholds per noise level."""
+    """Fig. 6: (a) threshold against the number of realisations N; (b–d) thresholds per noise level.
+
+    Parameters
+    ----------
+    convergence : xarray.Dataset
+        The convergence of one spectrum (:func:`rockstudy.studies.datasets.convergence_dataset`):
+        ``threshold_convergence`` over (n_realisations, frequency_ratio), scalar ``strategy`` and ``noise_level``.
+    spectra : sequence of xarray.Dataset
+        Spectra with ``threshold`` and scalar ``strategy`` and ``noise_level``; the noise-free one of a
+        strategy is its reference.
+    a_max0 : float
+        The protection level a_max,0 as an amplitude ratio a/(g·tanα), drawn as a dashed line in every panel. [-]
+    panels : sequence of str, default ("FS", "CS01", "CS02")
+        The strategies of panels (b)–(d).
+    shown : sequence of int, default (1, 5, 10, 20, 40)
+        Numbers of realisations N drawn in (a), capped at the number computed; the largest is the reference.
+    """
     fig, axes = plt.subplots(2, 2, figsize=(11, 8), sharex=True, sharey=True)
     a = axes.flat[0]
     n_all = convergence.sizes["n_realisations"]
@@ -230,8 +319,22 @@ def figure_timing(sweeps, variable: str, a_max0: float, paper_figure: str, refer
     """Figs. 7–8: overlapping thresholds for each sampling time T_s (or delay Δτ), per strategy,
     with the same strategy without it (``references``: continuous control, or no delay) on top as
     the named reference (:data:`REFERENCE_STYLE`); curves that coincide share one legend entry.
-    ``paper_figure`` is the paper's figure number (the file's name carries it; the title says what
-    is shown)."""
+
+    Parameters
+    ----------
+    sweeps : sequence of xarray.Dataset
+        Spectra with ``threshold``, scalar ``strategy``, ``noise_level``, ``sampling_time`` [s] and
+        ``delay`` [s]; one panel per strategy.
+    variable : {"sampling_time", "delay"}
+        The coordinate swept, named in the legend in ms.
+    a_max0 : float
+        The protection level a_max,0 as an amplitude ratio a/(g·tanα), drawn as a dashed line. [-]
+    paper_figure : str
+        The paper's figure number (``"7"``, ``"8"``); not drawn: the file's name carries it, and the title
+        says what is shown.
+    references : sequence of xarray.Dataset, default ()
+        Spectra of the same strategies without the sampling time (or delay), drawn as the references.
+    """
     strategies = sorted({d["strategy"].item() for d in sweeps})
     fig, axes = plt.subplots(1, len(strategies), figsize=(5.5 * len(strategies), 4.5), sharex=True, sharey=True,
                              squeeze=False)

@@ -51,7 +51,13 @@ show as nested bands, every one visible, instead of the last hiding the others. 
 
 def curve_widths(n: int) -> list[float]:
     """Line widths of ``n`` compared curves in drawing order: the first widest, each next one
-    :data:`CURVE_WIDTH_STEP` narrower, the last :data:`CURVE_WIDTH` wide. [pt]"""
+    :data:`CURVE_WIDTH_STEP` narrower, the last :data:`CURVE_WIDTH` wide. [pt]
+
+    Parameters
+    ----------
+    n : int
+        Number of curves compared on one axes. [-]
+    """
     return [CURVE_WIDTH + CURVE_WIDTH_STEP * (n - 1 - i) for i in range(n)]
 
 
@@ -169,7 +175,14 @@ MAP_PANEL_SIZE = (4.2, 3.9)
 
 
 def styled(figure_function):
-    """Draw ``figure_function``'s figure in the study's :data:`STYLE`."""
+    """Draw ``figure_function``'s figure in the study's :data:`STYLE`.
+
+    Parameters
+    ----------
+    figure_function : callable
+        A function that makes and returns a figure; the decorated function takes the same arguments
+        and calls it inside ``matplotlib.rc_context(STYLE)``.
+    """
     @wraps(figure_function)
     def draw(*args, **kwargs):
         with matplotlib.rc_context(STYLE):
@@ -178,11 +191,23 @@ def styled(figure_function):
 
 
 def level_label(level: float) -> str:
+    """A noise level as a label: ``"R005 (5% noise)"``, or ``"no noise (R000)"`` for 0.
+
+    Parameters
+    ----------
+    level : float
+        Noise level r as a fraction (0.05 for 5 %). [-]
+    """
     return "no noise (R000)" if level == 0 else f"R{round(level * 100):03d} ({level:.0%} noise)"
 
 
 def plain_text(text) -> str:
-    """``text`` (a name from a file or a configuration: a record's event, a status) escaped for
-    matplotlib, so that a ``$`` in it is drawn as a dollar sign instead of starting mathtext (an
-    unbalanced one would fail the whole figure)."""
+    """``text`` escaped for matplotlib, so that a ``$`` in it is drawn as a dollar sign instead of
+    starting mathtext (an unbalanced one would fail the whole figure).
+
+    Parameters
+    ----------
+    text : object
+        A name from a file or a configuration (a record's event, a status); turned into a string.
+    """
     return str(text).replace("$", r"\$")

@@ -52,7 +52,13 @@ class Controller:
         self.active_on = True
 
     def feedback_mode(self, ground_sign: int) -> bool:
-        """True when the law in force is CS01 (Eq. 16): CS01 itself, or CS02 while Ẍg = 0."""
+        """True when the law in force is CS01 (Eq. 16): CS01 itself, or CS02 while Ẍg = 0.
+
+        Parameters
+        ----------
+        ground_sign : int
+            Sign of the ground acceleration Ẍg now: -1, 0 or 1. [-]
+        """
         return self.strategy == "CS01" or (self.strategy == "CS02" and ground_sign == 0)
 
     def law_on(self, resting: bool, side: int, vel_sign: int, ground_sign: int) -> bool:
@@ -70,7 +76,14 @@ class Controller:
         return stiffness_on(self.code, float(side), float(side * vel_sign), float(ground_sign))
 
     def kappa(self, law_on: bool) -> float:
-        """Stiffness the device applies now; ``law_on`` is the continuous law's output now. [-]"""
+        """Stiffness the device applies now. [-]
+
+        Parameters
+        ----------
+        law_on : bool
+            The continuous law's output now (True for κ_max, :meth:`law_on`); with sampled control the
+            decision in force is used instead.
+        """
         if self.strategy == "FS":
             return 0.0
         if self.strategy == "PASSIVE":
@@ -79,7 +92,15 @@ class Controller:
         return self.kappa_max if on else self.kappa_min
 
     def push(self, t: float, on: bool) -> None:
-        """Register that the law output became ``on`` at t; it is read at the next sample. [s]"""
+        """Register that the law output became ``on`` at ``t``; it is read at the next sample.
+
+        Parameters
+        ----------
+        t : float
+            Time of the change. [s]
+        on : bool
+            The law's new output (True for κ_max).
+        """
         if not self.sampled or on == self.law_last:
             return
         self.law_last = on
@@ -91,11 +112,23 @@ class Controller:
             self.queue.append((k, on))
 
     def actuation_time(self, k: int) -> float:
-        """Instant k·T_s + Δτ at which the decision of sample k acts. [s]"""
+        """Instant k·T_s + Δτ at which the decision of sample k acts. [s]
+
+        Parameters
+        ----------
+        k : int
+            Index of the sample, k >= 0. [-]
+        """
         return k * self.sampling_time + self.delay
 
     def apply_due(self, t: float) -> None:
-        """Let every decision whose actuation instant is ≤ t act. [s]"""
+        """Let every decision whose actuation instant is ≤ ``t`` act.
+
+        Parameters
+        ----------
+        t : float
+            Time now. [s]
+        """
         while self.queue and self.actuation_time(self.queue[0][0]) <= t:
             _, self.applied = self.queue.popleft()
             self.active_on = self.applied
@@ -109,7 +142,14 @@ class Controller:
     def kappa_at(self, times, law_on: bool) -> list | float:
         """Stiffness at each of ``times`` during a rest piece, the queue not yet applied. [-]
 
-        Continuous control: the stiffness now (``law_on`` as in :meth:`kappa`).
+        Continuous control: the stiffness now, one float.
+
+        Parameters
+        ----------
+        times : sequence of float
+            Instants of the rest piece, increasing. [s]
+        law_on : bool
+            The continuous law's output now, as in :meth:`kappa` (continuous control only).
         """
         if not self.sampled:
             return self.kappa(law_on)

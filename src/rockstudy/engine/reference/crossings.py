@@ -109,8 +109,14 @@ def missed_crossing(sol, rhs, side: int, turning: list, thresholds: list, watche
         Solution of the piece.
     rhs : callable
         Its right-hand side.
-    side, turning, thresholds, watched
-        As in :func:`candidates`.
+    side : {1, -1}
+        Pivoting corner, as in :func:`candidates`.
+    turning : list of (float, ndarray)
+        Turning points (θ̇ = 0) of the piece in time order, as in :func:`candidates`. [s], ([rad], [rad/s])
+    thresholds : list of (float, str)
+        Rotations s·θ that end the piece, with the event name, as in :func:`candidates`. [rad]
+    watched : list of Event
+        Terminal events that did not stop the piece, as in :func:`candidates`.
     fired : Event or None
         Event that stopped the piece.
     method : str

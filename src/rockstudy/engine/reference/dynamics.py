@@ -65,7 +65,13 @@ class Dynamics:
                                     self.gravity, self.sin_alpha, self.cos_alpha)
 
     def uplift_margin(self, t: float) -> float:
-        """|Ẍg| − (g + Ÿg)·tanα: positive when the ground lifts a block at rest (Eq. 15). [m/s^2]"""
+        """|Ẍg| − (g + Ÿg)·tanα: positive when the ground lifts a block at rest (Eq. 15). [m/s^2]
+
+        Parameters
+        ----------
+        t : float
+            Time at which the ground motion is evaluated. [s]
+        """
         ex = self.excitation
         return abs(ex.horizontal(t)) - (self.gravity + ex.vertical(t)) * self.tan_alpha
 
@@ -155,19 +161,45 @@ class Restrainers:
         self.fracture_times: dict[str, float] = {}
 
     def spring_ok(self, side: int) -> bool:
-        """The spring working on corner ``side`` is intact."""
+        """The spring working on corner ``side`` is intact.
+
+        Parameters
+        ----------
+        side : {1, -1}
+            Pivoting corner: +1 for θ > 0 (the left elements), -1 for θ < 0 (the right ones).
+        """
         return self.intact["spring_left" if side > 0 else "spring_right"]
 
     def damper_ok(self, side: int) -> bool:
-        """The damper working on corner ``side`` is intact."""
+        """The damper working on corner ``side`` is intact.
+
+        Parameters
+        ----------
+        side : {1, -1}
+            Pivoting corner: +1 for θ > 0 (the left elements), -1 for θ < 0 (the right ones).
+        """
         return self.intact["damper_left" if side > 0 else "damper_right"]
 
     def working(self, side: int) -> list[str]:
-        """Intact elements that work while the block pivots on corner ``side``."""
+        """Intact elements that work while the block pivots on corner ``side``.
+
+        Parameters
+        ----------
+        side : {1, -1}
+            Pivoting corner: +1 for θ > 0 (the left elements), -1 for θ < 0 (the right ones).
+        """
         suffix = "left" if side > 0 else "right"
         return [name for name in ELEMENTS if name.endswith(suffix) and self.intact[name]]
 
     def fracture(self, name: str, t: float) -> None:
-        """Break element ``name`` at time t. [s]"""
+        """Break element ``name`` at time ``t``; it stays broken for the rest of the run.
+
+        Parameters
+        ----------
+        name : str
+            One of :data:`ELEMENTS`.
+        t : float
+            Time of the fracture, kept in ``fracture_times``. [s]
+        """
         self.intact[name] = False
         self.fracture_times[name] = t

@@ -40,7 +40,15 @@ class Event:
         self.t0 = t0
 
     def value(self, t: float, y) -> float:
-        """g(t, y), zero on the event surface."""
+        """g(t, y), zero on the event surface.
+
+        Parameters
+        ----------
+        t : float
+            Time. [s]
+        y : array_like
+            State (θ [rad], θ̇ [rad/s]).
+        """
         raise NotImplementedError
 
     def __call__(self, t: float, y) -> float:
@@ -70,7 +78,15 @@ class Impact(Event):
         self.side = side
 
     def value(self, t, y):
-        """g(t, y); see the class docstring."""
+        """g(t, y); see the class docstring.
+
+        Parameters
+        ----------
+        t : float
+            Time. [s]
+        y : array_like
+            State (θ [rad], θ̇ [rad/s]).
+        """
         return self.side * y[0]
 
 
@@ -95,7 +111,15 @@ class Overturn(Event):
         self.theta_overturn = theta_overturn
 
     def value(self, t, y):
-        """g(t, y); see the class docstring."""
+        """g(t, y); see the class docstring.
+
+        Parameters
+        ----------
+        t : float
+            Time. [s]
+        y : array_like
+            State (θ [rad], θ̇ [rad/s]).
+        """
         return self.side * y[0] - self.theta_overturn
 
 
@@ -121,7 +145,15 @@ class Fracture(Event):
         self.theta_ultimate = theta_ultimate
 
     def value(self, t, y):
-        """g(t, y); see the class docstring."""
+        """g(t, y); see the class docstring.
+
+        Parameters
+        ----------
+        t : float
+            Time. [s]
+        y : array_like
+            State (θ [rad], θ̇ [rad/s]).
+        """
         return self.side * y[0] - self.theta_ultimate
 
 
@@ -146,7 +178,15 @@ class Apex(Event):
         self.side = side
 
     def value(self, t, y):
-        """g(t, y); see the class docstring."""
+        """g(t, y); see the class docstring.
+
+        Parameters
+        ----------
+        t : float
+            Time. [s]
+        y : array_like
+            State (θ [rad], θ̇ [rad/s]).
+        """
         return self.side * y[1]
 
 
@@ -166,7 +206,15 @@ class TurningPoint(Event):
         self.side = side
 
     def value(self, t, y):
-        """g(t, y); see the class docstring."""
+        """g(t, y); see the class docstring.
+
+        Parameters
+        ----------
+        t : float
+            Time. [s]
+        y : array_like
+            State (θ [rad], θ̇ [rad/s]).
+        """
         return self.side * y[1]
 
 
@@ -190,7 +238,15 @@ class GroundZero(Event):
         self.excitation = excitation
 
     def value(self, t, y):
-        """g(t, y); see the class docstring."""
+        """g(t, y); see the class docstring.
+
+        Parameters
+        ----------
+        t : float
+            Time. [s]
+        y : array_like
+            State (θ [rad], θ̇ [rad/s]); not used, the value depends on t only.
+        """
         return self.excitation.sensed(t)
 
 
@@ -215,6 +271,15 @@ class UpliftFromRest(Event):
         self.push = push
 
     def value(self, t, y):
+        """g(t, y); see the class docstring.
+
+        Parameters
+        ----------
+        t : float
+            Time. [s]
+        y : array_like
+            State (θ [rad], θ̇ [rad/s]); not used, the block is at rest.
+        """
         d, ex = self.dynamics, self.dynamics.excitation
         return self.push * ex.horizontal(t) - (d.gravity + ex.vertical(t)) * d.tan_alpha
 
@@ -252,7 +317,15 @@ class HoldExit(Event):
         self.spring_ok, self.damper_ok = spring_ok, damper_ok
 
     def value(self, t, y):
-        """g(t, y); see the class docstring."""
+        """g(t, y); see the class docstring.
+
+        Parameters
+        ----------
+        t : float
+            Time. [s]
+        y : array_like
+            State (θ [rad], θ̇ [rad/s]); not used, the held θ is fixed.
+        """
         return self.side * self.dynamics.acceleration(t, self.theta, 0.0, self.side, self.kappa, self.spring_ok,
                                                       self.damper_ok)
 
@@ -292,7 +365,15 @@ def locate_in_time(t0: float, t1: float, events: list, max_step: float):
 
 
 def fired_event(sol, events: list):
-    """The terminal event that stopped a ``solve_ivp`` solution at its last time, or None."""
+    """The terminal event that stopped a ``solve_ivp`` solution at its last time, or None.
+
+    Parameters
+    ----------
+    sol : OdeResult
+        The solution of ``solve_ivp``; only a stop by an event (``status`` 1) is looked at.
+    events : list of Event
+        The events passed to ``solve_ivp``, in the same order as ``sol.t_events``.
+    """
     if sol.status != 1:
         return None
     t_end = sol.t[-1]

@@ -151,12 +151,24 @@ class Excitation:
         return self.amplitude if 0.0 <= t < self.horizontal_end else 0.0
 
     def next_knot(self, t: float) -> float:
-        """First breakpoint strictly after t (inf if none). [s]"""
+        """First breakpoint strictly after ``t`` (inf if none). [s]
+
+        Parameters
+        ----------
+        t : float
+            Time now. [s]
+        """
         i = int(np.searchsorted(self.knots, t, side="right"))
         return float(self.knots[i]) if i < len(self.knots) else math.inf
 
     def sign_after(self, t: float) -> int:
-        """Sign of Ẍg as the controller reads it just after t; 0 after the excitation's end. [-]"""
+        """Sign of Ẍg as the controller reads it just after ``t``; 0 after the excitation's end. [-]
+
+        Parameters
+        ----------
+        t : float
+            Time now; where the sensed Ẍg is (near) zero at ``t``, it is read a little later. [s]
+        """
         if t >= self.horizontal_end:
             return 0
         value = self.sensed(t)

@@ -19,7 +19,15 @@ VELOCITY_ZEROS = ("turn", "apex")
 
 
 def turning_points(sol, events: list) -> list:
-    """Turning points (θ̇ = 0) recorded in a piece, in time order: (t, y). [s], ([rad], [rad/s])"""
+    """Turning points (θ̇ = 0) recorded in a piece, in time order: (t, y). [s], ([rad], [rad/s])
+
+    Parameters
+    ----------
+    sol : OdeResult
+        The ``solve_ivp`` solution of the piece, with ``t_events`` and ``y_events``.
+    events : list of Event
+        The events passed to ``solve_ivp``, in order; those named in :data:`VELOCITY_ZEROS` are read.
+    """
     found = [(float(te), ye) for event, te_all, ye_all in zip(events, sol.t_events, sol.y_events)
              if event.name in VELOCITY_ZEROS for te, ye in zip(te_all, ye_all)]
     return sorted(found, key=itemgetter(0))

@@ -20,7 +20,13 @@ HISTORY_FIELDS = ("t", "theta", "theta_dot", "kappa")
 
 
 def history_grid(t0: float, t1: float) -> np.ndarray:
-    """Regular history instants k·HISTORY_STEP strictly inside (t0, t1). [s]"""
+    """Regular history instants k·HISTORY_STEP strictly inside (t0, t1). [s]
+
+    Parameters
+    ----------
+    t0, t1 : float
+        Start and end of the interval, both excluded. [s]
+    """
     k0 = math.floor(t0 / HISTORY_STEP) + 1
     k1 = math.ceil(t1 / HISTORY_STEP) - 1
     if k1 < k0:
@@ -60,7 +66,19 @@ class Recorder:
         self.max_abs_theta = abs(theta0)
 
     def sample(self, t, theta, theta_dot, kappa) -> None:
-        """Append samples; scalars are repeated to the length of ``t``. [s], [rad], [rad/s], [-]"""
+        """Append samples (nothing when the history is not kept); scalars are repeated to the length of ``t``.
+
+        Parameters
+        ----------
+        t : float or array_like
+            Instants of the samples. [s]
+        theta : float or array_like
+            Rotation θ at each instant. [rad]
+        theta_dot : float or array_like
+            Angular velocity θ̇ at each instant. [rad/s]
+        kappa : float or array_like
+            Dimensionless stiffness κ at each instant. [-]
+        """
         if not self.enabled:
             return
         t = np.atleast_1d(np.asarray(t, dtype=float))
@@ -69,11 +87,27 @@ class Recorder:
             self.columns[name].append(np.broadcast_to(np.asarray(value, dtype=float), t.shape).copy())
 
     def peak(self, theta_abs: float) -> None:
-        """Raise max |θ| to ``theta_abs`` if it is larger. [rad]"""
+        """Raise max |θ| to ``theta_abs`` if it is larger.
+
+        Parameters
+        ----------
+        theta_abs : float
+            A rotation magnitude |θ| the block reached. [rad]
+        """
         self.max_abs_theta = max(self.max_abs_theta, theta_abs)
 
     def piece_peak(self, sol, t_end: float, theta_end: float) -> None:
-        """Raise max |θ| over a ``solve_ivp`` piece cut at t_end, its steps and events included. [rad]"""
+        """Raise max |θ| over a ``solve_ivp`` piece cut at ``t_end``, its steps and events included.
+
+        Parameters
+        ----------
+        sol : OdeResult
+            The piece's ``solve_ivp`` solution (steps and events past ``t_end`` are ignored).
+        t_end : float
+            Where the piece ends. [s]
+        theta_end : float
+            θ at ``t_end``. [rad]
+        """
         keep = sol.t <= t_end
         self.peak(max(float(np.max(np.abs(sol.y[0, keep]))), abs(theta_end)))
         for te, ye in zip(sol.t_events, sol.y_events):
@@ -81,7 +115,13 @@ class Recorder:
                 self.peak(float(np.max(np.abs(ye[te <= t_end, 0]))))
 
     def history(self, motion: GroundMotion) -> dict | None:
-        """The recorded history with Ẍg at its instants, or None when not recorded."""
+        """The recorded history with Ẍg at its instants, or None when not recorded.
+
+        Parameters
+        ----------
+        motion : GroundMotion
+            The ground motion, evaluated at the history's instants (``ground_acceleration``). [m/s^2]
+        """
         if not self.enabled:
             return None
         joined = {name: np.concatenate(v) if v else np.zeros(0) for name, v in self.columns.items()}
