@@ -132,6 +132,10 @@ def test_apply_command_line_merges_and_replaces():
     overlay = {"block": {"width": 0.5}, "anchorage": {"kappa_max": 2.0}, "noise_levels": {"R005": 0.05}}
     assert config_files.apply_command_line(config, overlay) == {
         "block": {"width": 0.5}, "anchorage": {"kappa_max": 2.0, "kappa_min": 0.0}, "noise_levels": {"R005": 0.05}}
+    config = {"reproduction": {"strategy": "FS", "readings": {"a": {"step": 0.0025}, "b": {"step": "0.005"}}}}
+    overlay = {"reproduction": {"readings": {"b": {"step": 0.005}}}}  # a section inside a section
+    assert config_files.apply_command_line(config, overlay) == {
+        "reproduction": {"strategy": "FS", "readings": {"b": {"step": 0.005}}}}
 
 
 # rockstudy --config FILE: the block given on the command line replaces the file's, whole.
