@@ -20,8 +20,11 @@ from rockstudy.studies import parameters, study
 
 min_version("9.0")
 
-try:  # the --configfile files as written (bounded, aliases expanded): an overlay replaces the sections it gives
+try:  # the --configfile files as written (bounded, aliases expanded) and the --config KEY=VALUE words, typed as
+    # in a file: each is an overlay that replaces the sections it gives, applied in Snakemake's order
     OVERLAYS = [config_files.load_yaml(path) for path in workflow.overwrite_configfiles]
+    COMMAND_LINE = config_files.command_line_overlay(workflow.config_settings.config,
+                                                     workflow.config_settings.config_args)
 except ValueError as exc:
     sys.exit(f"config error: {exc}")
 
@@ -33,11 +36,12 @@ report: "workflow/report/workflow.rst"
 
 
 # The config, checked against its declaration (rockstudy.core.declarations) before anything walks it: an
-# overlay (--configfile) replaces the sections it gives (a block by its dimensions replaces the preset), and
-# a bad key ends the run with one short message naming it (exit 1, no traceback).
+# overlay (--configfile, then --config) replaces the sections it gives (a block by its dimensions replaces the
+# preset), and a bad key ends the run with one short message naming it (exit 1, no traceback).
 try:
     for overlay in OVERLAYS:
         config_files.replace_sections(config, overlay)
+    config_files.apply_command_line(config, COMMAND_LINE)  # last, as Snakemake applies --config
     study.check_study(config)
 except ValueError as exc:
     sys.exit(f"config error: {exc}")

@@ -6,6 +6,9 @@ only bounds a file's shape and applies an overlay, so that a config is never wal
 """
 from __future__ import annotations
 
+import copy
+from collections.abc import Mapping
+
 from rockstudy.core import validation as v
 from rockstudy.core.validation import InputError
 
@@ -42,6 +45,98 @@ def replace_sections(config: dict, overlay: dict) -> dict:
         if isinstance(src, dict) and key in src and isinstance(dst, dict):
             dst[key] = src[key]
     return config
+
+
+def merge(config: dict, overlay: dict) -> dict:
+    """Merge ``overlay`` into ``config`` as Snakemake merges a config over another: a mapping into the
+    mapping at the same key, any other value (a copy) in place of the old one.
+
+    Parameters
+    ----------
+    config : dict
+        The config, changed in place.
+    overlay : dict
+        The values merged into it.
+
+    Returns
+    -------
+    dict
+        ``config``.
+    """
+    for key, value in overlay.items():
+        if isinstance(value, dict) and isinstance(config.get(key), dict):
+            merge(config[key], value)
+        else:
+            config[key] = copy.deepcopy(value)
+    return config
+
+
+def command_line_overlay(parsed, words=None) -> dict:
+    """The overlay of Snakemake's ``--config KEY=VALUE ...``, its values typed as in a config file.
+
+    Snakemake reads a mapping or a list given on the command line with YAML's ``BaseLoader``, which leaves
+    every value in it a string (``block={width: 0.5}`` gives the width ``'0.5'``). Each such value is read
+    again from its text in ``words`` (the ``KEY=VALUE`` words as given, Snakemake's
+    ``workflow.config_settings.config_args``) as a config file is read (:func:`yaml.safe_load`), and the
+    whole is bounded (:func:`count_nodes`). A plain value (a number, a word) is kept as Snakemake reads it.
+    A key given twice is merged, as Snakemake merges it (:func:`merge`).
+
+    Parameters
+    ----------
+    parsed : Mapping
+        The command line's config as Snakemake parsed it (``workflow.config_settings.config``).
+    words : str or sequence of str, optional
+        The ``KEY=VALUE`` words as given; without them, ``parsed`` is taken as it is.
+
+    Returns
+    -------
+    dict
+        The overlay, to apply after the ``--configfile`` overlays (:func:`apply_command_line`).
+    """
+    import yaml
+    parsed = dict(parsed or {})
+    if isinstance(words, str):
+        words = [words]
+    if not words:
+        overlay = copy.deepcopy(parsed)
+    else:
+        overlay = {}
+        for word in words:
+            key, _, text = str(word).partition("=")
+            if key not in parsed:
+                continue
+            value = parsed[key]
+            if isinstance(value, (Mapping, list)):
+                try:
+                    value = yaml.safe_load(text)
+                except yaml.YAMLError as exc:
+                    raise InputError(f"--config {key}: not valid YAML: {getattr(exc, 'problem', None) or exc}"
+                                     ) from None
+                count_nodes(value, name=f"--config {key}")
+            merge(overlay, {key: value})
+    count_nodes(overlay, name="--config")
+    return overlay
+
+
+def apply_command_line(config: dict, overlay: dict) -> dict:
+    """Apply the command line's overlay (:func:`command_line_overlay`) to ``config``, after the
+    ``--configfile`` overlays, as Snakemake applies ``--config`` last: its typed values merged in
+    (:func:`merge`; Snakemake merged them as text), then the sections of :data:`REPLACED_BY_OVERLAY` it sets
+    replaced (:func:`replace_sections`).
+
+    Parameters
+    ----------
+    config : dict
+        The config Snakemake made (files and command line merged), changed in place.
+    overlay : dict
+        The command line's overlay.
+
+    Returns
+    -------
+    dict
+        ``config``.
+    """
+    return replace_sections(merge(config, overlay), overlay)
 
 
 LONG_LISTS = {"beyond.fragility.records": v.MAX_SUITE_RECORDS}
