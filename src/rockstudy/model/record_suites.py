@@ -146,7 +146,7 @@ class RecordInfo:
 
         Parameters
         ----------
-        prefix : str, default "record_"
+        prefix : str, default ``"record_"``
             Prefix of every attribute name (``record_full_name``, ``record_suite``, ``record_pga_g``, ...).
         """
         return {f"{prefix}{k}": v for k, v in {"full_name": self.name, **asdict(self)}.items()}

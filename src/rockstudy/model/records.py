@@ -201,7 +201,7 @@ class Record:
 
         Parameters
         ----------
-        prefix : str, default "record_"
+        prefix : str, default ``"record_"``
             Prefix of every attribute name (``record_name``, ``record_dt_s``, ``record_pga_m_s2``, ...).
         """
         return {f"{prefix}name": self.name, f"{prefix}source": self.source, f"{prefix}unit": self.unit,

@@ -113,7 +113,7 @@ class GroundMotionModel:
 
         Parameters
         ----------
-        prefix : str, default "model_"
+        prefix : str, default ``"model_"``
             Prefix of every attribute name (``model_ground_frequency``, ``model_pga``, ...).
         """
         return {f"{prefix}{k}": v for k, v in asdict(self).items()}
@@ -246,7 +246,7 @@ class SuiteRanges:
 
         Parameters
         ----------
-        prefix : str, default "suite_"
+        prefix : str, default ``"suite_"``
             Prefix of every attribute name (``suite_ground_frequency_hz``, ``suite_pga``, ...).
         """
         return {f"{prefix}{k}": (list(v) if isinstance(v, tuple) else v) for k, v in asdict(self).items()}
