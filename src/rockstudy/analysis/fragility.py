@@ -52,7 +52,17 @@ their seed. ``rockstudy fragility`` takes them as its defaults."""
 
 
 def intensity(record: Record, block: Block, measure: str = "pga_ratio") -> float:
-    """The intensity measure of an unscaled record for ``block`` (see :data:`INTENSITY_MEASURES`). [-]"""
+    """The intensity measure of an unscaled record for ``block`` (see :data:`INTENSITY_MEASURES`). [-]
+
+    Parameters
+    ----------
+    record : Record
+        The unscaled record.
+    block : rockstudy.Block
+        The block, whose g·tanα (and p, for ``pgv_ratio``) make the measure dimensionless.
+    measure : {"pga_ratio", "pgv_ratio"}, default "pga_ratio"
+        The intensity measure.
+    """
     if measure == "pga_ratio":
         return record.pga / block.uplift_acceleration
     if measure == "pgv_ratio":
@@ -69,16 +79,18 @@ def stripe_outcomes(block: Block, anchorage: Anchorage, controls, records, level
 
     Parameters
     ----------
-    block, anchorage : Block, Anchorage
+    block, anchorage : rockstudy.Block, rockstudy.Anchorage
+        The block and its restrainers.
     controls : sequence of Control
         The strategies (with their timing).
     records : sequence of Record
+        The unscaled records.
     levels : array_like
-        IM levels x_j, increasing. [IM]
+        IM levels x_j, increasing, at least 2, > 0. [IM]
     measure : str
         Intensity measure, a key of :data:`INTENSITY_MEASURES`.
-    overturn_criterion, free_time
-        As for :func:`rockstudy.engine.simulate.simulate`.
+    overturn_criterion, free_time : {"flat", "alpha"}, float
+        As for :func:`rockstudy.engine.simulate.simulate` (free time in [s]).
 
     Returns
     -------
@@ -120,10 +132,12 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
 
     Parameters
     ----------
-    block, anchorage : Block, Anchorage
+    block, anchorage : rockstudy.Block, rockstudy.Anchorage
+        The block and its restrainers.
     controls : sequence of Control
         The strategies; one must be FS (the reference of the median shift).
     records : sequence of Record
+        The unscaled records.
     levels : array_like
         IM levels of the stripes. [IM]
     measure : str
@@ -132,8 +146,8 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
         Bootstrap draws over records for the interval of the median shift.
     seed : int
         Root seed of the bootstrap (``SeedSequence(seed, spawn_key=(BOOTSTRAP_KEY,))``).
-    overturn_criterion, free_time
-        As for :func:`rockstudy.engine.simulate.simulate`.
+    overturn_criterion, free_time : {"flat", "alpha"}, float
+        As for :func:`rockstudy.engine.simulate.simulate` (free time in [s]).
     record_attrs : dict, optional
         Extra global attributes describing the suite (e.g. the synthetic model).
 
@@ -174,10 +188,29 @@ def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records
 
     Parameters
     ----------
+    block, anchorage : rockstudy.Block, rockstudy.Anchorage
+        The block and its restrainers.
+    controls : sequence of Control
+        The strategies; one must be FS (the reference of the median shift).
+    records : sequence of Record
+        The unscaled records, in the order of ``overturned``.
+    levels : array_like
+        IM levels of the stripes. [IM]
     overturned : ndarray of bool, shape (control, record, level)
+        Whether each run overturns the block (e.g. :func:`~rockstudy.analysis.record_scan.is_overturned`
+        of :func:`stripe_outcomes`).
     scale : ndarray, shape (record, level)
         Factor applied to each record. [-]
-    Others as for :func:`fragility_dataset`.
+    measure : str
+        Intensity measure (:data:`INTENSITY_MEASURES`), stored in the attributes.
+    n_boot : int
+        Bootstrap draws over records for the interval of the median shift, >= 0 (0: no interval).
+    seed : int
+        Root seed of the bootstrap (``SeedSequence(seed, spawn_key=(BOOTSTRAP_KEY,))``).
+    overturn_criterion, free_time : {"flat", "alpha"}, float
+        The settings the stripes were run with, stored in the attributes (free time in [s]).
+    record_attrs : dict, optional
+        Extra global attributes describing the suite (e.g. the synthetic model).
     """
     check_arguments("fragility_from_stripes", {"n_boot": n_boot, "seed": seed, "free_time": free_time})
     strategies = _check_fragility_inputs(controls, n_boot)
@@ -277,7 +310,8 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
 
     Parameters
     ----------
-    block, anchorage : Block, Anchorage
+    block, anchorage : rockstudy.Block, rockstudy.Anchorage
+        The block and its restrainers.
     controls : sequence of Control
         The strategies, FS among them.
     entries : sequence of (RecordInfo, Record)
@@ -288,7 +322,7 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
         Name of the record set (stored, and in the title).
     resolution : float
         Resolution of the records' thresholds. [IM]
-    measure, n_boot, seed, overturn_criterion, free_time
+    measure, n_boot, seed, overturn_criterion, free_time : str, int, int, str, float
         As for :func:`fragility_dataset`.
 
     Returns
@@ -391,7 +425,13 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
 
 
 def suite_summary(datasets) -> "list[dict]":
-    """One row per (suite, strategy): medians with 95 % intervals in every unit, dispersion, shift over FS."""
+    """One row per (suite, strategy): medians with 95 % intervals in every unit, dispersion, shift over FS.
+
+    Parameters
+    ----------
+    datasets : iterable of xarray.Dataset
+        Datasets of :func:`suite_fragility_dataset`, one per suite.
+    """
     rows = []
     for ds in datasets:
         for s in ds.strategy.values:

@@ -65,14 +65,26 @@ class FragilityFit:
     status: str
 
     def median_interval(self, level: float = 0.95) -> tuple[float, float]:
-        """Wald interval exp(ln θ ± z·se) for the median. [IM]"""
+        """Wald interval exp(ln θ ± z·se) for the median. [IM]
+
+        Parameters
+        ----------
+        level : float, default 0.95
+            Confidence level of the interval, in (0, 1). [-]
+        """
         from scipy import stats  # imported on use: the command line's parsers load this module
 
         z = stats.norm.ppf(0.5 + level / 2)
         return (self.median * math.exp(-z * self.log_median_se), self.median * math.exp(z * self.log_median_se))
 
     def probability(self, x) -> np.ndarray:
-        """Fitted P(overturn | IM = x), Eq. F1. [-]"""
+        """Fitted P(overturn | IM = x), Eq. F1. [-]
+
+        Parameters
+        ----------
+        x : float or array_like
+            Intensity measure levels, > 0. [IM]
+        """
         from scipy import stats
 
         x = np.asarray(x, dtype=float)
@@ -81,7 +93,19 @@ class FragilityFit:
 
 
 def negative_log_likelihood(params, im, n_total, n_overturned) -> float:
-    """−ln L of Eq. F2 for params = (ln θ, β). [-]"""
+    """−ln L of Eq. F2 for params = (ln θ, β). [-]
+
+    Parameters
+    ----------
+    params : (float, float)
+        (ln θ, β); β <= 0 gives +inf.
+    im : array_like
+        IM levels x_j, > 0. [IM]
+    n_total : array_like of int
+        Records run at each level n_j. [-]
+    n_overturned : array_like of int
+        Records that overturned the block at each level z_j. [-]
+    """
     return _nll_and_gradient(params, np.log(im), n_total, n_overturned)[0]
 
 
@@ -183,7 +207,15 @@ def fit_lognormal(im, n_total, n_overturned) -> FragilityFit:
 
 
 def fit_lognormal_points(im, overturned) -> FragilityFit:
-    """Lognormal MLE (Eq. F2) of single runs at arbitrary intensities: each run is a stripe of one. [-]"""
+    """Lognormal MLE (Eq. F2) of single runs at arbitrary intensities: each run is a stripe of one. [-]
+
+    Parameters
+    ----------
+    im : array_like
+        Intensity of each run, > 0 (any shape, flattened). [IM]
+    overturned : array_like of bool
+        Whether each run overturned the block, same shape as ``im``.
+    """
     im = np.asarray(im, dtype=float).ravel()
     overturned = np.asarray(overturned, dtype=float).ravel()
     order = np.argsort(im, kind="stable")
@@ -198,11 +230,13 @@ def bootstrap_median_ratios(levels, overturned, reference: int, n_boot: int, rng
     levels : array_like, shape (level,)
         IM levels. [IM]
     overturned : ndarray of bool, shape (control, record, level)
+        Whether each run overturned the block.
     reference : int
         Index of the reference control (FS).
     n_boot : int
         Number of bootstrap draws.
     rng : numpy.random.Generator
+        Source of the record draws.
 
     Returns
     -------

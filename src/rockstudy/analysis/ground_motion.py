@@ -32,6 +32,14 @@ def check_scenario(scenario: dict, name: str = "scenario") -> dict:
     """The scenario with the defaults filled in, checked against the declared ranges
     (:mod:`rockstudy.core.risk_inputs`).
 
+    Parameters
+    ----------
+    scenario : dict
+        ``mag``, ``dist_rup`` [km], ``v_s30`` [m/s] and optionally ``mechanism``, ``dip`` [deg],
+        ``depth_tor``, ``dist_jb``, ``dist_x`` [km].
+    name : str, default "scenario"
+        The scenario's name in error messages (e.g. its config key).
+
     Raises
     ------
     ValueError

@@ -84,14 +84,26 @@ class HazardCurve:
         return -np.diff(np.log(self.annual_rate)) / np.diff(np.log(self.pga_g))
 
     def rate(self, x) -> np.ndarray:
-        """λ_IM(x), log-log interpolated, the end segments' power laws extended outside the points. [1/yr]"""
+        """λ_IM(x), log-log interpolated, the end segments' power laws extended outside the points. [1/yr]
+
+        Parameters
+        ----------
+        x : float or array_like
+            PGA, > 0. [g]
+        """
         u = np.log(np.asarray(x, dtype=float))
         lu, lr = np.log(self.pga_g), np.log(self.annual_rate)
         i = np.clip(np.searchsorted(lu, u, side="right") - 1, 0, lu.size - 2)
         return np.exp(lr[i] - self.slopes[i] * (u - lu[i]))
 
     def pga_at_rate(self, annual_rate: float) -> float:
-        """The PGA whose rate of exceedance is ``annual_rate`` (the inverse of :meth:`rate`). [g]"""
+        """The PGA whose rate of exceedance is ``annual_rate`` (the inverse of :meth:`rate`). [g]
+
+        Parameters
+        ----------
+        annual_rate : float
+            Annual rate of exceedance, > 0. [1/yr]
+        """
         lr = np.log(self.annual_rate)
         v = math.log(annual_rate)
         i = int(np.clip(np.searchsorted(-lr, -v, side="right") - 1, 0, lr.size - 2))
@@ -100,6 +112,13 @@ class HazardCurve:
 
 def parse_hazard_text(text: str, name: str = "hazard file") -> HazardCurve:
     """A hazard curve from the text of a hazard file (see the module's description).
+
+    Parameters
+    ----------
+    text : str
+        The file's text: lines of PGA [g] and annual rate of exceedance [1/yr].
+    name : str, default "hazard file"
+        The file's name in error messages, and the curve's ``source``.
 
     Raises
     ------
@@ -136,7 +155,15 @@ def parse_hazard_text(text: str, name: str = "hazard file") -> HazardCurve:
 
 
 def read_hazard_curve(path, name: str | None = None) -> HazardCurve:
-    """A hazard curve from a hazard file (see the module's description; at most :data:`MAX_HAZARD_BYTES`)."""
+    """A hazard curve from a hazard file (see the module's description; at most :data:`MAX_HAZARD_BYTES`).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The hazard file.
+    name : str or None, default None
+        The input's name in error messages (e.g. a config key); None: the path.
+    """
     name = name or str(path)
     path = validation.check_input_file(name, path, MAX_HAZARD_BYTES)
     try:

@@ -24,7 +24,18 @@ if TYPE_CHECKING:
 def a_max0_ratio(ds: xr.Dataset, a_max0_g: float, name: str = "a_max0") -> float:
     """a_max,0 given in units of g as an amplitude ratio a/(g·tanα), refused (naming ``name``) when it is
     not positive or lies above the amplitude scan's top recorded in ``ds`` (see
-    :func:`rockstudy.core.validation.check_a_max0`). [-]"""
+    :func:`rockstudy.core.validation.check_a_max0`). [-]
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A spectrum (:func:`rockstudy.analysis.spectra.spectrum`): its ``block_alpha`` and
+        ``grid_amplitude_*`` attributes.
+    a_max0_g : float
+        The protection level a_max,0, > 0. [g]
+    name : str, default "a_max0"
+        The input's name in error messages.
+    """
     top = validation.scan_top(ds.attrs["grid_amplitude_start"], ds.attrs["grid_amplitude_stop"],
                               ds.attrs["grid_amplitude_step"])
     return validation.check_a_max0(name, a_max0_g, float(ds.attrs["block_alpha"]), top,

@@ -91,6 +91,9 @@ def probability_surface(scenario: Scenario, frequency_ratios, realisations, grid
         Noise realisation indices.
     grid : AmplitudeGrid, optional
         Amplitude ratios of the surface (and of the threshold scan); default ``AmplitudeGrid()``.
+    progress_chunks : int, default 10
+        Number of batches the runs are split into, each logging its progress
+        (:func:`~rockstudy.analysis.spectra.spectrum`).
 
     Returns
     -------
@@ -112,6 +115,11 @@ def lowest_positive_amplitude(probability: xr.DataArray) -> xr.DataArray:
 
     On the grid, this is the lower envelope of the overturning spectra rounded up to the grid:
     the threshold scan of every realisation stops at its first overturning grid point.
+
+    Parameters
+    ----------
+    probability : xarray.DataArray
+        P(overturn) over (frequency_ratio, amplitude_ratio), e.g. of :func:`probability_surface`. [-]
     """
     amps = probability["amplitude_ratio"].values
     positive = probability.transpose("frequency_ratio", "amplitude_ratio").values > 0

@@ -26,7 +26,13 @@ from rockstudy.model.records import Record
 
 
 def unit_peak_record(record: Record) -> Record:
-    """The record divided by its PGA (peak 1), so that a scale equals the scaled PGA. [-]"""
+    """The record divided by its PGA (peak 1), so that a scale equals the scaled PGA. [-]
+
+    Parameters
+    ----------
+    record : Record
+        The record, with a PGA > 0.
+    """
     return Record(name=record.name, dt=record.dt, acceleration=record.acceleration / record.pga,
                   source=record.source, unit="1")
 
@@ -36,10 +42,12 @@ class RecordRun:
 
     Parameters
     ----------
-    block, anchorage, control : Block, Anchorage, Control
+    block, anchorage, control : rockstudy.Block, rockstudy.Anchorage, rockstudy.Control
+        The block, its restrainers and the control strategy.
     record : Record
-    overturn_criterion, free_time
-        As for :func:`rockstudy.engine.simulate.simulate`.
+        The unscaled record; it is run divided by its PGA.
+    overturn_criterion, free_time : {"flat", "alpha"}, float
+        As for :func:`rockstudy.engine.simulate.simulate` (free time in [s]).
     """
 
     def __init__(self, block: Block, anchorage: Anchorage, control: Control, record: Record, *,
@@ -52,16 +60,34 @@ class RecordRun:
         self.vertical = np.zeros(0)
 
     def outcome(self, amplitude_ratio: float) -> int:
-        """:class:`~rockstudy.engine.outcome.Outcome` code of the record scaled to PGA/(g·tanα) = amplitude_ratio."""
+        """:class:`~rockstudy.engine.outcome.Outcome` code of the record scaled to PGA/(g·tanα) = amplitude_ratio.
+
+        Parameters
+        ----------
+        amplitude_ratio : float
+            PGA of the scaled record over g·tanα. [-]
+        """
         return int(_kernel.outcome_kernel(self.P, self.samples, self.vertical, float(amplitude_ratio), 1.0))
 
     def scale(self, amplitude_ratio) -> np.ndarray:
-        """Factor on the record that gives it PGA/(g·tanα) = amplitude_ratio. [-]"""
+        """Factor on the record that gives it PGA/(g·tanα) = amplitude_ratio. [-]
+
+        Parameters
+        ----------
+        amplitude_ratio : float or array_like
+            PGA of the scaled record over g·tanα. [-]
+        """
         return np.asarray(amplitude_ratio, dtype=float) * self.block.uplift_acceleration / self.record.pga
 
 
 def is_overturned(code) -> np.ndarray:
-    """Whether outcome codes are overturned (with or without impact)."""
+    """Whether outcome codes are overturned (with or without impact).
+
+    Parameters
+    ----------
+    code : int or array_like of int
+        :class:`~rockstudy.engine.outcome.Outcome` codes.
+    """
     return np.isin(np.asarray(code), (OVERTURNED_WITHOUT_IMPACT, OVERTURNED_AFTER_IMPACT))
 
 
@@ -71,6 +97,7 @@ def record_threshold(run: RecordRun, grid, resolution: float, outcomes=None) -> 
     Parameters
     ----------
     run : RecordRun
+        The block, anchorage, control and record to run.
     grid : array_like
         Increasing amplitude ratios scanned upward. [-]
     resolution : float
@@ -104,7 +131,15 @@ def record_threshold(run: RecordRun, grid, resolution: float, outcomes=None) -> 
 
 
 def grid_outcomes(run: RecordRun, grid) -> np.ndarray:
-    """Outcome codes of the record scaled to each amplitude ratio of ``grid`` (int8)."""
+    """Outcome codes of the record scaled to each amplitude ratio of ``grid`` (int8).
+
+    Parameters
+    ----------
+    run : RecordRun
+        The block, anchorage, control and record to run.
+    grid : array_like
+        Amplitude ratios PGA/(g·tanα), one run each. [-]
+    """
     return np.array([run.outcome(a) for a in np.asarray(grid, dtype=float)], dtype=np.int8)
 
 
@@ -115,17 +150,20 @@ def stripes_and_thresholds(block: Block, anchorage: Anchorage, controls, records
 
     Parameters
     ----------
-    block, anchorage : Block, Anchorage
+    block, anchorage : rockstudy.Block, rockstudy.Anchorage
+        The block and its restrainers.
     controls : sequence of Control
+        The strategies (with their timing).
     records : sequence of Record
+        The unscaled records.
     levels : array_like
         Intensity levels x_j (increasing). [IM]
     intensities : array_like
         Intensity of each unscaled record, in the unit of ``levels``. [IM]
     resolution : float
         Resolution of the thresholds, in the unit of ``levels``. [IM]
-    overturn_criterion, free_time
-        As for :func:`rockstudy.engine.simulate.simulate`.
+    overturn_criterion, free_time : {"flat", "alpha"}, float
+        As for :func:`rockstudy.engine.simulate.simulate` (free time in [s]).
 
     Returns
     -------

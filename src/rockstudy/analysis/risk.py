@@ -91,7 +91,13 @@ class LognormalFragility:
         RISK_INPUTS["dispersion"].check("dispersion", self.dispersion)
 
     def probability(self, pga_g) -> np.ndarray:
-        """P(overturn | PGA = x). [-]"""
+        """P(overturn | PGA = x). [-]
+
+        Parameters
+        ----------
+        pga_g : float or array_like
+            PGA x. [g]
+        """
         x = np.asarray(pga_g, dtype=float)
         if self.dispersion == 0:
             return (x >= self.median_g).astype(float)
@@ -102,10 +108,15 @@ class LognormalFragility:
 def fragility_from_dataset(ds: xr.Dataset, strategy: str) -> LognormalFragility:
     """The lognormal fragility in PGA [g] of ``strategy`` in a fragility dataset (the stripes' fit).
 
-    ``ds`` is a record set's fragility (:func:`rockstudy.analysis.fragility.suite_fragility_dataset`, the
-    workflow's ``fragility/<set>.nc``) with the intensity measure PGA/(g·tanα), whose median in g is
-    ``fragility_median_physical``, or a dataset whose ``fragility_median`` is in g (a device point of the
-    design study).
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A record set's fragility (:func:`rockstudy.analysis.fragility.suite_fragility_dataset`, the
+        workflow's ``fragility/<set>.nc``) with the intensity measure PGA/(g·tanα), whose median in g is
+        ``fragility_median_physical``, or a dataset whose ``fragility_median`` is in g (a device point of
+        the design study).
+    strategy : str
+        The control strategy, a value of the dataset's ``strategy`` coordinate.
 
     Raises
     ------
@@ -174,18 +185,40 @@ class RiskResult:
         return self.band_rate / self.annual_rate if self.annual_rate > 0 else np.zeros_like(self.band_rate)
 
     def probability(self, years: float = DEFAULT_YEARS) -> float:
-        """Probability of overturning at least once in ``years`` (Eq. R2). [-]"""
+        """Probability of overturning at least once in ``years`` (Eq. R2). [-]
+
+        Parameters
+        ----------
+        years : float, default 50
+            Exposure time T. [yr]
+        """
         return probability_in_years(self.annual_rate, years)
 
 
 def probability_in_years(annual_rate: float, years: float = DEFAULT_YEARS) -> float:
-    """1 − exp(−λT), the Poisson probability of at least one occurrence in T years (Eq. R2). [-]"""
+    """1 − exp(−λT), the Poisson probability of at least one occurrence in T years (Eq. R2). [-]
+
+    Parameters
+    ----------
+    annual_rate : float
+        λ, the annual rate of occurrence. [1/yr]
+    years : float, default 50
+        Exposure time T. [yr]
+    """
     years = RISK_INPUTS["years"].check("years", years)
     return -math.expm1(-annual_rate * years)
 
 
 def rate_for_probability(probability: float, years: float = DEFAULT_YEARS) -> float:
-    """The annual rate whose probability in ``years`` is ``probability``: −ln(1 − p)/T (Eq. R2). [1/yr]"""
+    """The annual rate whose probability in ``years`` is ``probability``: −ln(1 − p)/T (Eq. R2). [1/yr]
+
+    Parameters
+    ----------
+    probability : float
+        p, the probability of at least one occurrence in ``years``, in (0, 1). [-]
+    years : float, default 50
+        Exposure time T. [yr]
+    """
     probability = RISK_INPUTS["target_probability"].check("target_probability", probability)
     years = RISK_INPUTS["years"].check("years", years)
     return -math.log1p(-probability) / years
@@ -230,7 +263,9 @@ def annual_rate(fragility: LognormalFragility, hazard: HazardCurve, *, band_edge
     Parameters
     ----------
     fragility : LognormalFragility
+        P(overturn | PGA) of the object.
     hazard : HazardCurve
+        λ_IM of the site.
     band_edges_g : array_like, optional
         Inner edges of the PGA bands of the disaggregation, rising (0 and inf are added). Default: the
         hazard curve's points. [g]
@@ -294,6 +329,7 @@ def median_for_target(hazard: HazardCurve, dispersion: float, *, target_rate: fl
     Parameters
     ----------
     hazard : HazardCurve
+        λ_IM of the site.
     dispersion : float
         β of the fragility. [-]
     target_rate : float, optional
@@ -335,8 +371,17 @@ def median_for_target(hazard: HazardCurve, dispersion: float, *, target_rate: fl
 
 
 def devices_meeting(devices: xr.Dataset, median_g: float) -> list[dict]:
-    """Which devices of a device sweep (:func:`rockstudy.studies.design.gather_devices`) have a fragility
-    median at or above ``median_g`` [g] (from :func:`median_for_target`), one row per (strategy, κ_max, ξ)."""
+    """Which devices of a device sweep have a fragility median at or above ``median_g``, one row per
+    (strategy, κ_max, ξ).
+
+    Parameters
+    ----------
+    devices : xarray.Dataset
+        A device sweep (:func:`rockstudy.studies.design.gather_devices`): ``fragility_median`` [g] over
+        (strategy, kappa_max, damping_ratio).
+    median_g : float
+        The median a device must reach, e.g. from :func:`median_for_target`. [g]
+    """
     rows = []
     for s in devices["strategy"].values:
         for k in devices["kappa_max"].values:
@@ -376,7 +421,17 @@ class ScenarioRisk:
 
 
 def scenario_probability(fragility: LognormalFragility, median_pga_g: float, ln_std: float) -> float:
-    """P(overturn | scenario) = Φ((ln μ − ln θ)/√(β² + σ²)) (Eq. R3). [-]"""
+    """P(overturn | scenario) = Φ((ln μ − ln θ)/√(β² + σ²)) (Eq. R3). [-]
+
+    Parameters
+    ----------
+    fragility : LognormalFragility
+        θ and β of the object.
+    median_pga_g : float
+        μ, the scenario's median PGA. [g]
+    ln_std : float
+        σ, the standard deviation of ln PGA. [-]
+    """
     spread = math.hypot(fragility.dispersion, ln_std)
     if spread == 0:
         return float(median_pga_g >= fragility.median_g)
@@ -384,7 +439,17 @@ def scenario_probability(fragility: LognormalFragility, median_pga_g: float, ln_
 
 
 def scenario_risk(fragility: LognormalFragility, scenario: dict, gmm: str | None = None) -> ScenarioRisk:
-    """P(overturn | scenario) from a ground-motion model (:func:`rockstudy.analysis.ground_motion.pga`)."""
+    """P(overturn | scenario) from a ground-motion model (:func:`rockstudy.analysis.ground_motion.pga`).
+
+    Parameters
+    ----------
+    fragility : LognormalFragility
+        θ and β of the object.
+    scenario : dict
+        The earthquake scenario, as for :func:`rockstudy.analysis.ground_motion.check_scenario`.
+    gmm : str or None, default None
+        Ground-motion model, a key of :data:`rockstudy.core.risk_inputs.GMMS`; None: the default model.
+    """
     from rockstudy.analysis.ground_motion import pga
     gmm = gmm or DEFAULT_GMM
     median, sigma, used = pga(scenario, gmm)
@@ -539,7 +604,16 @@ def threshold_fit(fragility: xr.Dataset, strategy: str):
 
     It describes the first overturning of each record along its scale, not P(overturn | PGA): a record
     may overturn the block at one scale and not at a higher one, so it differs from the stripes' fit
-    that the risk uses."""
+    that the risk uses.
+
+    Parameters
+    ----------
+    fragility : xarray.Dataset
+        A record set's fragility (:func:`rockstudy.analysis.fragility.suite_fragility_dataset`) with
+        ``threshold_pga``, ``record_intensity`` and ``record_pga``.
+    strategy : str
+        The control strategy, a value of the dataset's ``strategy`` coordinate.
+    """
     from rockstudy.analysis.fragility_fit import fit_lognormal_thresholds
     top_pga = (float(fragility["intensity"].values[-1]) / fragility["record_intensity"].values
                * fragility["record_pga"].values)
@@ -568,6 +642,14 @@ def _finite_fit(ds: xr.Dataset, strategy: str) -> bool:
 def check_config(section: dict, key: str = "risk") -> dict:
     """The config's ``risk:`` section: its declaration (:class:`rockstudy.core.declarations.Risk`: every value
     in range, no unknown key), at least one site, every hazard file readable. Returns the hazard curves by name.
+
+    Parameters
+    ----------
+    section : dict
+        The ``risk:`` section: ``scenarios``, ``hazard_curves`` (name: file path) and the other keys of
+        :class:`rockstudy.core.declarations.Risk`.
+    key : str, default "risk"
+        Where the section sits in the config: errors name ``<key>.<entry>``.
 
     Raises
     ------

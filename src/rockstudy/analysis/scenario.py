@@ -67,7 +67,7 @@ class Scenario:
 
     Parameters
     ----------
-    block, anchorage, control
+    block, anchorage, control : rockstudy.Block, rockstudy.Anchorage, rockstudy.Control
         The block, its restrainers, and the control law with its timing.
     excitation : {"one-sine", "modulated"}
         Baseline excitation.
@@ -79,6 +79,7 @@ class Scenario:
         How noisy records are made: step, rescaling, meaning of the level, band, span
         (:class:`rockstudy.model.noise.NoiseReading`).
     overturn_criterion : {"flat", "alpha"}
+        Overturned at |θ| >= π/2 (default) or at |θ| >= α.
     free_time : float
         Free motion allowed after the excitation. [s]
     """
@@ -108,11 +109,27 @@ class Scenario:
                              f"got {self.overturn_criterion!r}")
 
     def omega(self, frequency_ratio: float) -> float:
-        """ω_p for a frequency ratio. [rad/s]"""
+        """ω_p for a frequency ratio. [rad/s]
+
+        Parameters
+        ----------
+        frequency_ratio : float
+            ω_p/p. [-]
+        """
         return frequency_ratio * self.block.p
 
     def motion(self, frequency_ratio: float, amplitude_ratio: float, realisation: int = 0):
-        """The ground motion and its noise record info (None without noise)."""
+        """The ground motion and its noise record info (None without noise).
+
+        Parameters
+        ----------
+        frequency_ratio : float
+            ω_p/p, > 0. [-]
+        amplitude_ratio : float
+            a_p/(g·tanα). [-]
+        realisation : int, default 0
+            Noise realisation index k, >= 0 (unused without noise).
+        """
         omega = self.omega(frequency_ratio)
         amplitude = amplitude_ratio * self.block.uplift_acceleration
         if self.noise_level == 0:
@@ -123,30 +140,72 @@ class Scenario:
     def simulate(self, frequency_ratio: float, amplitude_ratio: float, realisation: int = 0, *,
                  engine: str = "fast", record_history: bool = False) -> ScenarioRun:
         """Run the scenario once at a frequency ratio ω_p/p, an amplitude ratio a_p/(g·tanα) and a noise
-        realisation (see :func:`rockstudy.engine.simulate.simulate` for ``engine`` and ``record_history``)."""
+        realisation.
+
+        Parameters
+        ----------
+        frequency_ratio : float
+            ω_p/p, > 0. [-]
+        amplitude_ratio : float
+            a_p/(g·tanα). [-]
+        realisation : int, default 0
+            Noise realisation index k, >= 0 (unused without noise).
+        engine : {"fast", "reference"}, default "fast"
+            The integrator, as for :func:`rockstudy.engine.simulate.simulate`.
+        record_history : bool, default False
+            Return time histories of θ, θ̇, κ and Ẍg (:func:`rockstudy.engine.simulate.simulate`).
+        """
         motion, rec = self.motion(frequency_ratio, amplitude_ratio, realisation)
         return ScenarioRun(self.simulate_motion(motion, engine=engine, record_history=record_history), motion, rec)
 
     def simulate_motion(self, motion: GroundMotion, *, engine: str = "fast",
                         record_history: bool = False) -> SimulationResult:
         """Run the scenario's block, anchorage, control, criterion and free time under any ground motion
-        (a scaled record, say) instead of the scenario's excitation."""
+        (a scaled record, say) instead of the scenario's excitation.
+
+        Parameters
+        ----------
+        motion : GroundMotion
+            The ground motion.
+        engine : {"fast", "reference"}, default "fast"
+            The integrator, as for :func:`rockstudy.engine.simulate.simulate`.
+        record_history : bool, default False
+            Return time histories of θ, θ̇, κ and Ẍg.
+        """
         return simulate(self.block, self.anchorage, self.control, motion, engine=engine,
                         overturn_criterion=self.overturn_criterion, free_time=self.free_time,
                         record_history=record_history)
 
     def unit_peak(self, frequency_ratio: float, realisation: int = 0) -> float:
         """Peak |Ẍ_g|/a_p of the unit-amplitude ground motion at a frequency ratio and realisation: the
-        block uplifts only above the amplitude ratio 1/peak. [-]"""
+        block uplifts only above the amplitude ratio 1/peak. [-]
+
+        Parameters
+        ----------
+        frequency_ratio : float
+            ω_p/p, > 0. [-]
+        realisation : int, default 0
+            Noise realisation index k, >= 0 (unused without noise).
+        """
         _, rec = self.motion(frequency_ratio, 1.0, realisation)
         return _unit_peak(self.excitation, rec)
 
     def kernel_case(self, frequency_ratio: float, realisation: int = 0, *, energy_bound: bool = True,
                     integration: dict | None = None) -> KernelCase:
-        """The case at a frequency ratio and realisation packed for the fast engine's amplitude scans
-        (``energy_bound``: end runs that provably cannot overturn any more, docs/engine.md;
-        ``integration``: other ``rtol``, ``atol`` or ``stepper`` for
-        :func:`~rockstudy.engine.simulate.pack_parameters`, as convergence checks use)."""
+        """The case at a frequency ratio and realisation packed for the fast engine's amplitude scans.
+
+        Parameters
+        ----------
+        frequency_ratio : float
+            ω_p/p, > 0. [-]
+        realisation : int, default 0
+            Noise realisation index k, >= 0 (unused without noise).
+        energy_bound : bool, default True
+            End runs that provably cannot overturn any more (docs/engine.md).
+        integration : dict or None, default None
+            Other ``rtol``, ``atol`` or ``stepper`` for :func:`~rockstudy.engine.simulate.pack_parameters`,
+            as convergence checks use; None: the engine's defaults.
+        """
         motion, rec = self.motion(frequency_ratio, 1.0, realisation)
         parameters = pack_parameters(self.block, self.anchorage, self.control, motion,
                                      overturn_criterion=self.overturn_criterion, free_time=self.free_time,
@@ -160,7 +219,16 @@ class Scenario:
                    step_name: str = "NoiseReading.step", span_name: str = "NoiseReading.span") -> None:
         """The simulations at these frequency ratios stay within the limits of one simulation (time span,
         integrator steps, controller samples and, with noise, the record's samples at the reading's step
-        and span: :func:`rockstudy.model.excitation.check_time_span`); the names are the caller's."""
+        and span: :func:`rockstudy.model.excitation.check_time_span`).
+
+        Parameters
+        ----------
+        frequency_ratios : sequence of float
+            ω_p/p values (only the smallest and the largest are checked). [-]
+        frequency_name, free_time_name, sampling_name, step_name, span_name : str
+            Names of the frequency ratios, the free time, the sampling time, the noise step and the noise
+            span in the error message (the caller's option or config key).
+        """
         noisy = self.noise_level > 0
         check_time_span(self.block, self.excitation, frequency_ratios, self.free_time, self.control.sampling_time,
                         frequency_name=frequency_name, free_time_name=free_time_name, sampling_name=sampling_name,
@@ -169,7 +237,15 @@ class Scenario:
 
     def record_bytes(self, frequency_ratios, n_realisations: int) -> int:
         """Bytes the noise records of ``n_realisations`` realisations at these frequency ratios take while a
-        spectrum runs (0 without noise): their samples at the reading's step and span. [B]"""
+        spectrum runs (0 without noise): their samples at the reading's step and span. [B]
+
+        Parameters
+        ----------
+        frequency_ratios : iterable of float
+            ω_p/p values of the spectrum. [-]
+        n_realisations : int
+            Number of noise realisations held at once.
+        """
         if self.noise_level == 0:
             return 0
         samples = validation.record_samples((excitation_duration(self.excitation, self.omega(float(f)))

@@ -299,13 +299,17 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     Parameters
     ----------
     scenario : Scenario
+        Block, anchorage, strategy, excitation and noise of the runs.
     frequency_ratios : array_like
         ω_p/p values. [-]
     realisations : sequence of int
         Noise realisation indices (ignored beyond the first when ``noise_level`` = 0).
     grid : AmplitudeGrid
+        Amplitude ratios of the upward scan and the resolution of the threshold.
     with_map : bool
         Also compute the outcome at every (frequency, amplitude) grid point.
+    progress_chunks : int, default 10
+        Number of batches the runs are split into, each logging its progress and the time left.
     energy_bound : bool
         End runs that provably cannot overturn any more (see :func:`threshold`).
 
@@ -377,7 +381,28 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
 
 def spectrum_dataset(scenario, freqs, realisations, thr, low, nsim, e_ratio, p_ratio, grid,
                      n_undetermined=None) -> xr.Dataset:
-    """Assemble the labelled spectrum Dataset (one strategy, noise level, T_s and Δτ)."""
+    """Assemble the labelled spectrum Dataset (one strategy, noise level, T_s and Δτ).
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The scenario of the runs (coordinates and global attributes).
+    freqs : array_like, shape (frequency_ratio,)
+        ω_p/p values. [-]
+    realisations : sequence of int
+        Noise realisation indices.
+    thr, low : ndarray, shape (realisation, frequency_ratio)
+        Threshold amplitude ratio (NaN: none up to the scan's top) and the highest ratio found safe below
+        it. [-]
+    nsim : ndarray of int, shape (realisation, frequency_ratio)
+        Simulations run for each threshold.
+    e_ratio, p_ratio : ndarray, shape (realisation, frequency_ratio)
+        Energy and PGA of each noisy record over its baseline's. [-]
+    grid : AmplitudeGrid
+        The amplitude scan, written as ``grid_amplitude_*`` attributes.
+    n_undetermined : ndarray of int or None, default None
+        Runs that hit the engine's event cap; None: zeros.
+    """
     dims = ("realisation", "frequency_ratio")
     if n_undetermined is None:
         n_undetermined = np.zeros(np.shape(thr), dtype=np.int64)
@@ -436,7 +461,13 @@ def spectrum_dataset(scenario, freqs, realisations, thr, low, nsim, e_ratio, p_r
 
 
 def convergence(ds: xr.Dataset) -> xr.DataArray:
-    """Aggregate threshold (lowest over the first N realisations) for N = 1 … n (Fig. 6a)."""
+    """Aggregate threshold (lowest over the first N realisations) for N = 1 … n (Fig. 6a).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A spectrum of :func:`spectrum` (its ``threshold_realisation``).
+    """
     thr = ds["threshold_realisation"].values
     filled = np.where(np.isnan(thr), np.inf, thr)
     run = np.minimum.accumulate(filled, axis=0)

@@ -78,8 +78,15 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser(commands=None) -> argparse.ArgumentParser:
-    """The parser of ``commands`` (default: every command of :data:`COMMANDS`; only their modules are
-    imported); ``commands=()`` gives the top-level parser alone, which loads nothing of the library."""
+    """The parser of ``commands``; only their modules are imported.
+
+    Parameters
+    ----------
+    commands : iterable of str or None, default None
+        Names of commands (keys of :data:`COMMANDS`) whose options are registered; the others are listed by
+        name only. None: every command; ``()``: the top-level parser alone, which loads nothing of the
+        library.
+    """
     parser = _Parser(prog="rockstudy", description="Rocking of controlled rigid blocks (overturning spectra study)")
     parser.add_argument("--version", action="version", version=f"rockstudy {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
@@ -115,7 +122,13 @@ def _quiet_broken_pipe() -> int:
 
 
 def main(argv=None):
-    """Run the command line ``argv`` (default ``sys.argv[1:]``); returns the exit status."""
+    """Run the command line ``argv``; returns the exit status.
+
+    Parameters
+    ----------
+    argv : sequence of str or None, default None
+        The arguments after the program's name, e.g. ``["spectrum", "--help"]``; None: ``sys.argv[1:]``.
+    """
     from rockstudy.core.validation import InputError
 
     argv = sys.argv[1:] if argv is None else list(argv)

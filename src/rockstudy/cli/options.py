@@ -112,7 +112,15 @@ def _common(p: argparse.ArgumentParser, single_frequency=True, realisation=True)
 
 def device_and_end_options(p: argparse.ArgumentParser, motion: str) -> None:
     """The anchorage (``--kappa-max``, ``--kappa-min``, ``--damping-ratio``), the overturning criterion and
-    the free time after ``motion``: the options every command that simulates shares."""
+    the free time after ``motion``: the options every command that simulates shares.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser, to which the options are added.
+    motion : str
+        What the free time follows, in the ``--free-time`` help (e.g. "the excitation").
+    """
     _numeric(p, "--kappa-max", ANCHORAGE.kappa_max, "4 K_max b^2/(m g R) [-]")
     _numeric(p, "--kappa-min", ANCHORAGE.kappa_min, "4 K_min b^2/(m g R) [-]")
     _numeric(p, "--damping-ratio", ANCHORAGE.damping_ratio, "xi [-]")
@@ -336,7 +344,17 @@ def _record_description(info) -> dict:
 def write_output(ds, path, what: str = "result") -> None:
     """Write ``ds`` to ``--output`` (atomically); when that fails (a full disk, a vanished folder) the computed
     ``what`` is not lost: it is written to the temporary folder instead, and the error (exit 2) says why and
-    where it is."""
+    where it is.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The computed result.
+    path : str or pathlib.Path
+        The ``--output`` file.
+    what : str, default "result"
+        What ``ds`` is, in the error message (e.g. "spectrum").
+    """
     import errno
     import shutil
     import tempfile

@@ -39,7 +39,13 @@ BLOCK_DIMENSIONS = {"width": "base width 2b [m]", "height": "height 2h [m]", "de
 
 
 def register(sub) -> None:
-    """Add ``fragility`` and ``risk`` to the subparsers ``sub`` (each with ``run``)."""
+    """Add ``fragility`` and ``risk`` to the subparsers ``sub`` (each with ``run``).
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The subparsers of the top-level parser (``parser.add_subparsers()``).
+    """
     from rockstudy.analysis.scenario import DEFAULT_BLOCK
     from rockstudy.model.record_suites import suite_names
     pf = sub.add_parser("fragility", help="fragility of one object on a record suite (netCDF; JSON with median_g "
@@ -106,7 +112,15 @@ def _fail(parser, exc) -> None:
 
 
 def run_fragility(args, parser) -> None:
-    """``rockstudy fragility``: the suite's fragility of --strategy beside FS; JSON on stdout."""
+    """``rockstudy fragility``: the suite's fragility of --strategy beside FS; JSON on stdout.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``rockstudy fragility``.
+    parser : argparse.ArgumentParser
+        The command's parser; a bad option is reported through it (exit status 2).
+    """
     from rockstudy.analysis.fragility import suite_fragility_dataset
     from rockstudy.core.io import write_netcdf
     from rockstudy.model import record_suites
@@ -211,7 +225,15 @@ def _fragility(args, parser):
 
 
 def run_risk(args, parser) -> None:
-    """``rockstudy risk``: hazard, scenario or target mode; JSON on stdout."""
+    """``rockstudy risk``: hazard, scenario or target mode; JSON on stdout.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``rockstudy risk``.
+    parser : argparse.ArgumentParser
+        The command's parser; a bad option is reported through it (exit status 2).
+    """
     try:
         out = _risk(args, parser)
     except validation.InputError as exc:

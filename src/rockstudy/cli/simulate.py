@@ -24,7 +24,13 @@ from rockstudy.core import declarations, validation
 
 
 def register(sub) -> None:
-    """Add ``simulate`` and ``threshold`` to the subparsers ``sub``."""
+    """Add ``simulate`` and ``threshold`` to the subparsers ``sub``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The subparsers of the top-level parser (``parser.add_subparsers()``).
+    """
     ps = sub.add_parser("simulate", help=COMMANDS["simulate"].help)
     _common(ps)
     ps.add_argument("--amplitude-ratio", type=_number("--amplitude-ratio"), default=2.0, help="a_p/(g tan alpha) [-]")

@@ -29,7 +29,13 @@ SECONDS_PER_SIMULATION = 1e-3
 
 
 def register(sub) -> None:
-    """Add ``spectrum`` and ``jos`` to the subparsers ``sub``."""
+    """Add ``spectrum`` and ``jos`` to the subparsers ``sub``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The subparsers of the top-level parser (``parser.add_subparsers()``).
+    """
     pp = sub.add_parser("spectrum", help=COMMANDS["spectrum"].help)
     _common(pp, single_frequency=False, realisation=False)
     _grid_args(pp)

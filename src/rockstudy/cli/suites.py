@@ -17,7 +17,13 @@ from rockstudy.cli import COMMANDS
 
 
 def register(sub) -> None:
-    """Add ``records`` to the subparsers ``sub``."""
+    """Add ``records`` to the subparsers ``sub``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The subparsers of the top-level parser (``parser.add_subparsers()``).
+    """
     pr = sub.add_parser("records", help=COMMANDS["records"].help)
     pr.add_argument("--suite", help="list only this suite's records (default: every suite)")
     add_export_arguments(pr)
@@ -51,7 +57,13 @@ FORMATS = ("one-column", "two-column", "at2")
 
 
 def add_export_arguments(parser) -> None:
-    """Add ``--export``, ``--format`` and ``--output`` to the ``records`` subparser."""
+    """Add ``--export``, ``--format`` and ``--output`` to the ``records`` subparser.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The ``records`` subparser.
+    """
     parser.add_argument("--export", metavar="SUITE:ID",
                         help="write this record to a file (--format, --output) and print its dt as JSON")
     parser.add_argument("--format", choices=FORMATS, default="one-column",
@@ -61,7 +73,17 @@ def add_export_arguments(parser) -> None:
 
 
 def export_text(times, acceleration, fmt: str) -> str:
-    """The samples as text: one a line (``one-column``) or time and sample a line (``two-column``)."""
+    """The samples as text: one a line (``one-column``) or time and sample a line (``two-column``).
+
+    Parameters
+    ----------
+    times : array_like
+        Sample times, written by ``two-column``. [s]
+    acceleration : array_like
+        The samples, in the record's unit.
+    fmt : {"one-column", "two-column"}
+        The layout.
+    """
     import numpy as np
 
     acceleration = np.asarray(acceleration, dtype=float)
@@ -73,7 +95,15 @@ def export_text(times, acceleration, fmt: str) -> str:
 
 
 def run_export(args, parser) -> dict:
-    """``records --export``: write the record and print (and return) the summary."""
+    """``records --export``: write the record and print (and return) the summary.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``rockstudy records``: ``export`` (``SUITE:ID``), ``format`` and ``output``.
+    parser : argparse.ArgumentParser
+        The command's parser; a bad record name is reported through it (exit status 2).
+    """
     from rockstudy.core.io import write_text
     from rockstudy.model import record_suites
     from rockstudy.model.records import unit_factor, write_at2

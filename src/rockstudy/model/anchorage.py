@@ -50,7 +50,20 @@ class Anchorage:
     def check(names=None, *, kappa_max=1.0, kappa_min=0.0, damping_ratio=0.05, spring_ultimate_rotation=None,
               damper_ultimate_rotation=None) -> None:
         """Refuse a bad field with a ``ValueError`` naming it ``names[field]`` (the caller's option or config
-        key), else ``Anchorage.<field>``."""
+        key), else ``Anchorage.<field>``.
+
+        Parameters
+        ----------
+        names : dict or None, default None
+            Name of each field in the error message, e.g. ``{"kappa_max": "--kappa-max"}``; a field missing
+            from it is named ``Anchorage.<field>``.
+        kappa_max, kappa_min : float
+            Dimensionless "on" and "off" stiffness, each in [0, 1e4], kappa_min <= kappa_max. [-]
+        damping_ratio : float
+            Damper ratio xi, in [0, 100]. [-]
+        spring_ultimate_rotation, damper_ultimate_rotation : float or None
+            theta_K,u and theta_D,u, each in (0, pi/2] or None (= alpha). [rad]
+        """
         check_arguments("Anchorage", {  # each field's type and range (core.quantities), then their relation
             "kappa_max": kappa_max, "kappa_min": kappa_min, "damping_ratio": damping_ratio,
             "spring_ultimate_rotation": spring_ultimate_rotation, "damper_ultimate_rotation": damper_ultimate_rotation},
@@ -60,15 +73,35 @@ class Anchorage:
             raise ValueError(f"{name('kappa_min')} ({kappa_min}) must not exceed {name('kappa_max')} ({kappa_max})")
 
     def theta_spring(self, block: Block) -> float:
-        """Spring ultimate rotation theta_K,u. [rad]"""
+        """Spring ultimate rotation theta_K,u. [rad]
+
+        Parameters
+        ----------
+        block : rockstudy.Block
+            The block, whose alpha is the default.
+        """
         return block.alpha if self.spring_ultimate_rotation is None else float(self.spring_ultimate_rotation)
 
     def theta_damper(self, block: Block) -> float:
-        """Damper ultimate rotation theta_D,u. [rad]"""
+        """Damper ultimate rotation theta_D,u. [rad]
+
+        Parameters
+        ----------
+        block : rockstudy.Block
+            The block, whose alpha is the default.
+        """
         return block.alpha if self.damper_ultimate_rotation is None else float(self.damper_ultimate_rotation)
 
     def stiffness(self, block: Block, kappa: float) -> float:
-        """Physical spring stiffness K for a dimensionless kappa. [N/m]"""
+        """Physical spring stiffness K for a dimensionless kappa. [N/m]
+
+        Parameters
+        ----------
+        block : rockstudy.Block
+            The block, giving m, g, R and b.
+        kappa : float
+            Dimensionless stiffness 4 K b^2 / (m g R). [-]
+        """
         return kappa * block.mass * block.gravity * block.R / (4.0 * block.b**2)
 
     @property
@@ -77,18 +110,43 @@ class Anchorage:
         return self.kappa_max == 0 and self.damping_ratio == 0
 
     def K_max(self, block: Block) -> float:
-        """Physical "on" stiffness K_max. [N/m]"""
+        """Physical "on" stiffness K_max. [N/m]
+
+        Parameters
+        ----------
+        block : rockstudy.Block
+            The block, giving m, g, R and b.
+        """
         return self.stiffness(block, self.kappa_max)
 
     def K_min(self, block: Block) -> float:
-        """Physical "off" stiffness K_min. [N/m]"""
+        """Physical "off" stiffness K_min. [N/m]
+
+        Parameters
+        ----------
+        block : rockstudy.Block
+            The block, giving m, g, R and b.
+        """
         return self.stiffness(block, self.kappa_min)
 
     def D(self, block: Block) -> float:
-        """Physical damper coefficient D from 3 D b^2/(m R^2) = 2 xi p. [N s/m]"""
+        """Physical damper coefficient D from 3 D b^2/(m R^2) = 2 xi p. [N s/m]
+
+        Parameters
+        ----------
+        block : rockstudy.Block
+            The block, giving m, R, b and p.
+        """
         return 2.0 * self.damping_ratio * block.p * block.mass * block.R**2 / (3.0 * block.b**2)
 
     def to_attrs(self, block: Block) -> dict:
+        """The anchorage as netCDF global attributes (``anchorage_*``), dimensionless and physical values.
+
+        Parameters
+        ----------
+        block : rockstudy.Block
+            The block that turns the dimensionless values into physical ones.
+        """
         return {
             "anchorage_kappa_max": self.kappa_max,
             "anchorage_kappa_min": self.kappa_min,
@@ -141,10 +199,32 @@ def left_working(theta: float) -> float:
 
 
 def spring_moment(theta: float, K: float, b: float) -> float:
-    """Restoring spring moment M_K = K·4b^2·sin(theta), Eq. (6) read as odd in theta. [N m]"""
+    """Restoring spring moment M_K = K·4b^2·sin(theta), Eq. (6) read as odd in theta. [N m]
+
+    Parameters
+    ----------
+    theta : float
+        Block rotation. [rad]
+    K : float
+        Spring stiffness of the working element. [N/m]
+    b : float
+        Half width of the block. [m]
+    """
     return K * 4.0 * b * b * math.sin(theta)
 
 
 def damper_moment(theta: float, theta_dot: float, D: float, b: float) -> float:
-    """Damper moment M_D = D·4b^2·cos^2(theta/2)·theta_dot, Eq. (7). [N m]"""
+    """Damper moment M_D = D·4b^2·cos^2(theta/2)·theta_dot, Eq. (7). [N m]
+
+    Parameters
+    ----------
+    theta : float
+        Block rotation. [rad]
+    theta_dot : float
+        Block angular velocity. [rad/s]
+    D : float
+        Damper coefficient of the working element. [N s/m]
+    b : float
+        Half width of the block. [m]
+    """
     return D * 4.0 * b * b * math.cos(0.5 * theta) ** 2 * theta_dot

@@ -116,7 +116,17 @@ class Block:
 
     @classmethod
     def slender(cls, alpha: float, R: float = 1.0, **kwargs) -> "Block":
-        """Block with a given slenderness angle alpha [rad] and half diagonal R [m]."""
+        """Block with a given slenderness angle alpha [rad] and half diagonal R [m].
+
+        Parameters
+        ----------
+        alpha : float
+            Slenderness angle, B = 2 R sin(alpha), H = 2 R cos(alpha). [rad]
+        R : float, default 1.0
+            Half diagonal. [m]
+        **kwargs : dict
+            Other fields of :class:`Block` (``density``, ``gravity``, ``restitution``); the depth is 1 m.
+        """
         return cls(width=2 * R * math.sin(alpha), height=2 * R * math.cos(alpha), depth=1.0, **kwargs)
 
 

@@ -66,7 +66,20 @@ class Control:
     @staticmethod
     def check(names=None, *, strategy="CS01", sampling_time=0.0, delay=0.0, sensor_band=None) -> float | None:
         """Refuse a bad field with a ``ValueError`` naming it ``names[field]`` (the caller's option or config
-        key), else ``Control.<field>``; returns the sensor band as a float (or None)."""
+        key), else ``Control.<field>``; returns the sensor band as a float (or None).
+
+        Parameters
+        ----------
+        names : dict or None, default None
+            Name of each field in the error message, e.g. ``{"sampling_time": "--sampling-time"}``; a field
+            missing from it is named ``Control.<field>``.
+        strategy : {"FS", "PASSIVE", "CS01", "CS02"}
+            Control law.
+        sampling_time, delay : float
+            Controller sampling time and actuation delay, finite, >= 0; a delay > 0 needs a sampling time > 0. [s]
+        sensor_band : float or None
+            Sensor cut-off, > 0, or None for the ideal sensor. [Hz]
+        """
         name = field_names("Control", names)
         if strategy not in STRATEGIES:
             raise ValueError(f"{name('strategy')} must be one of {', '.join(STRATEGIES)}, got {strategy!r}")

@@ -33,12 +33,26 @@ ENVELOPE_PEAK = 90.0 * 0.25**2 * 0.75**6
 
 
 def modulated_duration(omega: float) -> float:
-    """T_d = 5·2π/ω_p, the duration of Eq. (23). [s]"""
+    """T_d = 5·2π/ω_p, the duration of Eq. (23). [s]
+
+    Parameters
+    ----------
+    omega : float
+        Excitation frequency ω_p, > 0. [rad/s]
+    """
     return MODULATED_CYCLES * 2.0 * math.pi / omega
 
 
 def excitation_duration(kind: str, omega: float) -> float:
-    """Duration after which the analytic excitation is zero. [s]"""
+    """Duration after which the analytic excitation is zero. [s]
+
+    Parameters
+    ----------
+    kind : {"one-sine", "modulated"}
+        The analytic excitation: 2π/ω_p for the pulse, T_d = 5·2π/ω_p for Eq. (23).
+    omega : float
+        Excitation frequency ω_p, > 0. [rad/s]
+    """
     if kind == "one-sine":
         return 2.0 * math.pi / omega
     if kind == "modulated":
@@ -52,6 +66,13 @@ def sample_count(duration: float, dt: float) -> int:
 
     A quotient within 1e-9 (relative) of an integer is taken as that integer, so that
     floating-point error in ``duration / dt`` does not add a trailing sample.
+
+    Parameters
+    ----------
+    duration : float
+        Duration of the excitation. [s]
+    dt : float
+        Sampling step, > 0. [s]
     """
     q = duration / dt
     nearest = round(q)
@@ -119,7 +140,15 @@ def interpolate_record(t, dt, samples):
 
 
 def modulation_envelope(t, duration):
-    """Envelope of Eq. (23), 90 t²(t − T_d)⁶ / T_d⁸, zero outside [0, T_d]. [-]"""
+    """Envelope of Eq. (23), 90 t²(t − T_d)⁶ / T_d⁸, zero outside [0, T_d]. [-]
+
+    Parameters
+    ----------
+    t : float or array_like
+        Time. [s]
+    duration : float
+        T_d, the duration of Eq. (23). [s]
+    """
     t = np.asarray(t, dtype=float)
     s = t / duration
     env = 90.0 * s**2 * (s - 1.0) ** 6
@@ -127,7 +156,17 @@ def modulation_envelope(t, duration):
 
 
 def one_sine(t, amplitude, omega):
-    """One-sine pulse a_p·sin(ω_p t) on [0, 2π/ω_p], zero elsewhere. [m/s^2]"""
+    """One-sine pulse a_p·sin(ω_p t) on [0, 2π/ω_p], zero elsewhere. [m/s^2]
+
+    Parameters
+    ----------
+    t : float or array_like
+        Time. [s]
+    amplitude : float
+        a_p. [m/s^2]
+    omega : float
+        ω_p, > 0. [rad/s]
+    """
     t = np.asarray(t, dtype=float)
     end = 2.0 * math.pi / omega
     return np.where((t >= 0) & (t <= end), amplitude * np.sin(omega * t), 0.0)
@@ -139,6 +178,15 @@ def modulated(t, amplitude, omega):
     The sampled baselines of the noisy records are built with this array form; the engines use
     :func:`modulated_acceleration`. Both evaluate the same polynomial; their products are rounded
     in a different order (agreement within 1e-15 relative, tests/model/test_excitation.py).
+
+    Parameters
+    ----------
+    t : float or array_like
+        Time. [s]
+    amplitude : float
+        a_p. [m/s^2]
+    omega : float
+        ω_p, > 0; it sets T_d = 5·2π/ω_p. [rad/s]
     """
     t = np.asarray(t, dtype=float)
     td = modulated_duration(omega)
@@ -146,7 +194,19 @@ def modulated(t, amplitude, omega):
 
 
 def analytic(kind: str, t, amplitude, omega):
-    """Evaluate an analytic excitation by name. [m/s^2]"""
+    """Evaluate an analytic excitation by name. [m/s^2]
+
+    Parameters
+    ----------
+    kind : {"one-sine", "modulated"}
+        The excitation: :func:`one_sine` or :func:`modulated`.
+    t : float or array_like
+        Time. [s]
+    amplitude : float
+        a_p. [m/s^2]
+    omega : float
+        ω_p, > 0. [rad/s]
+    """
     if kind == "one-sine":
         return one_sine(t, amplitude, omega)
     if kind == "modulated":
@@ -222,7 +282,13 @@ class GroundMotion:
         return KIND_CODE[self.kind]
 
     def horizontal(self, t):
-        """Horizontal ground acceleration Ẍ_g(t). [m/s^2]"""
+        """Horizontal ground acceleration Ẍ_g(t). [m/s^2]
+
+        Parameters
+        ----------
+        t : float or array_like
+            Time; zero outside [0, duration]. [s]
+        """
         t = np.asarray(t, dtype=float)
         if self.kind in EXCITATIONS:
             return analytic(self.kind, t, self.amplitude, self.omega)
@@ -235,7 +301,13 @@ class GroundMotion:
         return self.amplitude * np.where((t >= 0) & (t <= self.duration), values, 0.0)
 
     def vertical_acceleration(self, t):
-        """Vertical ground acceleration Ÿ_g(t) (zero when not given). [m/s^2]"""
+        """Vertical ground acceleration Ÿ_g(t) (zero when not given). [m/s^2]
+
+        Parameters
+        ----------
+        t : float or array_like
+            Time; zero outside the vertical record. [s]
+        """
         t = np.asarray(t, dtype=float)
         if len(self.vertical) == 0:
             return np.zeros_like(t)
@@ -243,7 +315,13 @@ class GroundMotion:
         return np.interp(t, grid, self.vertical, left=0.0, right=0.0)
 
     def scaled(self, amplitude: float) -> "GroundMotion":
-        """The same motion with a different amplitude a_p. [m/s^2]"""
+        """The same motion with a different amplitude a_p. [m/s^2]
+
+        Parameters
+        ----------
+        amplitude : float
+            The new a_p (for a record, the factor multiplying its samples). [m/s^2]
+        """
         return GroundMotion(self.kind, amplitude, self.omega, self.duration, self.record_dt, self.record,
                             self.vertical_dt, self.vertical)
 
@@ -281,8 +359,10 @@ def check_time_span(block, excitation: str, frequency_ratios, free_time: float, 
 
     Parameters
     ----------
-    block : Block
+    block : rockstudy.Block
+        The block; its p turns a frequency ratio into ω_p.
     excitation : {"one-sine", "modulated"}
+        The analytic excitation, which sets the duration at each frequency.
     frequency_ratios : sequence of float
         omega_p/p values (only the smallest and the largest are checked). [-]
     free_time : float
@@ -293,6 +373,14 @@ def check_time_span(block, excitation: str, frequency_ratios, free_time: float, 
         For noisy records: their sampling step and the noise after the excitation (the noise reading's
         ``step`` and ``span``, named ``step_name`` and ``span_name``): the record lasts ``record_span``
         longer, and its samples must stay within :data:`MAX_RECORD_SAMPLES`. [s]
+    frequency_name, free_time_name, sampling_name, step_name, span_name : str
+        Names of ``frequency_ratios``, ``free_time``, ``sampling_time``, ``record_step`` and ``record_span``
+        in the error message (the caller's option or config key).
+
+    Raises
+    ------
+    rockstudy.core.validation.InputError
+        If a simulation would exceed one of the limits.
     """
     for f in {min(frequency_ratios), max(frequency_ratios)}:
         omega = f * block.p

@@ -54,7 +54,13 @@ _LEVEL_KEY_SCALE = 10000
 
 
 def level_key(level: float) -> int:
-    """Integer key of a noise level for the seed sequence: round(level · 10000). [-]"""
+    """Integer key of a noise level for the seed sequence: round(level · 10000). [-]
+
+    Parameters
+    ----------
+    level : float
+        Noise level r. [-]
+    """
     return int(round(level * _LEVEL_KEY_SCALE))
 
 
@@ -113,7 +119,24 @@ class NoiseReading:
     @staticmethod
     def check(names=None, *, step=NOISE_DT, rescale="energy", level_means="energy", band=None, span=0.0) -> dict:
         """Refuse a bad field with a ``ValueError`` naming it ``names[field]`` (the caller's option or config
-        key), else ``NoiseReading.<field>``; returns the numbers as floats."""
+        key), else ``NoiseReading.<field>``; returns the numbers as floats.
+
+        Parameters
+        ----------
+        names : dict or None, default None
+            Name of each field in the error message, e.g. ``{"step": "noise.step"}``; a field missing from it
+            is named ``NoiseReading.<field>``.
+        step : float
+            Sampling step, > 0 and at most ``MAX_NOISE_STEP``. [s]
+        rescale : {"energy", "pga", "both", "none"}
+            What the sum baseline + noise keeps of the baseline.
+        level_means : {"energy", "rms"}
+            What the level r measures.
+        band : float or None
+            Upper band limit of the noise, > 0 and below 1/(2·step), or None for white noise. [Hz]
+        span : float
+            Noise after the intense part, >= 0. [s]
+        """
         name = validation.field_names("NoiseReading", names)
         checked = check_arguments("NoiseReading", {"step": step, "band": band, "span": span}, names)
         step, band, span = checked["step"], checked["band"], checked["span"]
@@ -133,7 +156,13 @@ class NoiseReading:
         return 0.5 / self.step
 
     def energy_fraction(self, level: float) -> float:
-        """Noise energy over baseline energy on the intense part for level r: r, or r² for ``rms``. [-]"""
+        """Noise energy over baseline energy on the intense part for level r: r, or r² for ``rms``. [-]
+
+        Parameters
+        ----------
+        level : float
+            Noise level r in [0, 1). [-]
+        """
         level = _check_level(level)
         return level if self.level_means == "energy" else level * level
 
@@ -160,7 +189,14 @@ fraction, white, intense part only."""
 def reading_from_dict(spec: dict | None, key: str = "noise") -> NoiseReading:
     """A :class:`NoiseReading` from a plain dict (the ``noise:`` section of the config); None: the default.
 
-    Errors name each field ``<key>.<field>`` (``key``: where the dict sits in the caller's config)."""
+    Parameters
+    ----------
+    spec : dict or None
+        Fields of :class:`NoiseReading` (``step``, ``rescale``, ``level_means``, ``band``, ``span``); None
+        gives :data:`DEFAULT_READING`.
+    key : str, default "noise"
+        Where the dict sits in the caller's config: errors name each field ``<key>.<field>``.
+    """
     if spec is None:
         return DEFAULT_READING
     fields = ("step", "rescale", "level_means", "band", "span")
@@ -242,6 +278,13 @@ def energy(values, dt: float) -> float:
     by a BLAS dot product, whose order depends on how many threads the BLAS library runs and on the
     processor it picked its kernel for: the energy rescales every noisy record, so a record's
     samples are then the same bits in the study's jobs, the CLI and a user's script on any machine.
+
+    Parameters
+    ----------
+    values : array_like
+        Samples x_i of the signal.
+    dt : float
+        Sampling step. [s]
     """
     values = np.asarray(values, dtype=float)
     return float(np.sum(np.square(values)) * dt)
@@ -513,6 +556,16 @@ def noisy_motion(kind: str, omega: float, amplitude: float, level: float, realis
 
 
 def record_motion(rec: NoisyRecord, amplitude: float, omega: float) -> GroundMotion:
-    """The ground motion a_p·(unit record), linearly interpolated between samples. [m/s^2]"""
+    """The ground motion a_p·(unit record), linearly interpolated between samples. [m/s^2]
+
+    Parameters
+    ----------
+    rec : NoisyRecord
+        The noisy unit record (its samples, step and duration).
+    amplitude : float
+        a_p multiplying the unit record. [m/s^2]
+    omega : float
+        ω_p of the baseline excitation. [rad/s]
+    """
     return GroundMotion(kind="record", amplitude=amplitude, omega=omega, duration=rec.duration,
                         record_dt=rec.dt, record=rec.values)

@@ -142,12 +142,24 @@ class RecordInfo:
         return (self.npts - 1) * self.dt
 
     def to_attrs(self, prefix: str = "record_") -> dict:
-        """Flat attributes for a self-describing dataset (NaN and empty fields kept as they are)."""
+        """Flat attributes for a self-describing dataset (NaN and empty fields kept as they are).
+
+        Parameters
+        ----------
+        prefix : str, default ``"record_"``
+            Prefix of every attribute name (``record_full_name``, ``record_suite``, ``record_pga_g``, ...).
+        """
         return {f"{prefix}{k}": v for k, v in {"full_name": self.name, **asdict(self)}.items()}
 
 
 def peak_ground_velocity(record: Record) -> float:
-    """max|v(t)|, v the trapezoidal integral of the record from rest (exact for linear interpolation). [m/s]"""
+    """max|v(t)|, v the trapezoidal integral of the record from rest (exact for linear interpolation). [m/s]
+
+    Parameters
+    ----------
+    record : Record
+        The record; its velocity starts from rest at t = 0.
+    """
     acc = record.acceleration
     velocity = np.concatenate([[0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * record.dt)])
     return float(np.max(np.abs(velocity)))
@@ -159,25 +171,53 @@ def suite_names() -> tuple[str, ...]:
 
 
 def check_suite(suite: str, name: str = "suite") -> str:
-    """``suite`` if it is a suite's name; else :class:`RecordSuiteError` naming ``name`` and the suites."""
+    """``suite`` if it is a suite's name; else :class:`RecordSuiteError` naming ``name`` and the suites.
+
+    Parameters
+    ----------
+    suite : str
+        The name to check against :data:`SUITES`.
+    name : str, default "suite"
+        The input's name in the error message (e.g. ``--suite``).
+    """
     if suite not in SUITES:
         raise RecordSuiteError(f"{name}: {suite!r} is not a record suite; the suites are {', '.join(SUITES)}")
     return suite
 
 
 def is_suite_record(text) -> bool:
-    """True when ``text`` has the form ``SUITE:ID`` with a known suite (otherwise it may be a file)."""
+    """True when ``text`` has the form ``SUITE:ID`` with a known suite (otherwise it may be a file).
+
+    Parameters
+    ----------
+    text : str or path-like
+        A record name or a file path.
+    """
     match = _NAME.match(str(text))
     return bool(match) and match.group(1) in SUITES
 
 
 def looks_like_suite_record(text) -> bool:
-    """True when ``text`` has the form ``NAME:ID`` (a word, a colon, no path separator)."""
+    """True when ``text`` has the form ``NAME:ID`` (a word, a colon, no path separator).
+
+    Parameters
+    ----------
+    text : str or path-like
+        A record name or a file path.
+    """
     return bool(_NAME.match(str(text)))
 
 
 def split_name(text: str, name: str = "record") -> tuple[str, str]:
-    """(suite, id) of ``SUITE:ID``; :class:`RecordSuiteError` naming ``name`` when it is not of that form."""
+    """(suite, id) of ``SUITE:ID``; :class:`RecordSuiteError` naming ``name`` when it is not of that form.
+
+    Parameters
+    ----------
+    text : str
+        ``SUITE:ID``, e.g. ``p695-near-field-pulse:1a``.
+    name : str, default "record"
+        The input's name in the error message (e.g. ``--record``).
+    """
     match = _NAME.match(str(text))
     if not match:
         raise RecordSuiteError(f"{name}: {text!r} is not of the form SUITE:ID (e.g. p695-near-field-pulse:1a); "
@@ -237,7 +277,13 @@ def _p695_version() -> str:
 
 # --- the synthetic suite ---------------------------------------------------------------------------
 def synthetic_id(index: int) -> str:
-    """Id of synthetic record ``index`` (``SYN000`` …)."""
+    """Id of synthetic record ``index`` (``SYN000`` …).
+
+    Parameters
+    ----------
+    index : int
+        Index of the record in the synthetic suite, >= 0.
+    """
     return f"SYN{index:03d}"
 
 
@@ -262,12 +308,23 @@ def _ids(suite: str) -> list[str]:
 
 # --- the public face -------------------------------------------------------------------------------
 def record_ids(suite: str) -> list[str]:
-    """The ids of a suite's records, in the suite's order."""
+    """The ids of a suite's records, in the suite's order.
+
+    Parameters
+    ----------
+    suite : str
+        Suite name (a key of :data:`SUITES`).
+    """
     return _ids(check_suite(suite))
 
 
 def load_suite(suite: str) -> list[tuple[RecordInfo, Record]]:
     """Every record of a suite with what is known about it, in the suite's order.
+
+    Parameters
+    ----------
+    suite : str
+        Suite name (a key of :data:`SUITES`).
 
     Raises
     ------
@@ -282,7 +339,13 @@ def load_suite(suite: str) -> list[tuple[RecordInfo, Record]]:
 
 
 def catalogue(suite: str) -> list[RecordInfo]:
-    """What is known about each record of a suite (see :func:`load_suite`)."""
+    """What is known about each record of a suite (see :func:`load_suite`).
+
+    Parameters
+    ----------
+    suite : str
+        Suite name (a key of :data:`SUITES`).
+    """
     return [info for info, _ in load_suite(suite)]
 
 
@@ -320,6 +383,13 @@ def check_record_names(names, key: str) -> None:
     """Every ``SUITE:ID`` of ``names`` exists (:class:`RecordSuiteError` naming ``key`` otherwise).
 
     The P695 suites are read once each; a missing package raises :class:`MissingPackageError`.
+
+    Parameters
+    ----------
+    names : iterable of str
+        Record names, each ``SUITE:ID``.
+    key : str
+        The input's name in the error message (e.g. ``beyond.fragility.records``).
     """
     wanted: dict[str, list[str]] = {}
     for text in names:
@@ -334,7 +404,13 @@ def check_record_names(names, key: str) -> None:
 
 
 def catalogue_table(infos) -> str:
-    """A plain-text table of records: id, event, year, magnitude, station, distance, site class, PGA, PGV, pulse."""
+    """A plain-text table of records: id, event, year, magnitude, station, distance, site class, PGA, PGV, pulse.
+
+    Parameters
+    ----------
+    infos : iterable of RecordInfo
+        The records, one row each, in this order.
+    """
     head = ("record", "event", "year", "M", "station", "R_rup [km]", "site", "PGA [g]", "PGV [m/s]", "pulse")
     rows = [head]
     for i in infos:
@@ -355,7 +431,8 @@ def suite_dataset(entries, title: str = "Earthquake record suite"):
     ----------
     entries : list of (RecordInfo, Record)
         From :func:`load_suite` or :func:`load_record`.
-    title : str
+    title : str, default "Earthquake record suite"
+        The dataset's ``title`` attribute.
     """
     import xarray as xr
 
@@ -395,7 +472,13 @@ def suite_dataset(entries, title: str = "Earthquake record suite"):
 
 
 def entries_from_dataset(ds) -> list[tuple[RecordInfo, Record]]:
-    """The (RecordInfo, Record) pairs stored by :func:`suite_dataset`."""
+    """The (RecordInfo, Record) pairs stored by :func:`suite_dataset`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A record set written by :func:`suite_dataset`.
+    """
     out = []
     for k in range(ds.sizes["record"]):
         d = ds.isel(record=k)
@@ -413,7 +496,17 @@ def entries_from_dataset(ds) -> list[tuple[RecordInfo, Record]]:
 
 def synthetic_entries(n_records: int = SYNTHETIC_RECORDS, seed: int = SYNTHETIC_SEED, ranges=None):
     """(RecordInfo, Record) of synthetic records 0..n_records-1 with a given seed and
-    :class:`~rockstudy.model.synthetic.SuiteRanges` (the suite ``synthetic`` with other settings)."""
+    :class:`~rockstudy.model.synthetic.SuiteRanges` (the suite ``synthetic`` with other settings).
+
+    Parameters
+    ----------
+    n_records : int, default 30
+        Number of records (ids ``SYN000`` … ).
+    seed : int, default 20190101
+        Root seed of the suite (:func:`rockstudy.model.synthetic.suite_record`).
+    ranges : rockstudy.model.synthetic.SuiteRanges or None, default None
+        Ranges of the records' parameters; None: the default ranges.
+    """
     return [_synthetic_entry(i, seed, ranges) for i in range(int(n_records))]
 
 
@@ -423,7 +516,16 @@ FILE_SUITE = "file"
 
 def file_entry(path, unit: str | None = None):
     """(RecordInfo, Record) of a record file (see :func:`rockstudy.model.records.read_record`); the
-    suite is ``file``, the id the file's name, the event the record's own label."""
+    suite is ``file``, the id the file's name, the event the record's own label.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The record file (``.AT2``, one or two columns).
+    unit : str or None, default None
+        Unit of the accelerations in the file (:data:`rockstudy.model.records.UNITS`); None: as
+        :func:`~rockstudy.model.records.read_record` infers it.
+    """
     from pathlib import Path
 
     from rockstudy.model.records import read_record
@@ -439,7 +541,15 @@ def file_entry(path, unit: str | None = None):
 
 
 def read_entries(items, key: str = "records"):
-    """(RecordInfo, Record) of a list of records, each ``SUITE:ID`` or a mapping ``{path, unit}`` (a file)."""
+    """(RecordInfo, Record) of a list of records, each ``SUITE:ID`` or a mapping ``{path, unit}`` (a file).
+
+    Parameters
+    ----------
+    items : iterable of str or dict
+        The records: ``SUITE:ID`` names, or mappings ``{"path": ..., "unit": ...}`` (``unit`` optional).
+    key : str, default "records"
+        The input's name in error messages.
+    """
     out = []
     for item in items:
         if isinstance(item, dict):
@@ -450,7 +560,13 @@ def read_entries(items, key: str = "records"):
 
 
 def record_time(record: Record) -> np.ndarray:
-    """Times of a record's samples, ``k * dt`` for k = 0 .. npts - 1. [s]"""
+    """Times of a record's samples, ``k * dt`` for k = 0 .. npts - 1. [s]
+
+    Parameters
+    ----------
+    record : Record
+        The record.
+    """
     return np.arange(record.acceleration.size) * float(record.dt)
 
 

@@ -55,7 +55,13 @@ and cf-units read ``"g"`` as gram, so netCDF files write g_n itself. The block's
 
 
 def unit_label(units: str) -> str:
-    """The short label of a ``units`` attribute for tables and figures: "g" for :data:`STANDARD_GRAVITY_UNITS`."""
+    """The short label of a ``units`` attribute for tables and figures: "g" for :data:`STANDARD_GRAVITY_UNITS`.
+
+    Parameters
+    ----------
+    units : str
+        A ``units`` attribute, e.g. ``"m s-2"`` or :data:`STANDARD_GRAVITY_UNITS`.
+    """
     return "g" if units == STANDARD_GRAVITY_UNITS else units
 
 UNITS = {"g": STANDARD_GRAVITY, "m/s^2": 1.0, "m/s2": 1.0, "cm/s^2": 0.01, "cm/s2": 0.01, "gal": 0.01,
@@ -90,6 +96,11 @@ class RecordFormatError(ValueError):
 
 def unit_factor(unit: str) -> float:
     """Value of one ``unit`` of acceleration in m/s^2 (``"g"``, ``"m/s^2"``, ``"cm/s^2"``, ...). [m/s^2]
+
+    Parameters
+    ----------
+    unit : str
+        Unit name, case-insensitive; ``**`` and ``/s/s`` are read as ``^`` and ``/s^2``.
 
     Raises
     ------
@@ -173,13 +184,25 @@ class Record:
                             duration=self.duration, record_dt=self.dt, record=self.acceleration)
 
     def scale_to_pga(self, pga: float) -> float:
-        """The factor that gives this record a peak ground acceleration ``pga`` [m/s^2]. [-]"""
+        """The factor that gives this record a peak ground acceleration ``pga`` [m/s^2]. [-]
+
+        Parameters
+        ----------
+        pga : float
+            Target peak ground acceleration, finite, >= 0. [m/s^2]
+        """
         if not (pga >= 0 and math.isfinite(pga)):
             raise ValueError(f"pga must be a finite number >= 0 [m/s^2], got {pga!r}")
         return pga / self.pga
 
     def to_attrs(self, prefix: str = "record_") -> dict:
-        """Flat attributes for a self-describing dataset."""
+        """Flat attributes for a self-describing dataset.
+
+        Parameters
+        ----------
+        prefix : str, default ``"record_"``
+            Prefix of every attribute name (``record_name``, ``record_dt_s``, ``record_pga_m_s2``, ...).
+        """
         return {f"{prefix}name": self.name, f"{prefix}source": self.source, f"{prefix}unit": self.unit,
                 f"{prefix}dt_s": self.dt, f"{prefix}npts": int(self.acceleration.size),
                 f"{prefix}pga_m_s2": self.pga}
@@ -539,7 +562,15 @@ def read_record(path, unit: str | None = None, dt: float | None = None) -> Recor
 
 # --- writing ---------------------------------------------------------------------------------------
 def at2_text(record: Record, title: str = "rockstudy record (PEER NGA AT2 layout)") -> str:
-    """The record in the PEER NGA ``.AT2`` layout, accelerations in g, 5 per line (``%15.7E``)."""
+    """The record in the PEER NGA ``.AT2`` layout, accelerations in g, 5 per line (``%15.7E``).
+
+    Parameters
+    ----------
+    record : Record
+        The record to write.
+    title : str, default "rockstudy record (PEER NGA AT2 layout)"
+        First header line.
+    """
     g = record.acceleration / STANDARD_GRAVITY
     lines = [title, record.name, "ACCELERATION TIME SERIES IN UNITS OF G",
              f"NPTS= {g.size:7d}, DT= {record.dt:.6f} SEC"]
@@ -550,5 +581,15 @@ def at2_text(record: Record, title: str = "rockstudy record (PEER NGA AT2 layout
 
 def write_at2(record: Record, path, title: str = "rockstudy record (PEER NGA AT2 layout)") -> Path:
     """Write ``record`` as a PEER NGA ``.AT2`` file, atomically with the umask's mode
-    (:func:`rockstudy.core.io.write_text`). Returns the path."""
+    (:func:`rockstudy.core.io.write_text`). Returns the path.
+
+    Parameters
+    ----------
+    record : Record
+        The record to write.
+    path : str or pathlib.Path
+        The file to write.
+    title : str, default "rockstudy record (PEER NGA AT2 layout)"
+        First header line.
+    """
     return write_text(at2_text(record, title), path)

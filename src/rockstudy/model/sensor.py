@@ -132,7 +132,13 @@ def sense(values, step: float, band: float) -> np.ndarray:
 
 
 def sensed_step(motion: GroundMotion) -> float:
-    """Sampling step of the sensed record of ``motion``: the record's step, else :data:`SENSOR_STEP`. [s]"""
+    """Sampling step of the sensed record of ``motion``: the record's step, else :data:`SENSOR_STEP`. [s]
+
+    Parameters
+    ----------
+    motion : GroundMotion
+        The ground motion the sensor reads.
+    """
     return float(motion.record_dt) if motion.kind == "record" else SENSOR_STEP
 
 

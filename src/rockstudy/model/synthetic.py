@@ -109,7 +109,13 @@ class GroundMotionModel:
                              f"pi/dt > 2 ground_frequency ({self.ground_frequency} rad/s)")
 
     def to_attrs(self, prefix: str = "model_") -> dict:
-        """Flat attributes for a self-describing dataset (SI units)."""
+        """Flat attributes for a self-describing dataset (SI units).
+
+        Parameters
+        ----------
+        prefix : str, default ``"model_"``
+            Prefix of every attribute name (``model_ground_frequency``, ``model_pga``, ...).
+        """
         return {f"{prefix}{k}": v for k, v in asdict(self).items()}
 
 
@@ -121,6 +127,7 @@ def spectral_density_shape(omega, model: GroundMotionModel) -> np.ndarray:
     omega : array_like
         Circular frequency ω >= 0. [rad/s]
     model : GroundMotionModel
+        The record's parameters (ω_g, ζ_g, ω_f, ζ_f).
     """
     w2 = np.asarray(omega, dtype=float) ** 2
     wg2, wf2 = model.ground_frequency**2, model.filter_frequency**2
@@ -151,6 +158,17 @@ def filtered_noise(n: int, dt: float, model: GroundMotionModel, rng: np.random.G
     White noise of 2n samples is multiplied in the frequency domain by √(S(ω)/S₀) and
     transformed back (a circular filter, so the result is stationary); only the first ``n``
     samples are returned, so that the record's end is not correlated with its start. [-]
+
+    Parameters
+    ----------
+    n : int
+        Number of samples returned.
+    dt : float
+        Sampling step. [s]
+    model : GroundMotionModel
+        Gives the spectral shape S(ω)/S₀.
+    rng : numpy.random.Generator
+        Source of the white noise (2n standard normal draws).
     """
     m = 2 * n
     white = rng.standard_normal(m)
@@ -160,6 +178,15 @@ def filtered_noise(n: int, dt: float, model: GroundMotionModel, rng: np.random.G
 
 def synthetic_record(model: GroundMotionModel, rng: np.random.Generator, name: str = "synthetic") -> Record:
     """One sample of the model: filtered noise × envelope, scaled to ``model.pga``.
+
+    Parameters
+    ----------
+    model : GroundMotionModel
+        The record's parameters.
+    rng : numpy.random.Generator
+        Source of the noise.
+    name : str, default "synthetic"
+        The record's name.
 
     Returns
     -------
@@ -215,11 +242,26 @@ class SuiteRanges:
             raise ValueError(f"SuiteRanges.filter_ratio must be below 1, got {self.filter_ratio!r}")
 
     def to_attrs(self, prefix: str = "suite_") -> dict:
+        """Flat attributes for a self-describing dataset (the ranges as two-element lists).
+
+        Parameters
+        ----------
+        prefix : str, default ``"suite_"``
+            Prefix of every attribute name (``suite_ground_frequency_hz``, ``suite_pga``, ...).
+        """
         return {f"{prefix}{k}": (list(v) if isinstance(v, tuple) else v) for k, v in asdict(self).items()}
 
 
 def record_generator(seed: int, index: int) -> np.random.Generator:
-    """Generator of synthetic record ``index``: ``SeedSequence(seed, spawn_key=(SYNTHETIC_KEY, index))``."""
+    """Generator of synthetic record ``index``: ``SeedSequence(seed, spawn_key=(SYNTHETIC_KEY, index))``.
+
+    Parameters
+    ----------
+    seed : int
+        Root seed of the suite, >= 0.
+    index : int
+        Index of the record in the suite, >= 0.
+    """
     for name, value in (("seed", seed), ("index", index)):
         if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 0:
             raise ValueError(f"{name} must be an integer >= 0, got {value!r}")
@@ -227,7 +269,15 @@ def record_generator(seed: int, index: int) -> np.random.Generator:
 
 
 def suite_model(rng: np.random.Generator, ranges: SuiteRanges = SuiteRanges()) -> GroundMotionModel:
-    """Draw one record's model parameters from ``ranges`` (uniform)."""
+    """Draw one record's model parameters from ``ranges`` (uniform).
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Source of the draws (ω_g/2π, then ζ_g, then t_m).
+    ranges : SuiteRanges, default SuiteRanges()
+        Ranges of the drawn parameters and the fixed ones.
+    """
     omega_g = 2.0 * math.pi * rng.uniform(*ranges.ground_frequency_hz)
     zeta = rng.uniform(*ranges.ground_damping)
     return GroundMotionModel(ground_frequency=omega_g, ground_damping=zeta,
@@ -237,7 +287,17 @@ def suite_model(rng: np.random.Generator, ranges: SuiteRanges = SuiteRanges()) -
 
 
 def suite_record(index: int, seed: int, ranges: SuiteRanges = SuiteRanges()) -> tuple[Record, GroundMotionModel]:
-    """Record ``index`` of the synthetic suite with root ``seed``, and the parameters it was drawn with."""
+    """Record ``index`` of the synthetic suite with root ``seed``, and the parameters it was drawn with.
+
+    Parameters
+    ----------
+    index : int
+        Index of the record in the suite, >= 0 (its name is ``SYN<index>``).
+    seed : int
+        Root seed of the suite, >= 0.
+    ranges : SuiteRanges, default SuiteRanges()
+        Ranges of the records' parameters.
+    """
     rng = record_generator(seed, index)
     model = suite_model(rng, ranges)
     return synthetic_record(model, rng, name=f"SYN{index:03d}"), model
@@ -245,6 +305,15 @@ def suite_record(index: int, seed: int, ranges: SuiteRanges = SuiteRanges()) -> 
 
 def synthetic_suite(n_records: int, seed: int, ranges: SuiteRanges = SuiteRanges()):
     """Records 0..n_records-1 of the synthetic suite (see :func:`suite_record`).
+
+    Parameters
+    ----------
+    n_records : int
+        Number of records, >= 1.
+    seed : int
+        Root seed of the suite, >= 0.
+    ranges : SuiteRanges, default SuiteRanges()
+        Ranges of the records' parameters.
 
     Returns
     -------
@@ -265,7 +334,8 @@ def suite_dataset(suite, seed: int, ranges: SuiteRanges = SuiteRanges()):
         From :func:`synthetic_suite` (records of one length and step).
     seed : int
         The suite's root seed.
-    ranges : SuiteRanges
+    ranges : SuiteRanges, default SuiteRanges()
+        The ranges the records were drawn from, written as ``suite_*`` attributes.
     """
     import xarray as xr
 
@@ -293,7 +363,14 @@ def suite_dataset(suite, seed: int, ranges: SuiteRanges = SuiteRanges()):
 
 
 def ranges_from_dict(spec: dict) -> SuiteRanges:
-    """:class:`SuiteRanges` from plain values, the PGA given in g as ``pga_g`` (other keys as the fields)."""
+    """:class:`SuiteRanges` from plain values, the PGA given in g as ``pga_g`` (other keys as the fields).
+
+    Parameters
+    ----------
+    spec : dict
+        Fields of :class:`SuiteRanges`, with ``pga_g`` [g] instead of ``pga``; ``n_records`` and ``seed``
+        are ignored.
+    """
     spec = dict(spec)
     spec.pop("n_records", None)
     spec.pop("seed", None)
