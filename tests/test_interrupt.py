@@ -24,15 +24,12 @@ def _lines(stream, into: queue.Queue) -> None:
     into.put(None)
 
 
-def test_sigint_during_a_spectrum_exits_130_quietly_and_writes_nothing(tmp_path):
-    out = tmp_path / "out"
-    out.mkdir()
+def _interrupt(argv):
+    """Start ``argv``, send SIGINT after its first progress line; (exit status, stderr lines before the signal,
+    stderr lines after it, stdout)."""
     environ = dict(os.environ)
     environ["PYTHONPATH"] = os.pathsep.join([os.path.dirname(os.path.dirname(rockstudy.__file__)),
                                              environ.get("PYTHONPATH", "")])
-    # 20 noisy realisations x 48 frequencies: about 15 s of simulations on one core, logged in ten chunks
-    argv = [sys.executable, "-m", "rockstudy.cli", "spectrum", "--noise-level", "0.05", "--realisations", "20",
-            "--output", str(out / "spectrum.nc")]
     proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=environ,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))  # as from a terminal
     lines: queue.Queue = queue.Queue()
@@ -60,9 +57,42 @@ def test_sigint_during_a_spectrum_exits_130_quietly_and_writes_nothing(tmp_path)
     stdout = proc.stdout.read()
     proc.stdout.close()
     proc.stderr.close()
-    assert proc.returncode == 130, "".join(before + after)
+    return proc.returncode, before, after, stdout
+
+
+def test_sigint_during_a_spectrum_exits_130_quietly_and_writes_nothing(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    # 20 noisy realisations x 48 frequencies: about 15 s of simulations on one core, logged in ten chunks
+    argv = [sys.executable, "-m", "rockstudy.cli", "spectrum", "--noise-level", "0.05", "--realisations", "20",
+            "--output", str(out / "spectrum.nc")]
+    code, before, after, stdout = _interrupt(argv)
+    assert code == 130, "".join(before + after)
     assert "Traceback" not in "".join(after) and "KeyboardInterrupt" not in "".join(after), "".join(after)
     assert [line.strip() for line in after if " cases (" not in line] == ["rockstudy: interrupted"], after
     assert len(after) <= 2, after  # at most a progress line that was on its way, and the message
     assert stdout == ""  # the summary line is printed only when the spectrum is written
     assert list(out.iterdir()) == []  # no output, no temporary file beside it
+
+
+API_SCRIPT = """
+import logging, sys
+import rockstudy
+logging.basicConfig(level=logging.INFO)
+scenario = rockstudy.Scenario(rockstudy.BLOCK_PRESETS["BLC06"], noise_level=0.05)
+try:
+    rockstudy.spectrum(scenario, rockstudy.frequency_grid(), realisations=range(20))
+except KeyboardInterrupt:
+    print("KeyboardInterrupt")
+    sys.exit(3)
+except SystemError as exc:
+    print("SystemError", exc)
+    sys.exit(4)
+"""
+
+
+def test_sigint_during_a_spectrum_of_the_library_raises_keyboard_interrupt():
+    """From Python, Ctrl-C in the compiled cases is the KeyboardInterrupt a caller can catch, not a
+    SystemError of numba's call back into Python."""
+    code, before, after, stdout = _interrupt([sys.executable, "-c", API_SCRIPT])
+    assert (code, stdout.strip()) == (3, "KeyboardInterrupt"), "".join(before + after) + stdout

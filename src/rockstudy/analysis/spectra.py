@@ -22,6 +22,7 @@ from rockstudy._version import __version__
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.core import validation
 from rockstudy.core.constants import PAPER
+from rockstudy.core.interrupts import interruptible
 from rockstudy.core.quantities import QUANTITIES, check_arguments
 from rockstudy.engine import _kernel as kernel
 from rockstudy.engine.outcome import OUTCOME_MEANINGS, Outcome
@@ -283,7 +284,8 @@ def _run_chunked(fn, n_cases: int, label: str, n_chunks: int):
     bounds = np.linspace(0, n_cases, min(n_chunks, n_cases) + 1).astype(int)
     parts = []
     for i in range(len(bounds) - 1):
-        parts.append(fn(slice(bounds[i], bounds[i + 1])))
+        with interruptible():  # Ctrl-C in the compiled cases: a KeyboardInterrupt, not a SystemError
+            parts.append(fn(slice(bounds[i], bounds[i + 1])))
         done = bounds[i + 1]
         elapsed = time.perf_counter() - t0
         eta = elapsed / done * (n_cases - done)

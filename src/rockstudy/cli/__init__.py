@@ -149,7 +149,8 @@ def main(argv=None):
     except KeyboardInterrupt:
         return _interrupted()
     except SystemError as exc:  # Ctrl-C while numba's compiled code called back into Python
-        if not _caused_by_interrupt(exc):
+        from rockstudy.core.interrupts import caused_by_interrupt
+        if not caused_by_interrupt(exc):
             raise
         return _interrupted()
     return 0
@@ -159,19 +160,6 @@ def _interrupted() -> int:
     """Ctrl-C (SIGINT): one line, no traceback; nothing is written, as outputs are written whole at the end."""
     sys.stderr.write("rockstudy: interrupted\n")
     return 130  # 128 + SIGINT, as a Unix tool stopped by Ctrl-C
-
-
-def _caused_by_interrupt(exc: BaseException) -> bool:
-    """Whether ``exc`` comes of a :class:`KeyboardInterrupt`: numba's compiled code that calls back into
-    Python when Ctrl-C is pending (to build an exception object) gets the interrupt there and reports it as a
-    ``SystemError`` ("returned a result with an exception set") whose causes hold it."""
-    seen = set()
-    while exc is not None and id(exc) not in seen:
-        if isinstance(exc, KeyboardInterrupt):
-            return True
-        seen.add(id(exc))
-        exc = exc.__cause__ or exc.__context__
-    return False
 
 
 def __getattr__(name):
