@@ -11,7 +11,8 @@ is refused) are the one declaration of the study config. From them come
 * :func:`check_value`, the check of one value by its key path, which the CLI applies to the option that
   sets that key (``--kappa-max`` is ``anchorage.kappa_max``).
 
-The limits are those of :mod:`rockstudy.core.validation`. Relations between keys (a noise level named by
+The ranges of numeric keys are those of :mod:`rockstudy.core.quantities`, the other limits those of
+:mod:`rockstudy.core.validation`. Relations between keys (a noise level named by
 a sweep exists, a_max,0 within the scan, the work of one job) are checked after these declarations by
 :func:`rockstudy.studies.study.check_study`. pydantic is imported only here, and only by the config
 checks: neither ``rockstudy --help`` nor a simulation loads it.
@@ -90,7 +91,19 @@ def _number(unit: str = "", **limits):
 
 
 def Q(name: str):  # noqa: N802 -- reads as the type it returns
-    """The declared type of the quantity ``name`` (:data:`rockstudy.core.quantities.QUANTITIES`)."""
+    """The declared type of the quantity ``name`` (:data:`rockstudy.core.quantities.QUANTITIES`).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`~rockstudy.core.quantities.QUANTITIES` (``"kappa"``, ``"noise_level"`` ...).
+
+    Returns
+    -------
+    type
+        ``Annotated[float, Field(...)]`` (or ``int``; ``| None`` when optional), see
+        :meth:`rockstudy.core.quantities.Quantity.annotated`.
+    """
     return QUANTITIES[name].annotated()
 
 
@@ -454,7 +467,20 @@ def _model_at(model, loc):
 
 def message(error: ValidationError, model=None, prefix: str = "") -> str:
     """At most three lines for the first error of ``error``: the key path, the value, what is allowed and,
-    for an unknown key, the closest known one."""
+    for an unknown key, the closest known one.
+
+    The first error is the one deepest in the config (pydantic reports one per branch of a union).
+
+    Parameters
+    ----------
+    error : pydantic.ValidationError
+        The error pydantic raised for a config.
+    model : type of pydantic.BaseModel, optional
+        The model the config was checked against, which lists the known keys next to an unknown one;
+        None: no hint.
+    prefix : str, optional
+        Text put before the key path (``"config.yaml: "``).
+    """
     errors = error.errors(include_url=False)
     first = max(errors, key=lambda e: len([p for p in e["loc"] if not str(p).startswith(_TYPE_TAGS)]))
     loc = first["loc"]
@@ -476,7 +502,23 @@ def message(error: ValidationError, model=None, prefix: str = "") -> str:
 
 def check_config(config, model=Study, name: str = "") -> None:
     """Refuse a config (a parsed ``config.yaml``) that its declaration does not allow, naming the key path
-    (after ``name``, e.g. the file) in at most three lines (:class:`InputError`). The config is not changed."""
+    (after ``name``, e.g. the file) in at most three lines (:class:`InputError`). The config is not changed.
+
+    Parameters
+    ----------
+    config : dict
+        The parsed config; its size is checked first (:func:`rockstudy.core.config_files.count_nodes`).
+    model : type of pydantic.BaseModel, optional
+        Its declaration: :class:`Study` (default), :data:`PartialStudy` for the CLI's ``--config``, or a
+        section such as :class:`Risk`.
+    name : str, optional
+        What messages call the config (a file name); "" names the key path alone.
+
+    Raises
+    ------
+    rockstudy.core.validation.InputError
+        For the first key its declaration does not allow (or a config too large).
+    """
     count_nodes(config, name=name or "config")
     try:
         model.model_validate(config)
@@ -485,7 +527,20 @@ def check_config(config, model=Study, name: str = "") -> None:
 
 
 def field_type(path: str, model=Study):
-    """The declared type of the config key ``path`` (``"anchorage.kappa_max"``)."""
+    """The declared type of the config key ``path`` (``"anchorage.kappa_max"``), with its constraints.
+
+    Parameters
+    ----------
+    path : str
+        The key path, sections joined by dots.
+    model : type of pydantic.BaseModel, optional
+        The model the path starts in (default :class:`Study`).
+
+    Raises
+    ------
+    KeyError
+        If ``path`` is not a declared key.
+    """
     parts = path.split(".")
     section = _model_at(model, parts[:-1]) if len(parts) > 1 else model
     if section is None or parts[-1] not in section.model_fields:
@@ -497,8 +552,22 @@ _ADAPTERS: dict = {}
 
 
 def check_value(path: str, value, name: str | None = None):
-    """``value`` against the declaration of the config key ``path`` (e.g. ``"anchorage.kappa_max"``); the error
-    names ``name`` (e.g. the option ``--kappa-max``, default the key). Returns the value."""
+    """``value`` against the declaration of the config key ``path``. Returns the value.
+
+    Parameters
+    ----------
+    path : str
+        The config key whose declaration applies (e.g. ``"anchorage.kappa_max"``, see :func:`field_type`).
+    value : object
+        The value to check.
+    name : str, optional
+        The input's name in the message (e.g. the option ``--kappa-max``); None: the key path.
+
+    Raises
+    ------
+    rockstudy.core.validation.InputError
+        If the declaration does not allow ``value``.
+    """
     if path not in _ADAPTERS:
         declared = field_type(path)
         model = isinstance(declared, type) and issubclass(declared, BaseModel)
@@ -511,7 +580,20 @@ def check_value(path: str, value, name: str | None = None):
 
 
 def check_option(name: str, value):
-    """A command-line option's value against :data:`OPTIONS` (None: not given, allowed). Returns the value."""
+    """A command-line option's value against :data:`OPTIONS`. Returns the value.
+
+    Parameters
+    ----------
+    name : str
+        The option, a key of :data:`OPTIONS` (``"--kappa-max"``); the message names it.
+    value : object
+        The option's value; None (not given) is allowed and returned.
+
+    Raises
+    ------
+    rockstudy.core.validation.InputError
+        If the option's declaration does not allow ``value``.
+    """
     if value is None:
         return None
     if name not in _ADAPTERS:
