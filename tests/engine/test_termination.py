@@ -147,3 +147,25 @@ def test_a_run_of_a_billion_controller_samples_ends_within_the_step_budget():
     status, end_time = out.split()
     assert int(status) == kn.ST_ELIMIT
     assert float(end_time) == pytest.approx(kn.MAX_STEPS * 1e-9, rel=1e-3)
+
+
+def test_a_run_whose_work_exceeds_the_limits_is_refused_before_it_starts():
+    """A sampled controller or a step count past the limits of rockstudy.core.validation is refused by
+    simulate() at once (before, T_s = 1e-9 s ran ~30 s to the engine's event cap and ended undetermined),
+    and a run just within them is not."""
+    import time
+
+    from rockstudy.core import validation
+    block = rockstudy.BLOCK_PRESETS["BLC06"]
+    motion = rockstudy.GroundMotion(kind="modulated", amplitude=0.1, omega=10.0, duration=2.0)
+    span = motion.end_time + 30.0  # the default free time
+    t0 = time.perf_counter()
+    with pytest.raises(validation.InputError, match=r"control.sampling_time = 1e-09 s .* controller samples"):
+        rockstudy.simulate(block, rockstudy.Anchorage(), rockstudy.Control("CS01", sampling_time=1e-9), motion)
+    fast = rockstudy.GroundMotion(kind="modulated", amplitude=0.1, omega=1e6, duration=2.0)
+    with pytest.raises(validation.InputError, match=r"motion.omega = 1e\+06 .* steps"):
+        rockstudy.simulate(block, rockstudy.Anchorage(), rockstudy.Control("FS"), fast)
+    assert time.perf_counter() - t0 < 2.0
+    within = 1.001 * span / validation.MAX_CONTROLLER_SAMPLES
+    result = rockstudy.simulate(block, rockstudy.Anchorage(), rockstudy.Control("CS01", sampling_time=within), motion)
+    assert result.status == "rest"  # 0.1 m/s^2 does not lift BLC06 (a g tan(alpha) of about 2.4 m/s^2)

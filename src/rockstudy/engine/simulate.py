@@ -60,6 +60,23 @@ STEPPERS = ("taylor", "dopri")
 """How the fast engine steps between record knots (:func:`pack_parameters`)."""
 
 
+def max_step(block: Block, motion: GroundMotion) -> float:
+    """The engine's largest step: :data:`~rockstudy.core.constants.MAX_STEP_FRACTION` of the free-rocking
+    period 2π/p and, for an analytic excitation, of its period 2π/ω_p. [s]
+
+    Parameters
+    ----------
+    block : rockstudy.Block
+        The block (its p).
+    motion : rockstudy.GroundMotion
+        The ground motion (its kind and ω_p).
+    """
+    hmax = MAX_STEP_FRACTION * 2 * math.pi / block.p
+    if motion.kind in ("one-sine", "modulated"):
+        hmax = min(hmax, MAX_STEP_FRACTION * 2 * math.pi / motion.omega)
+    return hmax
+
+
 def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion: GroundMotion, *,
                     overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
                     initial_rotation: float = 0.0, initial_velocity: float = 0.0,
@@ -131,11 +148,7 @@ def pack_parameters(block: Block, anchorage: Anchorage, control: Control, motion
     P[_kernel.I_VDT] = motion.vertical_dt if motion.vertical_dt > 0 else 1.0
     P[_kernel.I_TH0] = initial_rotation
     P[_kernel.I_THD0] = initial_velocity
-    # the largest step: a fraction of the free-rocking and of the excitation time scales
-    hmax = MAX_STEP_FRACTION * 2 * math.pi / block.p
-    if motion.kind in ("one-sine", "modulated"):
-        hmax = min(hmax, MAX_STEP_FRACTION * 2 * math.pi / motion.omega)
-    P[_kernel.I_HMAX] = hmax
+    P[_kernel.I_HMAX] = max_step(block, motion)  # a fraction of the free-rocking and excitation time scales
     P[_kernel.I_BOUND] = 1.0 if energy_bound else 0.0
     P[_kernel.I_TAYLOR] = 1.0 if stepper == "taylor" else 0.0
     P[_kernel.I_SDT] = 1.0
@@ -245,10 +258,21 @@ def check_inputs(block, anchorage, control, motion, *, engine="fast", overturn_c
     free_time = check_arguments("simulate", {  # each number's type and range (core.quantities)
         "free_time": free_time, "initial_rotation": initial_rotation, "initial_velocity": initial_velocity,
         "rest_velocity": rest_velocity, "rtol": rtol, "atol": atol})["free_time"]
-    if motion.end_time + free_time > validation.MAX_TIME_SPAN:
+    span = motion.end_time + free_time
+    if span > validation.MAX_TIME_SPAN:
         validation.fail("free_time", free_time,
                         f"the motion lasts {motion.end_time:.4g} s; with free_time a run lasts "
-                        f"{motion.end_time + free_time:.4g} s, the limit is {validation.MAX_TIME_SPAN:g} s", "s")
+                        f"{span:.4g} s, the limit is {validation.MAX_TIME_SPAN:g} s", "s")
+    hmax = max_step(block, motion)  # the run's work bounded before it starts, as check_time_span bounds a spectrum's
+    if span / hmax > validation.MAX_STEPS:
+        validation.fail("motion.omega", motion.omega, f"a run of {span:.4g} s at steps of at most {hmax:.3g} s needs "
+                        f"{span / hmax:.3g} steps, the limit is {validation.MAX_STEPS:.0e} (a lower frequency, a "
+                        "shorter free_time or a larger block)", "rad/s")
+    if control.sampling_time > 0 and span / control.sampling_time > validation.MAX_CONTROLLER_SAMPLES:
+        validation.fail("control.sampling_time", control.sampling_time,
+                        f"a run of {span:.4g} s sampled every {control.sampling_time:g} s takes "
+                        f"{span / control.sampling_time:.3g} controller samples, the limit is "
+                        f"{validation.MAX_CONTROLLER_SAMPLES:.0e}", "s")
 
 
 def simulate(block: Block, anchorage: Anchorage, control: Control, motion: GroundMotion, *,
