@@ -23,7 +23,7 @@ from hypothesis import strategies as st
 import rockstudy
 from rockstudy.analysis import fragility, record_scan
 from rockstudy.core import declarations
-from rockstudy.core.quantities import ARGUMENTS, QUANTITIES, Quantity, check_arguments
+from rockstudy.core.quantities import ARGUMENTS, QUANTITIES, SIZES, Quantity, check_arguments
 from rockstudy.core.validation import InputError
 from rockstudy.model import noise, records
 from rockstudy.studies import design
@@ -232,3 +232,26 @@ def test_a_config_key_and_its_library_argument_accept_the_same_values(path, owne
     except InputError:
         library_ok = False
     assert config_ok == library_ok, f"{path} and {owner}.{arg} disagree on {value!r}"
+
+
+SIZE_CALLS = {
+    ("spectrum", "frequency_ratios"): lambda n: OWNERS["spectrum"][1](frequency_ratios=np.full(n, 1.0)),
+    ("spectrum", "realisations"): lambda n: OWNERS["spectrum"][1](realisations=range(n)),
+    ("GroundMotion", "record"): lambda n: _motion(record=np.zeros(n)),
+    ("GroundMotion", "vertical"): lambda n: _motion(vertical=np.zeros(n)),
+    ("Record", "acceleration"): lambda n: _record(acceleration=np.zeros(n)),
+}
+
+
+def test_every_declared_size_is_tested():
+    assert set(SIZE_CALLS) == set(SIZES)
+
+
+@pytest.mark.parametrize("owner,arg", sorted(SIZES), ids=[f"{o}.{a}" for o, a in sorted(SIZES)])
+def test_one_item_past_a_declared_size_is_refused_naming_the_argument(owner, arg):
+    t0 = time.perf_counter()
+    with pytest.raises(InputError, match=arg):
+        SIZE_CALLS[owner, arg](SIZES[owner, arg] + 1)
+    assert time.perf_counter() - t0 < 2.0
+    if owner != "spectrum":  # at the limit itself the object is made (a spectrum would run)
+        SIZE_CALLS[owner, arg](SIZES[owner, arg])

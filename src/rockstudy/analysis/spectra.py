@@ -23,7 +23,7 @@ from rockstudy.analysis.scenario import Scenario
 from rockstudy.core import validation
 from rockstudy.core.constants import PAPER
 from rockstudy.core.interrupts import interruptible
-from rockstudy.core.quantities import QUANTITIES, check_arguments
+from rockstudy.core.quantities import QUANTITIES, SIZES, check_arguments
 from rockstudy.engine import _kernel as kernel
 from rockstudy.engine.outcome import OUTCOME_MEANINGS, Outcome
 from rockstudy.model.excitation import GroundMotion
@@ -117,11 +117,11 @@ def _realisation_list(realisations) -> list[int]:
     try:
         n, counted = len(realisations), f"{len(realisations)} indices"
     except TypeError:
-        realisations = list(itertools.islice(realisations, validation.MAX_REALISATIONS + 1))
-        n, counted = len(realisations), f"more than {validation.MAX_REALISATIONS} indices"
-    if n > validation.MAX_REALISATIONS:
+        realisations = list(itertools.islice(realisations, SIZES["spectrum", "realisations"] + 1))
+        n, counted = len(realisations), f"more than {SIZES['spectrum', 'realisations']} indices"
+    if n > SIZES["spectrum", "realisations"]:
         validation.fail("realisations", counted,
-                        f"at most {validation.MAX_REALISATIONS} realisations (the paper uses 100)")
+                        f"at most {SIZES['spectrum', 'realisations']} realisations (the paper uses 100)")
     out = [QUANTITIES["realisation"].check(f"realisations[{i}]", k) for i, k in enumerate(realisations)]
     if len(out) == 0 or len(set(out)) != len(out):
         raise validation.InputError(f"realisations must be distinct integers >= 0, got {out!r}")
@@ -325,13 +325,13 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     """
     _check_call(scenario, grid)
     try:  # at most one value past the limit is drawn from an iterator
-        items = list(itertools.islice(iter(frequency_ratios), validation.MAX_GRID_POINTS + 1))
+        items = list(itertools.islice(iter(frequency_ratios), SIZES["spectrum", "frequency_ratios"] + 1))
     except TypeError:
         raise validation.InputError(
             f"frequency_ratios must be a 1-D list of numbers, got {type(frequency_ratios).__name__}") from None
-    if isinstance(frequency_ratios, (str, bytes)) or not 1 <= len(items) <= validation.MAX_GRID_POINTS:
+    if isinstance(frequency_ratios, (str, bytes)) or not 1 <= len(items) <= SIZES["spectrum", "frequency_ratios"]:
         validation.fail("frequency_ratios", f"{len(items)} values" if len(items) else "no value",
-                        f"a 1-D list of 1 to {validation.MAX_GRID_POINTS} frequency ratios")
+                        f"a 1-D list of 1 to {SIZES['spectrum', 'frequency_ratios']} frequency ratios")
     freqs = np.array([QUANTITIES["frequency_ratio"].check(f"frequency_ratios[{i}]", f) for i, f in enumerate(items)])
     realisations = _realisation_list(realisations)
     if scenario.noise_level == 0 and len(realisations) > 1:

@@ -241,6 +241,17 @@ gives them (``"Block"`` is :class:`rockstudy.Block`, ``"simulate"`` :func:`rocks
 that takes a sequence (``spectrum``'s ``frequency_ratios``) is checked item by item."""
 
 
+SIZES = {
+    ("spectrum", "frequency_ratios"): v.MAX_GRID_POINTS,
+    ("spectrum", "realisations"): v.MAX_REALISATIONS,
+    ("GroundMotion", "record"): v.MAX_RECORD_SAMPLES,
+    ("GroundMotion", "vertical"): v.MAX_RECORD_SAMPLES,
+    ("Record", "acceleration"): v.MAX_RECORD_SAMPLES,
+}
+"""Most items of each sequence argument of the public classes and functions, by (owner, argument): what
+bounds the work and the memory a call may take (the engine steps to every record sample)."""
+
+
 def check_arguments(owner: str, values: dict, names=None) -> dict:
     """Check each argument of ``owner`` that :data:`ARGUMENTS` declares and ``values`` holds, against its
     quantity. The error names the argument as ``names[argument]`` (the caller's option or config key), else

@@ -13,7 +13,7 @@ import numpy as np
 from numba import njit
 
 from rockstudy.core._inline import inline_into
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core.quantities import SIZES, check_arguments
 from rockstudy.core.validation import (
     MAX_CONTROLLER_SAMPLES,
     MAX_RECORD_SAMPLES,
@@ -266,9 +266,9 @@ class GroundMotion:
                 samples = np.ascontiguousarray(getattr(self, name), dtype=float)
             except (TypeError, ValueError):
                 raise ValueError(f"GroundMotion.{name} must be an array of numbers") from None
-            if samples.ndim != 1 or samples.size > MAX_RECORD_SAMPLES:
+            if samples.ndim != 1 or samples.size > SIZES["GroundMotion", name]:
                 fail(f"GroundMotion.{name}", f"an array of shape {samples.shape}",
-                     f"it must be 1-D with at most {MAX_RECORD_SAMPLES} samples")
+                     f"it must be 1-D with at most {SIZES['GroundMotion', name]} samples")
             if not np.all(np.isfinite(samples)):
                 bad = int(np.flatnonzero(~np.isfinite(samples))[0])
                 fail(f"GroundMotion.{name}", f"sample {bad} = {samples[bad]}", "every sample must be finite")

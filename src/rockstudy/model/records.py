@@ -41,8 +41,8 @@ from pathlib import Path
 import numpy as np
 
 from rockstudy.core.io import write_text
-from rockstudy.core.quantities import check_arguments
-from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, check_input_file
+from rockstudy.core.quantities import SIZES, check_arguments
+from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, InputError, check_input_file
 from rockstudy.model.excitation import GroundMotion
 
 STANDARD_GRAVITY = 9.80665
@@ -140,8 +140,9 @@ class Record:
     def __post_init__(self):
         check_arguments("Record", {"dt": self.dt})
         acc = np.array(self.acceleration, dtype=float)
-        if acc.ndim != 1 or acc.size < 2:
-            raise ValueError(f"Record.acceleration must be a 1-D array of at least 2 samples, got shape {acc.shape}")
+        if acc.ndim != 1 or not 2 <= acc.size <= SIZES["Record", "acceleration"]:
+            raise InputError(f"Record.acceleration must be a 1-D array of 2 to {SIZES['Record', 'acceleration']} "
+                             f"samples, got shape {acc.shape}")
         if not np.all(np.isfinite(acc)):
             i = int(np.flatnonzero(~np.isfinite(acc))[0])
             raise ValueError(f"record {self.name!r}: the accelerations must be finite; sample {i} (t = {i * self.dt:g} "
