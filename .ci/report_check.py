@@ -13,9 +13,13 @@ Fails (exit 1, naming what is missing) unless the rendered page shows, as visibl
   lists "Table 1 of this run beside the paper's" and "Claims of §5 ...";
 * no source hash among the job parameters the report shows for its items, and no parameter dump
   (more than :data:`MAX_PARAMS` characters, or a Python dict);
-* at two window widths (:data:`WIDTHS`), nothing of the overview page under the rule graph, and no
-  table cut off on the right, there or on any table page: a table wider than its column must sit in
-  a box that scrolls sideways.
+* at two window widths (:data:`WIDTHS`), nothing of the overview page under the rule graph, its top not
+  cut off above the main panel, and no table cut off on the right, there or on any table page: a table
+  wider than its column must sit in a box that scrolls sideways;
+* at both widths, every figure, opened from its list and then with its caption beside it, drawn as wide
+  as the window allows: at least its natural width or the window's width less the sidebar's share
+  (:data:`SIDEBAR_SHARE`) and the panel's padding, whichever is smaller (:data:`SLACK` px short at most),
+  never wider than its natural width, not cut off on either side and reachable from its top.
 
 Chromium is Debian's (/usr/bin/chromium) driven by Playwright; a fresh profile folder every run.
 """
@@ -42,6 +46,11 @@ MAX_PARAMS = 400
 """Longest job-parameter text an item may show [characters]: a summary, not a dump."""
 NESTED_DICT = re.compile(r"{'[^{}]*{")
 """A Python dict of dicts in the parameters shown: a dump, whatever its length."""
+SIDEBAR_SHARE = {"list": 1 / 4, "caption": 1 / 3}
+"""Most of the window the sidebar may take beside an open figure: a quarter while it lists the items
+(Snakemake's own share for its lists), a third while it shows the item's caption and parameters."""
+SLACK = 4
+"""How much narrower [px] than the width it could have a figure may be drawn (rounding, borders)."""
 
 # Boxes of the page as (what, left, right, top, bottom) in CSS pixels; "cut" lists tables whose right
 # edge passes their column's (or the page's) with no box that scrolls sideways between them.
@@ -71,6 +80,39 @@ LAYOUT_JS = """() => {
     }
   }
   return {cut: cut, under: under};
+}"""
+
+
+# The figure open in the main panel: its natural and drawn size, its panel (the box that scrolls it,
+# scrolled to its top first) and the padding around it, in CSS pixels; null while none is loaded.
+FIGURE_JS = """() => {
+  const img = [...document.querySelectorAll('img')].find(i => i.src.startsWith('data:image/') && !i.closest('nav'));
+  if (!img || !img.complete || !img.naturalWidth) return null;
+  let panel = img.parentElement;
+  while (panel && !['auto', 'scroll'].includes(getComputedStyle(panel).overflowY)) panel = panel.parentElement;
+  panel = panel || document.documentElement;
+  panel.scrollTop = 0; panel.scrollLeft = 0;
+  const r = img.getBoundingClientRect(), p = panel.getBoundingClientRect(), s = getComputedStyle(img.parentElement);
+  const page = document.documentElement;
+  return {natural: img.naturalWidth, drawn: r.width, left: r.left, right: r.right, top: r.top,
+          panel_left: p.left, panel_right: Math.min(p.right, page.clientWidth), panel_top: p.top,
+          sideways: Math.max(panel.scrollWidth - panel.clientWidth, page.scrollWidth - page.clientWidth),
+          padding: parseFloat(s.paddingLeft) + parseFloat(s.paddingRight)};
+}"""
+
+# An item is shown in the main panel: a loaded image, or a frame (HTML pages, PDF).
+SHOWN_JS = """() => [...document.querySelectorAll('img')].some(i => !i.closest('nav') && i.src.startsWith('data:image/')
+  && i.complete && i.naturalWidth > 0) || document.querySelector('#app iframe') !== null"""
+
+# How far [px] the overview's top lies above the top of the panel that scrolls it, scrolled to its top.
+OVERVIEW_TOP_JS = """() => {
+  const doc = document.querySelector('.document');
+  if (!doc) return null;
+  let panel = doc.parentElement;
+  while (panel && !['auto', 'scroll'].includes(getComputedStyle(panel).overflowY)) panel = panel.parentElement;
+  panel = panel || document.documentElement;
+  panel.scrollTop = 0;
+  return panel.getBoundingClientRect().top - doc.getBoundingClientRect().top;
 }"""
 
 
@@ -107,6 +149,12 @@ def layout_problems(page, url: str, width: int, tables: list[tuple[str, str]]) -
     problems += [f"{width} px, overview: {what!r} runs {px} px under the rule graph" for what, px in found["under"]]
     problems += [f"{width} px, overview: table {what!r} is cut off at {right} px (its column ends at {edge} px)"
                  for what, right, edge in found["cut"]]
+    above = page.evaluate(OVERVIEW_TOP_JS)
+    if above is None:
+        problems.append(f"{width} px, overview: no overview page (.document) shown")
+    elif above > 1:
+        problems.append(f"{width} px, overview: its top {above:.0f} px lie above the main panel and cannot be "
+                        "scrolled to")
     page_width = item_width(page)
     if page_width is None:
         return problems + [f"{width} px: no table page opens from the Tables category"]
@@ -119,6 +167,71 @@ def layout_problems(page, url: str, width: int, tables: list[tuple[str, str]]) -
                      for what, right, edge in found["cut"]]
     viewer.close()
     print(f"report_check: layout at {width} px: the overview and {len(tables)} pages")
+    return problems
+
+
+def show_list(page, category: str, subcategory: str | None):
+    """The sidebar listing the items of ``category`` (of its ``subcategory``, when it has several), by
+    the names a reader clicks: in the menu or in the breadcrumbs above an open item."""
+    nav = page.locator("#app > div > nav")
+    nav.get_by_text(category, exact=True).first.click()
+    page.wait_for_timeout(600)
+    if subcategory is not None:
+        nav.get_by_text(subcategory, exact=True).first.click()
+        page.wait_for_timeout(600)
+
+
+def figure_problems(page, url: str, width: int, categories: dict[str, dict[str, list[str]]],
+                    shot: Path | None = None) -> list[str]:
+    """How each figure is drawn at window ``width``, opened as a reader opens it: its category (and
+    subcategory) in the sidebar, its eye button (the sidebar lists the items), then its information
+    button (the sidebar shows its caption and parameters beside it). ``categories``: category ->
+    subcategory -> result paths holding at least one figure. ``shot``: where to save a screenshot of the
+    widest figure beside the list."""
+    problems, drawn, widest = [], {mode: [] for mode in SIDEBAR_SHARE}, 0
+    page.set_viewport_size({"width": width, "height": 1000})
+    open_report(page, url)
+    nav = page.locator("#app > div > nav")
+    for category, subcategories in categories.items():
+        for subcategory in subcategories:
+            show_list(page, category, subcategory if len(subcategories) > 1 else None)
+            for k in range(nav.locator("a[iconname=eye]").count()):
+                label = nav.locator("tbody tr").nth(k).inner_text().strip()
+                nav.locator("a[iconname=eye]").nth(k).click()
+                page.wait_for_timeout(600)
+                page.wait_for_function(SHOWN_JS, timeout=10_000)
+                if page.evaluate(FIGURE_JS) is None:  # an item that is no figure
+                    continue
+                for mode in SIDEBAR_SHARE:
+                    if mode == "caption":
+                        nav.locator("a[iconname=information-circle]").nth(k).click()
+                        page.wait_for_timeout(600)
+                    f = page.evaluate(FIGURE_JS)
+                    if shot is not None and mode == "list" and f["natural"] > widest:
+                        page.screenshot(path=str(shot))
+                        widest = f["natural"]
+                    where = f"{width} px, {label[:50]!r} beside the {mode}"
+                    could = min(f["natural"], width * (1 - SIDEBAR_SHARE[mode]) - f["padding"])
+                    drawn[mode].append(round(f["drawn"]))
+                    if f["drawn"] < could - SLACK:
+                        problems.append(f"{where}: drawn {f['drawn']:.0f} px wide, could be {could:.0f} px "
+                                        f"(natural {f['natural']} px)")
+                    if f["drawn"] > f["natural"] + 1:
+                        problems.append(f"{where}: drawn {f['drawn']:.0f} px wide, wider than its natural "
+                                        f"{f['natural']} px")
+                    if f["left"] < f["panel_left"] - 1 or f["right"] > f["panel_right"] + 1 or f["sideways"] > 1:
+                        problems.append(f"{where}: cut off sideways (drawn {f['left']:.0f}-{f['right']:.0f} px in a "
+                                        f"panel {f['panel_left']:.0f}-{f['panel_right']:.0f} px, "
+                                        f"{f['sideways']:.0f} px to scroll sideways)")
+                    if f["top"] < f["panel_top"] - 1:
+                        problems.append(f"{where}: its top {f['panel_top'] - f['top']:.0f} px lie above the panel and "
+                                        "cannot be scrolled to")
+                show_list(page, category, subcategory if len(subcategories) > 1 else None)
+    n = len(drawn["list"])
+    if n == 0:
+        return problems + [f"{width} px: no figure opens from the report's categories"]
+    print(f"report_check: figures at {width} px: {n} drawn "
+          + ", ".join(f"{min(v)}-{max(v)} px wide beside the {mode}" for mode, v in drawn.items()))
     return problems
 
 
@@ -218,8 +331,19 @@ def main() -> int:
                                ".map(r => [r.labels ? Object.values(r.labels).join(' ') : r.name, r.data_uri])")
         if not tables:
             problems.append("no HTML page among the report's items: nothing to check for clipping")
+        figures = page.evaluate("""() => { const out = {};
+            for (const [c, subs] of Object.entries(categories)) for (const [s, paths] of Object.entries(subs))
+              if (paths.some(p => (results[p].mime_type || '').startsWith('image/')))
+                (out[c] = out[c] || {})[s] = paths;
+            return out; }""")
+        if not figures:
+            problems.append("no figure among the report's items: nothing to check for its width")
         for width in WIDTHS:
             problems += layout_problems(page, Path(args.report).resolve().as_uri(), width, tables)
+            if figures:
+                shot = Path(args.screenshot).with_name(f"{Path(args.screenshot).stem}-figure-{width}.png") \
+                    if args.screenshot else None
+                problems += figure_problems(page, Path(args.report).resolve().as_uri(), width, figures, shot)
         browser.close()
     if problems:
         print("report_check: FAILED\n  " + "\n  ".join(problems))

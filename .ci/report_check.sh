@@ -7,8 +7,11 @@
 # headless Chromium (Debian's package, installed here when missing; driven by Playwright) and fails
 # unless Table 1's numbers and every claim's PASS / FAIL are visible text of the rendered page, the
 # items are listed by what they show, no source hash and no dump is among the parameters shown, and,
-# at 1280 and 1920 px, nothing of the overview runs under the rule graph and no table is cut off on the
-# right (.ci/report_check.py). Leaves the report and screenshots in the folder it prints.
+# at 1280 and 1920 px, nothing of the overview runs under the rule graph or is cut off above it, no
+# table is cut off on the right, and every figure is drawn as wide as the window allows beside the
+# sidebar, at most its natural width (.ci/report_check.py). The report is built as users build it, so
+# with the stylesheet profiles/default/config.yaml sets (workflow/report/report.css). Leaves the report
+# and screenshots in the folder it prints.
 #
 # Environment:
 #   REPORT_CHECK_DIR   where results, report and screenshots go (wiped first) [a new temporary folder]
@@ -39,4 +42,4 @@ if grep -E "\((ERROR|SEVERE|WARNING)/[0-9]\)" "$DIR/snakemake.log"; then
 fi
 say "report built ($DIR/report.html, $(du -h "$DIR/report.html" | cut -f1))"
 "$PY" .ci/report_check.py "$DIR/report.html" "$DIR/results" --screenshot "$DIR/report.png"
-say "screenshots: $DIR/report.png, $DIR/report-reproduction.png"
+say "screenshots: $DIR/report.png, $DIR/report-reproduction.png, $DIR/report-figure-1280.png, $DIR/report-figure-1920.png"
