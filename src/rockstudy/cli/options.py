@@ -14,6 +14,7 @@ import os
 from rockstudy.analysis.scenario import DEFAULT_BLOCK, DEFAULT_EXCITATION, DEFAULT_OVERTURN_CRITERION
 from rockstudy.analysis.spectra import AmplitudeGrid
 from rockstudy.core import config_files, declarations, validation
+from rockstudy.core.quantities import check_arguments
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME, ENGINES, OVERTURN_CRITERIA
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS
@@ -263,10 +264,11 @@ _GRID_NAMES = ("--min-amplitude-ratio", "--max-amplitude-ratio", "--amplitude-st
 
 def _grid(args, parser):
     """The amplitude scan, and the simulations one threshold may need (the checks name the options)."""
-    sims = validation.check_amplitude_grid(args.min_amplitude_ratio, args.max_amplitude_ratio, args.amplitude_step,
-                                           args.resolution, names=_GRID_NAMES)
-    return AmplitudeGrid(start=args.min_amplitude_ratio, stop=args.max_amplitude_ratio,
-                         step=args.amplitude_step, resolution=args.resolution), sims
+    given = {"start": args.min_amplitude_ratio, "stop": args.max_amplitude_ratio, "step": args.amplitude_step,
+             "resolution": args.resolution}
+    check_arguments("AmplitudeGrid", given, dict(zip(given, _GRID_NAMES)))  # each as declared, named by its option
+    sims = validation.check_amplitude_grid(*given.values(), names=_GRID_NAMES)  # their relations and the work
+    return AmplitudeGrid(**given), sims
 
 
 def _check_outputs(args, parser) -> None:

@@ -24,6 +24,7 @@ from rockstudy.analysis.fragility import INTENSITY_MEASURES, SUITE_DEFAULTS
 from rockstudy.analysis.hazard import EXTENSIONS
 from rockstudy.cli import options
 from rockstudy.core import validation
+from rockstudy.core.quantities import QUANTITIES
 from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, GMMS, RISK_INPUTS
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS
@@ -130,14 +131,14 @@ def run_fragility(args, parser) -> None:
         anchorage = {"kappa_max": args.kappa_max, "kappa_min": args.kappa_min, "damping_ratio": args.damping_ratio}
         Anchorage.check({k: f"--{k.replace('_', '-')}" for k in anchorage}, **anchorage)
         block = _block(args)
-        validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_FREE_TIME)
+        QUANTITIES["free_time"].check("--free-time", args.free_time)
         levels = parameters.intensity_levels({"start": args.levels_start, "stop": args.levels_stop,
                                               "step": args.levels_step}, "--levels")
-        validation.check_positive("--threshold-resolution", args.threshold_resolution)
-        validation.check_int_range("--bootstrap", args.bootstrap, 0, validation.MAX_BOOTSTRAP)
-        validation.check_int_range("--seed", args.seed, 0, validation.MAX_INTEGER)
+        QUANTITIES["intensity_resolution"].check("--threshold-resolution", args.threshold_resolution)
+        QUANTITIES["bootstrap"].check("--bootstrap", args.bootstrap)
+        QUANTITIES["seed"].check("--seed", args.seed)
         if args.max_records is not None:
-            validation.check_int_range("--max-records", args.max_records, 1, validation.MAX_SUITE_RECORDS)
+            QUANTITIES["suite_records"].check("--max-records", args.max_records)
         entries = record_suites.load_suite(args.suite)[:args.max_records]
     except (ValueError, record_suites.RecordSuiteError) as exc:
         _fail(parser, exc)

@@ -266,7 +266,7 @@ RecordName = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_-]+(:[^/\\:]
 
 
 class Synthetic(Section):
-    n_records: Annotated[int, Field(ge=1, le=v.MAX_SUITE_RECORDS)]
+    n_records: Q("suite_records")
     seed: Seed
     ground_frequency_hz: _list(_number("Hz", gt=0, le=v.MAX_FREQUENCY_RATIO), low=2, high=2, unique=False)
     ground_damping: _list(_number("-", gt=0, le=v.MAX_FREQUENCY_RATIO), low=2, high=2, unique=False)

@@ -193,6 +193,7 @@ QUANTITIES = {
     # fragility
     "intensity_resolution": _q(0.0, v.MAX_AMPLITUDE_RATIO, "intensity measure",
                                "width of a record threshold's final bracket"),
+    "suite_records": _q(1, v.MAX_SUITE_RECORDS, "", "number of records of a suite", low_open=False, integer=True),
     "stripe_count": _q(2, v.MAX_LIST_ITEMS, "", "number of PGA levels (stripes)", low_open=False, integer=True),
     "bootstrap": _q(0.0, v.MAX_BOOTSTRAP, "", "bootstrap draws", low_open=False, integer=True),
 }

@@ -167,17 +167,6 @@ def fail(name: str, value, allowed: str, unit: str = ""):
     raise InputError(f"{name} = {_fmt(value)}{_unit(unit)} is not allowed: {allowed}")
 
 
-def is_number(value) -> bool:
-    """A real number that is not a ``bool`` (``True`` is not a length): the type every numeric input has.
-
-    Parameters
-    ----------
-    value : object
-        The value to test (NaN and inf count as numbers here).
-    """
-    return isinstance(value, numbers.Real) and not isinstance(value, bool)
-
-
 def check_number(name: str, value, unit: str = "") -> float:
     """A finite real number (not a bool, not NaN or inf), returned as a float.
 

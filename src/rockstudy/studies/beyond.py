@@ -5,6 +5,7 @@ across keys, before any job runs, and the record sets the fragility study runs o
 from __future__ import annotations
 
 from rockstudy.core import validation
+from rockstudy.core.quantities import QUANTITIES
 from rockstudy.model import record_suites
 
 SELECTION = "selection"
@@ -67,8 +68,8 @@ def check_config(section: dict, config: dict) -> None:
             n_records = max(n_records, len(record_suites.record_ids(items)))
         else:
             n_records = max(n_records, len(items))
-    validation.check_int_range("beyond.fragility.bootstrap", frag["bootstrap"], 0, validation.MAX_BOOTSTRAP)
-    validation.check_int_range("beyond.fragility.seed", frag["seed"], 0, validation.MAX_INTEGER)
+    QUANTITIES["bootstrap"].check("beyond.fragility.bootstrap", frag["bootstrap"])
+    QUANTITIES["seed"].check("beyond.fragility.seed", frag["seed"])
     il = frag["intensity_levels"]
     n_levels = validation.check_grid("beyond.fragility.intensity_levels", il["start"], il["stop"], il["step"],
                             high=validation.MAX_AMPLITUDE_RATIO)
@@ -79,10 +80,10 @@ def check_config(section: dict, config: dict) -> None:
 def _check_synthetic(syn: dict) -> int:
     """The synthetic suite's settings; returns its number of records."""
     key = "beyond.fragility.synthetic"
-    n = validation.check_int_range(f"{key}.n_records", syn["n_records"], 1, validation.MAX_SUITE_RECORDS)
-    validation.check_int_range(f"{key}.seed", syn["seed"], 0, validation.MAX_INTEGER)
-    duration = validation.check_positive(f"{key}.duration", syn["duration"], "s", validation.MAX_TIME_SPAN)
-    dt = validation.check_positive(f"{key}.dt", syn["dt"], "s", duration / 2)
+    n = QUANTITIES["suite_records"].check(f"{key}.n_records", syn["n_records"])
+    QUANTITIES["seed"].check(f"{key}.seed", syn["seed"])
+    duration = QUANTITIES["duration"].check(f"{key}.duration", syn["duration"])
+    dt = validation.check_positive(f"{key}.dt", syn["dt"], "s", duration / 2)  # a relation: two samples at least
     samples = duration / dt + 1
     if samples > validation.MAX_RECORD_SAMPLES:
         validation.fail(f"{key}.dt", dt, f"{key}.duration = {duration:g} s sampled every {dt:g} s gives {samples:.3g} "
