@@ -16,10 +16,11 @@ Fails (exit 1, naming what is missing) unless the rendered page shows, as visibl
 * at two window widths (:data:`WIDTHS`), nothing of the overview page under the rule graph, its top not
   cut off above the main panel, and no table cut off on the right, there or on any table page: a table
   wider than its column must sit in a box that scrolls sideways;
-* at both widths, every figure, opened from its list and then with its caption beside it, drawn as wide
-  as the window allows: at least its natural width or the window's width less the sidebar's share
-  (:data:`SIDEBAR_SHARE`) and the panel's padding, whichever is smaller (:data:`SLACK` px short at most),
-  never wider than its natural width, not cut off on either side and reachable from its top.
+* at both widths, every figure, opened from its list and then with its caption beside it, drawn whole
+  and as large as the window allows: as wide as the smallest of its natural width, the window's width
+  less the sidebar's share (:data:`SIDEBAR_SHARE`) and the panel's padding, and the width at which it is
+  as tall as the window less :data:`VERTICAL_MARGIN` (:data:`SLACK` px short at most); never wider than
+  its natural width, not cut off on either side, its bottom within the window and reachable from its top.
 
 Chromium is Debian's (/usr/bin/chromium) driven by Playwright; a fresh profile folder every run.
 """
@@ -49,6 +50,8 @@ NESTED_DICT = re.compile(r"{'[^{}]*{")
 SIDEBAR_SHARE = {"list": 1 / 4, "caption": 1 / 3}
 """Most of the window the sidebar may take beside an open figure: a quarter while it lists the items
 (Snakemake's own share for its lists), a third while it shows the item's caption and parameters."""
+VERTICAL_MARGIN = 48
+"""Height [px] of the window a figure leaves free (3 rem: the panel's margins), so that it is seen whole."""
 SLACK = 4
 """How much narrower [px] than the width it could have a figure may be drawn (rounding, borders)."""
 
@@ -94,7 +97,8 @@ FIGURE_JS = """() => {
   panel.scrollTop = 0; panel.scrollLeft = 0;
   const r = img.getBoundingClientRect(), p = panel.getBoundingClientRect(), s = getComputedStyle(img.parentElement);
   const page = document.documentElement;
-  return {natural: img.naturalWidth, drawn: r.width, left: r.left, right: r.right, top: r.top,
+  return {natural: img.naturalWidth, natural_height: img.naturalHeight, drawn: r.width, left: r.left,
+          right: r.right, top: r.top, bottom: r.bottom, window_height: window.innerHeight,
           panel_left: p.left, panel_right: Math.min(p.right, page.clientWidth), panel_top: p.top,
           sideways: Math.max(panel.scrollWidth - panel.clientWidth, page.scrollWidth - page.clientWidth),
           padding: parseFloat(s.paddingLeft) + parseFloat(s.paddingRight)};
@@ -211,7 +215,8 @@ def figure_problems(page, url: str, width: int, categories: dict[str, dict[str, 
                         page.screenshot(path=str(shot))
                         widest = f["natural"]
                     where = f"{width} px, {label[:50]!r} beside the {mode}"
-                    could = min(f["natural"], width * (1 - SIDEBAR_SHARE[mode]) - f["padding"])
+                    could = min(f["natural"], width * (1 - SIDEBAR_SHARE[mode]) - f["padding"],
+                                (f["window_height"] - VERTICAL_MARGIN) * f["natural"] / f["natural_height"])
                     drawn[mode].append(round(f["drawn"]))
                     if f["drawn"] < could - SLACK:
                         problems.append(f"{where}: drawn {f['drawn']:.0f} px wide, could be {could:.0f} px "
@@ -223,6 +228,9 @@ def figure_problems(page, url: str, width: int, categories: dict[str, dict[str, 
                         problems.append(f"{where}: cut off sideways (drawn {f['left']:.0f}-{f['right']:.0f} px in a "
                                         f"panel {f['panel_left']:.0f}-{f['panel_right']:.0f} px, "
                                         f"{f['sideways']:.0f} px to scroll sideways)")
+                    if f["bottom"] > f["window_height"] + 1:
+                        problems.append(f"{where}: its bottom {f['bottom'] - f['window_height']:.0f} px lie below the "
+                                        "window: the figure is not seen whole")
                     if f["top"] < f["panel_top"] - 1:
                         problems.append(f"{where}: its top {f['panel_top'] - f['top']:.0f} px lie above the panel and "
                                         "cannot be scrolled to")
