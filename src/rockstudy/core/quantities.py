@@ -10,6 +10,9 @@ value enters names the quantity it is, and takes its check from it:
 * the command line -- :data:`rockstudy.core.declarations.OPTIONS` gives each numeric option the quantity of
   the config key it stands for.
 
+The inputs of the risk analyses (fragility median and dispersion, exposure time, earthquake scenarios) are
+declared the same way, beside their defaults, in :mod:`rockstudy.core.risk_inputs`.
+
 Relations between inputs (``kappa_min <= kappa_max``, a grid's start below its stop, a run's time span) are
 not a single input's range: the functions that take the related inputs check them, after these.
 
@@ -94,17 +97,6 @@ class Quantity:
         base = Annotated[int if self.integer else float, Field(description=self.description + unit, **self.limits())]
         return Optional[base] if self.optional else base  # noqa: UP045 -- a runtime type expression
 
-    def json_schema(self) -> dict:
-        """This quantity as a JSON Schema number (or integer)."""
-        out = {"type": "integer" if self.integer else "number"}
-        keys = {"gt": "exclusiveMinimum", "ge": "minimum", "lt": "exclusiveMaximum", "le": "maximum"}
-        out.update({keys[k]: value for k, value in self.limits().items()})
-        out["description"] = self.description + ("" if self.unit in ("", "-") else f" [{self.unit}]")
-        return out
-
-
-def _q(low, high, unit, description, **kw) -> Quantity:
-    return Quantity(low, high, unit, description, **kw)
 
 
 MAX_PGA_G = 100.0
@@ -141,61 +133,62 @@ ATOL_RANGE = (1e-16, 1e-3)
 
 QUANTITIES = {
     # the excitation and its scan
-    "frequency_ratio": _q(0.0, v.MAX_FREQUENCY_RATIO, "-", "frequency ratio omega_p/p"),
-    "amplitude_ratio": _q(0.0, v.MAX_AMPLITUDE_RATIO, "-", "amplitude ratio a_p/(g tan alpha)"),
-    "amplitude_resolution": _q(0.0, v.MAX_AMPLITUDE_RATIO, "-", "width of a threshold's final bracket"),
-    "a_max0_g": _q(0.0, MAX_A_MAX0_G, "g", "protection level a_max,0"),
-    "pga_g": _q(0.0, MAX_PGA_G, "g", "peak ground acceleration"),
-    "design_pga_g": _q(MIN_PGA_G, MAX_PGA_G, "g", "peak ground acceleration of a design stripe", low_open=False),
-    "acceleration": _q(None, None, "m/s^2", "ground acceleration amplitude"),
-    "circular_frequency": _q(0.0, None, "rad/s", "circular frequency"),
-    "duration": _q(0.0, v.MAX_TIME_SPAN, "s", "duration"),
-    "angular_rate": _q(None, None, "rad/s", "circular frequency or rate (> 0 where it is a frequency)"),
-    "free_time": _q(0.0, v.MAX_FREE_TIME, "s", "free motion after the excitation", low_open=False),
-    "record_dt": _q(0.0, v.MAX_TIME_SPAN, "s", "sampling step of a record"),
-    "column_dt": _q(0.0, v.MAX_TIME_SPAN, "s", "sampling step of a one-column record (None: a time column)",
+    "frequency_ratio": Quantity(0.0, v.MAX_FREQUENCY_RATIO, "-", "frequency ratio omega_p/p"),
+    "amplitude_ratio": Quantity(0.0, v.MAX_AMPLITUDE_RATIO, "-", "amplitude ratio a_p/(g tan alpha)"),
+    "amplitude_resolution": Quantity(0.0, v.MAX_AMPLITUDE_RATIO, "-", "width of a threshold's final bracket"),
+    "a_max0_g": Quantity(0.0, MAX_A_MAX0_G, "g", "protection level a_max,0"),
+    "pga_g": Quantity(0.0, MAX_PGA_G, "g", "peak ground acceleration"),
+    "design_pga_g": Quantity(MIN_PGA_G, MAX_PGA_G, "g", "peak ground acceleration of a design stripe", low_open=False),
+    "acceleration": Quantity(None, None, "m/s^2", "ground acceleration amplitude"),
+    "circular_frequency": Quantity(0.0, None, "rad/s", "circular frequency"),
+    "duration": Quantity(0.0, v.MAX_TIME_SPAN, "s", "duration"),
+    "angular_rate": Quantity(None, None, "rad/s", "circular frequency or rate (> 0 where it is a frequency)"),
+    "free_time": Quantity(0.0, v.MAX_FREE_TIME, "s", "free motion after the excitation", low_open=False),
+    "record_dt": Quantity(0.0, v.MAX_TIME_SPAN, "s", "sampling step of a record"),
+    "column_dt": Quantity(0.0, v.MAX_TIME_SPAN, "s", "sampling step of a one-column record (None: a time column)",
                     optional=True),
-    "record_scale": _q(0.0, MAX_RECORD_SCALE, "-", "factor a record is scaled by"),
-    "signed_factor": _q(None, None, "-", "factor (negative: the record reversed)"),
-    "design_step": _q(MIN_DESIGN_STEP, v.MAX_AMPLITUDE_RATIO, "-", "step of a design block's amplitude scan",
+    "record_scale": Quantity(0.0, MAX_RECORD_SCALE, "-", "factor a record is scaled by"),
+    "signed_factor": Quantity(None, None, "-", "factor (negative: the record reversed)"),
+    "design_step": Quantity(MIN_DESIGN_STEP, v.MAX_AMPLITUDE_RATIO, "-", "step of a design block's amplitude scan",
                       low_open=False),
-    "design_resolution": _q(MIN_DESIGN_RESOLUTION, v.MAX_AMPLITUDE_RATIO, "-",
+    "design_resolution": Quantity(MIN_DESIGN_RESOLUTION, v.MAX_AMPLITUDE_RATIO, "-",
                             "resolution of a design block's threshold", low_open=False),
     # the block and its restrainers
-    "slenderness": _q(MIN_ALPHA, MAX_ALPHA, "rad", "slenderness alpha of a design block", low_open=False),
-    "half_diagonal": _q(MIN_BLOCK_SIZE, 50.0, "m", "half diagonal R of a design block", low_open=False),
-    "length": _q(MIN_BLOCK_SIZE, MAX_BLOCK_SIZE, "m", "block dimension", low_open=False),
-    "density": _q(0.0, MAX_DENSITY, "kg/m^3", "mass density"),
-    "gravity": _q(0.0, 1000.0, "m/s^2", "acceleration of gravity"),
-    "restitution": _q(0.0, 1.0, "-", "coefficient of restitution (None: Housner's, Eq. 14)", low_open=False,
+    "slenderness": Quantity(MIN_ALPHA, MAX_ALPHA, "rad", "slenderness alpha of a design block", low_open=False),
+    "half_diagonal": Quantity(MIN_BLOCK_SIZE, 50.0, "m", "half diagonal R of a design block", low_open=False),
+    "length": Quantity(MIN_BLOCK_SIZE, MAX_BLOCK_SIZE, "m", "block dimension", low_open=False),
+    "density": Quantity(0.0, MAX_DENSITY, "kg/m^3", "mass density"),
+    "gravity": Quantity(0.0, 1000.0, "m/s^2", "acceleration of gravity"),
+    "restitution": Quantity(0.0, 1.0, "-", "coefficient of restitution (None: Housner's, Eq. 14)", low_open=False,
                       optional=True),
-    "kappa": _q(0.0, v.MAX_KAPPA, "-", "dimensionless stiffness 4 K b^2/(m g R)", low_open=False),
-    "damping_ratio": _q(0.0, v.MAX_DAMPING_RATIO, "-", "damping ratio xi", low_open=False),
-    "ultimate_rotation": _q(0.0, math.pi / 2, "rad", "rotation at which a restrainer breaks (None: alpha)",
+    "kappa": Quantity(0.0, v.MAX_KAPPA, "-", "dimensionless stiffness 4 K b^2/(m g R)", low_open=False),
+    "damping_ratio": Quantity(0.0, v.MAX_DAMPING_RATIO, "-", "damping ratio xi", low_open=False),
+    "ultimate_rotation": Quantity(0.0, math.pi / 2, "rad", "rotation at which a restrainer breaks (None: alpha)",
                             optional=True),
     # control, sensing and noise
-    "sampling_time": _q(0.0, v.MAX_TIME_SPAN, "s", "controller sampling time T_s (0: continuous)", low_open=False),
-    "delay": _q(0.0, v.MAX_TIME_SPAN, "s", "actuation delay", low_open=False),
-    "band": _q(0.0, MAX_BAND, "Hz", "low-pass cut-off (None: no filter)", optional=True),
-    "noise_level": _q(0.0, 1.0, "-", "noise level N", low_open=False, high_open=True),
-    "noise_step": _q(0.0, v.MAX_NOISE_STEP, "s", "sampling step of a noisy record"),
-    "noise_span": _q(0.0, v.MAX_TIME_SPAN, "s", "noise after the excitation", low_open=False),
-    "seed": _q(0.0, v.MAX_INTEGER, "", "seed of the random numbers", low_open=False, integer=True),
-    "realisation": _q(0.0, v.MAX_INTEGER, "", "index of a noise realisation", low_open=False, integer=True),
-    "sample_count": _q(0.0, v.MAX_RECORD_SAMPLES, "", "number of samples", low_open=False, integer=True),
+    "sampling_time": Quantity(0.0, v.MAX_TIME_SPAN, "s", "controller sampling time T_s (0: continuous)",
+                              low_open=False),
+    "delay": Quantity(0.0, v.MAX_TIME_SPAN, "s", "actuation delay", low_open=False),
+    "band": Quantity(0.0, MAX_BAND, "Hz", "low-pass cut-off (None: no filter)", optional=True),
+    "noise_level": Quantity(0.0, 1.0, "-", "noise level N", low_open=False, high_open=True),
+    "noise_step": Quantity(0.0, v.MAX_NOISE_STEP, "s", "sampling step of a noisy record"),
+    "noise_span": Quantity(0.0, v.MAX_TIME_SPAN, "s", "noise after the excitation", low_open=False),
+    "seed": Quantity(0.0, v.MAX_INTEGER, "", "seed of the random numbers", low_open=False, integer=True),
+    "realisation": Quantity(0.0, v.MAX_INTEGER, "", "index of a noise realisation", low_open=False, integer=True),
+    "sample_count": Quantity(0.0, v.MAX_RECORD_SAMPLES, "", "number of samples", low_open=False, integer=True),
     # integration
-    "initial_rotation": _q(-math.pi / 2, math.pi / 2, "rad", "initial rotation theta_0", low_open=False),
-    "initial_velocity": _q(None, None, "rad/s", "initial rotational velocity"),
-    "rest_velocity": _q(0.0, None, "rad/s", "|theta_dot+| below which an impact ends the motion",
+    "initial_rotation": Quantity(-math.pi / 2, math.pi / 2, "rad", "initial rotation theta_0", low_open=False),
+    "initial_velocity": Quantity(None, None, "rad/s", "initial rotational velocity"),
+    "rest_velocity": Quantity(0.0, None, "rad/s", "|theta_dot+| below which an impact ends the motion",
                         low_open=False, optional=True),
-    "rtol": _q(*RTOL_RANGE, "-", "relative integration tolerance", low_open=False, optional=True),
-    "atol": _q(*ATOL_RANGE, "-", "absolute integration tolerance", low_open=False, optional=True),
+    "rtol": Quantity(*RTOL_RANGE, "-", "relative integration tolerance", low_open=False, optional=True),
+    "atol": Quantity(*ATOL_RANGE, "-", "absolute integration tolerance", low_open=False, optional=True),
     # fragility
-    "intensity_resolution": _q(0.0, v.MAX_AMPLITUDE_RATIO, "intensity measure",
+    "intensity_resolution": Quantity(0.0, v.MAX_AMPLITUDE_RATIO, "intensity measure",
                                "width of a record threshold's final bracket"),
-    "suite_records": _q(1, v.MAX_SUITE_RECORDS, "", "number of records of a suite", low_open=False, integer=True),
-    "stripe_count": _q(2, v.MAX_LIST_ITEMS, "", "number of PGA levels (stripes)", low_open=False, integer=True),
-    "bootstrap": _q(0.0, v.MAX_BOOTSTRAP, "", "bootstrap draws", low_open=False, integer=True),
+    "suite_records": Quantity(1, v.MAX_SUITE_RECORDS, "", "number of records of a suite", low_open=False, integer=True),
+    "stripe_count": Quantity(2, v.MAX_LIST_ITEMS, "", "number of PGA levels (stripes)", low_open=False, integer=True),
+    "bootstrap": Quantity(0.0, v.MAX_BOOTSTRAP, "", "bootstrap draws", low_open=False, integer=True),
 }
 """Every kind of numeric input, by name."""
 
@@ -256,7 +249,8 @@ bounds the work and the memory a call may take (the engine steps to every record
 def check_arguments(owner: str, values: dict, names=None) -> dict:
     """Check each argument of ``owner`` that :data:`ARGUMENTS` declares and ``values`` holds, against its
     quantity. The error names the argument as ``names[argument]`` (the caller's option or config key), else
-    as ``"<owner>.<argument>"`` for a class's field (``Block.width``) and by its name for a function's.
+    as ``"<owner>.<argument>"`` for a class's field (``Block.width``) and by its name for the argument of a
+    function or a method.
     Returns the checked values (floats or ints; None where optional).
 
     Parameters
@@ -274,7 +268,8 @@ def check_arguments(owner: str, values: dict, names=None) -> dict:
         For the first argument out of its declared type or range, naming it, the value and the range.
     """
     names = names or {}
-    prefix = f"{owner}." if owner[:1].isupper() else ""  # a class's field is Block.width, a function's argument dt
+    # a class's field is Block.width; a function's or a method's argument (Record.motion's scale) is its name
+    prefix = f"{owner}." if owner[:1].isupper() and "." not in owner else ""
     out = {}
     for arg, quantity in ARGUMENTS[owner].items():
         if arg in values:

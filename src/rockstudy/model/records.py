@@ -180,7 +180,7 @@ class Record:
             ``kind="record"`` with ``amplitude=scale``, ``record`` in m/s^2 and a nominal
             ``omega = 2π/duration`` (not used for records).
         """
-        scale = check_arguments("Record.motion", {"scale": scale}, {"scale": "scale"})["scale"]
+        scale = check_arguments("Record.motion", {"scale": scale})["scale"]
         return GroundMotion(kind="record", amplitude=scale, omega=2.0 * math.pi / self.duration,
                             duration=self.duration, record_dt=self.dt, record=self.acceleration)
 
