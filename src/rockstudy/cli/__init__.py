@@ -146,6 +146,12 @@ def main(argv=None):
         parser.error(str(exc))
     except BrokenPipeError:
         return _quiet_broken_pipe()
+    except ValueError as exc:  # a result strict JSON cannot carry (NaN, inf): one line, nothing printed
+        from rockstudy.cli.output import NonFiniteOutputError
+        if not isinstance(exc, NonFiniteOutputError):
+            raise
+        sys.stderr.write(f"{parser.prog}: error: {exc}\n")
+        return 1
     except KeyboardInterrupt:
         return _interrupted()
     except SystemError as exc:  # Ctrl-C while numba's compiled code called back into Python
