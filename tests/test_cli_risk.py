@@ -123,7 +123,7 @@ def test_target_median_is_the_closed_form(tmp_path, hazard_file, capsys):
 def test_bad_risk_input_is_refused(tmp_path, hazard_file, capsys):
     bad = tmp_path / "bad.txt"
     bad.write_text("0.1, 1e-2\n0.2, 2e-2\n")
-    refused(["risk", "--median", "0.5", "--dispersion", "0.4", "--hazard", str(bad)], capsys, "line 2", "does not fall")
+    refused(["risk", "--median", "0.5", "--dispersion", "0.4", "--hazard", str(bad)], capsys, "line 2", "rises above")
     refused(["risk", "--median", "0.5", "--hazard", hazard_file], capsys, "--dispersion")
     refused(["risk", "--median", "0.5", "--dispersion", "0.4"], capsys, "--hazard")
     refused(["risk", "--median", "0.5", "--dispersion", "0.4", "--scenario", "mag=7,dist_rup"], capsys, "KEY=VALUE")

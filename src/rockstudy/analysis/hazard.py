@@ -6,11 +6,10 @@ reading of a hazard curve (Cornell et al. [1]_) — and, below its first and bey
 first and last segments' power laws are extended (:data:`EXTENSIONS`). :func:`rockstudy.analysis.risk.annual_rate`
 reports how much of a rate of overturning comes from these extensions.
 
-A hazard file is text: two columns, PGA [g] and annual rate of exceedance [1/yr], separated by a comma
-or white space; ``#`` starts a comment; blank lines are skipped. The USGS Unified Hazard Tool and
-OpenQuake's hazard-curve outputs (``hazard_curve-mean-PGA``: the intensity levels and their
-probabilities of exceedance in the investigation time) give such curves; a probability p in t years
-is the rate −ln(1 − p)/t.
+The simplest hazard file is text: two columns, PGA [g] and annual rate of exceedance [1/yr], separated by
+a comma or white space; ``#`` starts a comment; blank lines are skipped (:func:`parse_hazard_text`).
+:mod:`rockstudy.analysis.hazard_files` reads the files of OpenQuake, nshmp-haz and the USGS hazard tool too,
+one or many sites each.
 
 References
 ----------
@@ -20,11 +19,9 @@ References
 """
 from __future__ import annotations
 
-import dataclasses
 import math
 import re
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
@@ -54,7 +51,8 @@ class HazardCurve:
     pga_g : array_like
         PGA levels x_i, rising, > 0. [g]
     annual_rate : array_like
-        Annual rate of exceedance λ_i at each level, falling, > 0. [1/yr]
+        Annual rate of exceedance λ_i at each level, > 0 and not rising (a flat segment: no ground motion
+        between its levels). [1/yr]
     source : str
         Where the curve comes from (a file name, a model).
     """
@@ -73,14 +71,14 @@ class HazardCurve:
             raise validation.InputError("hazard curve: PGA and annual rate must be finite and > 0")
         if np.any(np.diff(x) <= 0):
             raise validation.InputError("hazard curve: PGA must rise from point to point")
-        if np.any(np.diff(rate) >= 0):
-            raise validation.InputError("hazard curve: the annual rate of exceedance must fall as PGA rises")
+        if np.any(np.diff(rate) > 0):
+            raise validation.InputError("hazard curve: the annual rate of exceedance must not rise as PGA rises")
         object.__setattr__(self, "pga_g", x)
         object.__setattr__(self, "annual_rate", rate)
 
     @property
     def slopes(self) -> np.ndarray:
-        """s_i = −d ln λ / d ln x of each segment (> 0). [-]"""
+        """s_i = −d ln λ / d ln x of each segment (≥ 0; 0 on a flat segment). [-]"""
         return -np.diff(np.log(self.annual_rate)) / np.diff(np.log(self.pga_g))
 
     def rate(self, x) -> np.ndarray:
@@ -107,6 +105,8 @@ class HazardCurve:
         lr = np.log(self.annual_rate)
         v = math.log(annual_rate)
         i = int(np.clip(np.searchsorted(-lr, -v, side="right") - 1, 0, lr.size - 2))
+        if self.slopes[i] == 0:  # a flat segment holds the rate over its whole span: its first point
+            return float(self.pga_g[i])
         return float(self.pga_g[i] * math.exp((lr[i] - v) / self.slopes[i]))
 
 
@@ -142,9 +142,9 @@ def parse_hazard_text(text: str, name: str = "hazard file") -> HazardCurve:
         if pga and values[0] <= pga[-1]:
             raise HazardFileError(f"{name}, line {number}: PGA {values[0]:g} g does not rise above the previous "
                                   f"line's {pga[-1]:g} g")
-        if rate and values[1] >= rate[-1]:
-            raise HazardFileError(f"{name}, line {number}: the annual rate {values[1]:g} /yr does not fall below the "
-                                  f"previous line's {rate[-1]:g} /yr (rates of exceedance fall as PGA rises)")
+        if rate and values[1] > rate[-1]:
+            raise HazardFileError(f"{name}, line {number}: the annual rate {values[1]:g} /yr rises above the "
+                                  f"previous line's {rate[-1]:g} /yr (rates of exceedance do not rise with PGA)")
         pga.append(values[0])
         rate.append(values[1])
         if len(pga) > MAX_HAZARD_POINTS:
@@ -154,8 +154,9 @@ def parse_hazard_text(text: str, name: str = "hazard file") -> HazardCurve:
     return HazardCurve(np.array(pga), np.array(rate), source=name)
 
 
-def read_hazard_curve(path, name: str | None = None) -> HazardCurve:
-    """A hazard curve from a hazard file (see the module's description; at most :data:`MAX_HAZARD_BYTES`).
+def read_hazard_curve(path, name: str | None = None, unit: str | None = None) -> HazardCurve:
+    """The hazard curve of a one-site hazard file, in any layout of
+    :func:`rockstudy.analysis.hazard_files.read_hazard_sites` (at most :data:`MAX_HAZARD_BYTES`).
 
     Parameters
     ----------
@@ -163,11 +164,16 @@ def read_hazard_curve(path, name: str | None = None) -> HazardCurve:
         The hazard file.
     name : str or None, default None
         The input's name in error messages (e.g. a config key); None: the path.
+    unit : str or None, default None
+        The unit of the PGA levels; None: the file's, else g (checked to be plausible).
+
+    Raises
+    ------
+    HazardFileError
+        Also when the file holds several sites (read them with ``read_hazard_sites``).
     """
-    name = name or str(path)
-    path = validation.check_input_file(name, path, MAX_HAZARD_BYTES)
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except UnicodeDecodeError:
-        raise HazardFileError(f"{name}: not a text file (UTF-8)") from None
-    return dataclasses.replace(parse_hazard_text(text, str(name)), source=str(path))
+    from rockstudy.analysis.hazard_files import read_hazard_sites
+    sites = read_hazard_sites(path, name, unit)
+    if len(sites) > 1:
+        raise HazardFileError(f"{name or path}: {len(sites)} sites; read_hazard_sites gives each one's curve")
+    return sites[0].curve
