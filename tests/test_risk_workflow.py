@@ -25,7 +25,8 @@ def tiny_with_risk(tmp_path, hazard=True):
     if hazard:
         x = np.geomspace(0.001, 20.0, 200)
         path = tmp_path / "site.txt"
-        path.write_text("".join(f"{float(a)!r} {float(1e-4 * a ** -2.5)!r}\n" for a in x))
+        path.write_text("# PGA [g], annual rate of exceedance [1/yr]\n"
+                        + "".join(f"{float(a)!r} {float(1e-4 * a ** -2.5)!r}\n" for a in x))
         config["risk"]["hazard_curves"] = {"site": str(path)}
     return config
 

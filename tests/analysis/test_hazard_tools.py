@@ -7,8 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rockstudy.analysis.hazard import HazardFileError, read_hazard_curve
-from rockstudy.analysis.hazard_files import parse_hazard_sites, read_hazard_sites
+from rockstudy.analysis.hazard import HazardFileError, parse_hazard_sites, read_hazard_curve, read_hazard_sites
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "hazard"
 

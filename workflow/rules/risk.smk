@@ -5,7 +5,7 @@
 RISK = config.get("risk")
 
 if RISK and BEYOND:
-    from rockstudy.analysis import risk as risk_analysis
+    from rockstudy.analysis import risk_sites as risk_analysis
 
     RISK_HAZARD = risk_analysis.check_config(RISK)  # every scenario in range and hazard file readable, at load
     RISK_FILES = (
@@ -40,6 +40,8 @@ if RISK and BEYOND:
             gmm=RISK["gmm"],
             scenarios=RISK.get("scenarios") or {},
             hazard_curves=RISK.get("hazard_curves") or {},
+            hazard_units=RISK.get("hazard_units") or {},
+            outside_gmm_range=bool(RISK.get("outside_gmm_range")),
             library=BOOKKEEPING,
         conda:
             "../envs/rockstudy.yaml"
