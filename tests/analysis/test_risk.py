@@ -13,13 +13,13 @@ from rockstudy.analysis.risk import (
     HazardExtensionWarning,
     LognormalFragility,
     annual_rate,
-    devices_meeting,
     fragility_from_dataset,
     median_for_target,
     probability_in_years,
     rate_for_probability,
     scenario_probability,
 )
+from rockstudy.analysis.risk_devices import devices_meeting
 
 K0, K = 1e-4, 2.5
 """Power-law hazard λ(x) = k0 x^-k: k0 the rate of exceeding 1 g. [1/yr]"""

@@ -27,6 +27,10 @@ for a dispersion β.
 ground-motion model (:mod:`rockstudy.analysis.ground_motion`),
 P(overturn | scenario) = Φ((ln μ − ln θ)/√(β² + σ²)) (Eq. R3).
 
+The risk at many sites and the study's risk dataset are built in :mod:`rockstudy.analysis.risk_sites`; which
+devices of a design sweep reach a risk-targeted median, in :mod:`rockstudy.analysis.risk_devices`. Every rate
+leaving :func:`annual_rate` is finite and ≥ 0 (else :class:`RiskRangeError` names the fragility and the curve).
+
 The fragility of a record set's dataset (:func:`fragility_from_dataset`) is the stripes' lognormal
 fit in PGA: it estimates P(overturn | PGA = x) at each level, which is what Eq. R1 integrates. A fit
 of the records' thresholds (the first overturning scale of each record) would estimate a different
@@ -458,66 +462,27 @@ def median_for_target(hazard: HazardCurve, dispersion: float, *, target_rate: fl
                          years=years, extension=extension, allow_extrapolation=allow_extrapolation).median_g
 
 
-def devices_meeting(devices: xr.Dataset, median_g: float) -> list[dict]:
-    """Which devices of a device sweep have a fragility median at or above ``median_g``, one row per
-    (strategy, κ_max, ξ), with the fit status that decides where the median is not finite (a device that never
-    overturns on the stripes meets every target, one that always overturns none:
-    :func:`device_verdicts`).
+def threshold_fit(fragility: xr.Dataset, strategy: str):
+    """Lognormal fit of a record set's per-record threshold PGA [g] for ``strategy``
+    (:func:`rockstudy.analysis.fragility_fit.fit_lognormal_thresholds`), a record without a threshold
+    censored at its PGA at the last stripe level.
+
+    It describes the first overturning of each record along its scale, not P(overturn | PGA): a record
+    may overturn the block at one scale and not at a higher one, so it differs from the stripes' fit
+    that the risk uses.
 
     Parameters
     ----------
-    devices : xarray.Dataset
-        A device sweep (:func:`rockstudy.studies.design.gather_devices`): ``fragility_median`` [g] and
-        ``fit_status`` over (strategy, kappa_max, damping_ratio).
-    median_g : float
-        The median a device must reach, e.g. from :func:`median_for_target`. [g]
-
-    Returns
-    -------
-    list of dict
-        ``strategy``, ``kappa_max``, ``damping_ratio``, ``median_g`` (None where the fit has none),
-        ``fit_status`` ("" when the sweep has none) and ``meets``.
+    fragility : xarray.Dataset
+        A record set's fragility (:func:`rockstudy.analysis.fragility.suite_fragility_dataset`) with
+        ``threshold_pga``, ``record_intensity`` and ``record_pga``.
+    strategy : str
+        The control strategy, a value of the dataset's ``strategy`` coordinate.
     """
-    meets = device_verdicts(devices, median_g)
-    rows = []
-    for s in devices["strategy"].values:
-        for k in devices["kappa_max"].values:
-            for xi in devices["damping_ratio"].values:
-                at = {"strategy": s, "kappa_max": k, "damping_ratio": xi}
-                m = float(devices["fragility_median"].sel(**at))
-                status = str(devices["fit_status"].sel(**at).values) if "fit_status" in devices else ""
-                rows.append({"strategy": str(s), "kappa_max": float(k), "damping_ratio": float(xi),
-                             "median_g": m if math.isfinite(m) else None, "fit_status": status,
-                             "meets": bool(meets.sel(**at))})
-    return rows
-
-
-def device_verdicts(devices: xr.Dataset, target_g: float) -> xr.DataArray:
-    """Whether each device of the sweep reaches the target median, over (strategy, kappa_max, damping_ratio):
-    its median at or above ``target_g``, or its fit status "no overturning"; never for "all overturned"
-    (:func:`rockstudy.analysis.fragility_fit.median_reaches`). A NaN median with no status says neither: it
-    does not reach.
-
-    Parameters
-    ----------
-    devices : xarray.Dataset
-        The device sweep (:func:`rockstudy.studies.design.gather_devices`).
-    target_g : float
-        The target median PGA. [g]
-    """
-    import xarray as xr
-
-    from rockstudy.analysis.fragility_fit import ALWAYS_OVERTURNS, NEVER_OVERTURNS, median_reaches
-    medians = devices["fragility_median"]
-    status = devices["fit_status"] if "fit_status" in devices else xr.full_like(medians, "", dtype=object)
-
-    def one(m, st):
-        st = str(st)
-        if st in (NEVER_OVERTURNS, ALWAYS_OVERTURNS) or math.isfinite(m):
-            return median_reaches(float(m), st, target_g)
-        return False
-
-    return xr.apply_ufunc(np.vectorize(one, otypes=[bool]), medians, status)
+    from rockstudy.analysis.fragility_fit import fit_lognormal_thresholds
+    top_pga = (float(fragility["intensity"].values[-1]) / fragility["record_intensity"].values
+               * fragility["record_pga"].values)
+    return fit_lognormal_thresholds(fragility["threshold_pga"].sel(strategy=strategy).values, top_pga)
 
 
 # --- Eq. R3: one scenario ---------------------------------------------------------------------------

@@ -26,6 +26,7 @@ from rockstudy.analysis.risk import (
     annual_rate,
     fragility_from_dataset,
     scenario_probability,
+    threshold_fit,
 )
 from rockstudy.core import validation
 from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, RISK_INPUTS
@@ -237,6 +238,10 @@ def _fragility_part(fragility: xr.Dataset, strategies, fits) -> xr.Dataset:
                                   "each stripe level)"})
     ds["fragility_dispersion"] = ("strategy", [f.dispersion if f else nan for f in fits.values()],
                                   {"units": "1", "long_name": "fragility dispersion beta used (the stripes' fit)"})
+    if "fit_status" in fragility:
+        ds["fit_status"] = ("strategy", [str(fragility["fit_status"].sel(strategy=s).values) for s in strategies],
+                            {"long_name": "status of the stripes' fit (rockstudy.analysis.fragility_fit.FragilityFit); "
+                                          "without a fitted median the strategy's risk is NaN"})
     for name in ("median_low_physical", "median_high_physical"):
         if name in fragility:
             ds[name.removesuffix("_physical")] = ("strategy", fragility[name].values.astype(float), {
@@ -313,29 +318,6 @@ def _hazard_part(ds: xr.Dataset, fits, strategies, hazard_curves: dict, years: f
     ds["reduction_percent"] = (("strategy", "hazard"), 100 * (1 - rate / rate[strategies.index("FS")]), {
         "units": "percent", "long_name": "reduction of the annual rate of overturning over FS"})
     return ds
-
-
-def threshold_fit(fragility: xr.Dataset, strategy: str):
-    """Lognormal fit of a record set's per-record threshold PGA [g] for ``strategy``
-    (:func:`rockstudy.analysis.fragility_fit.fit_lognormal_thresholds`), a record without a threshold
-    censored at its PGA at the last stripe level.
-
-    It describes the first overturning of each record along its scale, not P(overturn | PGA): a record
-    may overturn the block at one scale and not at a higher one, so it differs from the stripes' fit
-    that the risk uses.
-
-    Parameters
-    ----------
-    fragility : xarray.Dataset
-        A record set's fragility (:func:`rockstudy.analysis.fragility.suite_fragility_dataset`) with
-        ``threshold_pga``, ``record_intensity`` and ``record_pga``.
-    strategy : str
-        The control strategy, a value of the dataset's ``strategy`` coordinate.
-    """
-    from rockstudy.analysis.fragility_fit import fit_lognormal_thresholds
-    top_pga = (float(fragility["intensity"].values[-1]) / fragility["record_intensity"].values
-               * fragility["record_pga"].values)
-    return fit_lognormal_thresholds(fragility["threshold_pga"].sel(strategy=strategy).values, top_pga)
 
 
 def _probability_range(fits, ds, strategies, probabilities, n_sites):

@@ -336,6 +336,7 @@ def _hazard(args, fragility, edges, years: float, base: dict) -> dict:
 
 def _target(args, parser, targets, years: float) -> dict:
     from rockstudy.analysis import risk
+    from rockstudy.analysis.risk_devices import devices_meeting
     if len(targets) > 1:
         parser.error("give one target: --target-rate or --target-probability")
     if args.hazard is None:
@@ -361,7 +362,7 @@ def _target(args, parser, targets, years: float) -> dict:
         if found.extrapolated:
             row["decades_outside_curve"] = found.decades_outside
         if devices is not None:
-            row["devices"] = risk.devices_meeting(devices, found.median_g)
+            row["devices"] = devices_meeting(devices, found.median_g)
         rows.append(row)
     return _one_or_many(rows, {"dispersion": dispersion, "target_rate": rate,
                                "target_probability": risk.probability_in_years(rate, years), "years": years,

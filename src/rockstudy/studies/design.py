@@ -30,7 +30,7 @@ import xarray as xr
 from rockstudy._version import __version__
 from rockstudy.analysis.fragility_fit import ALWAYS_OVERTURNS, NEVER_OVERTURNS, fit_lognormal
 from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturned
-from rockstudy.analysis.risk import device_verdicts
+from rockstudy.analysis.risk_devices import device_verdicts
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.analysis.spectra import AmplitudeGrid, spectrum
 from rockstudy.analysis.utility_index import utility_index
