@@ -99,3 +99,17 @@ def test_bad_tool_files_name_the_line(text, words):
         parse_hazard_sites(text, "f.csv")
     message = str(err.value)
     assert message.startswith("f.csv") and all(w in message for w in words) and message.count("\n") < 3
+
+
+def test_usgs_json_with_components_reads_the_total():
+    """The newer service layout (``xvalues``, one ``yvalues`` per ``component``), made by editing the real file:
+    the Total curve is read, whatever the other components hold."""
+    import json
+    doc = json.loads((DATA / "usgs-hazard-tool-curve.json").read_text())
+    for response in doc["response"]:
+        response["metadata"]["xvalues"] = response["metadata"].pop("xvals")
+        total = response["data"][0]["yvals"]
+        response["data"] = [{"component": "Fault", "yvalues": [v / 2 for v in total]},
+                            {"component": "Total", "yvalues": total}]
+    (site,) = parse_hazard_sites(json.dumps(doc), "edited.json")
+    assert site.curve.rate(0.103) == pytest.approx(0.020243, rel=1e-12) and site.lon == -118.0

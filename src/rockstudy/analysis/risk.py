@@ -317,9 +317,11 @@ def annual_rate(fragility: LognormalFragility, hazard: HazardCurve, *, band_edge
         rates = np.where(below | above, 0.0, rates)
     total = float(rates.sum())
     if not (math.isfinite(with_tails) and total >= 0):
+        side = "below its first point" if not math.isfinite(rate_below) else "beyond its last point"
         raise RiskRangeError(f"the rate of overturning of the fragility (median {fragility.median_g:g} g, "
                              f"dispersion {fragility.dispersion:g}) on {hazard.source or 'the hazard curve'} is "
-                             f"{with_tails}, not a finite rate: the median lies too far below the curve's points")
+                             f"{with_tails}, not a finite rate: the curve's end segment extended {side} outgrows "
+                             "the fragility; give the curve over the fragility's range of PGA")
     tail_share = (rate_below + rate_above) / with_tails if with_tails > 0 else 0.0
     if warn and tail_share > TAIL_WARNING_SHARE:
         where = "counted" if extension == "loglog" else "left out"

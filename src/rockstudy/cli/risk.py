@@ -262,7 +262,7 @@ def run_risk(args, parser) -> None:
 
 def _sites(args):
     from rockstudy.analysis.hazard import read_hazard_sites
-    sites = read_hazard_sites(args.hazard, "--hazard", args.hazard_unit)
+    sites = read_hazard_sites(args.hazard, f"--hazard {args.hazard}", args.hazard_unit)
     return {(s.label if len(sites) > 1 else args.hazard): s for s in sites}
 
 

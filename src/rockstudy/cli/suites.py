@@ -54,7 +54,8 @@ def _cmd_records(args, parser):
             parser.error("--json and --csv list records; --export writes one (its summary is JSON already)")
         return run_export(args, parser)
     if given:
-        parser.error(f"{' and '.join(given)} go(es) with --export SUITE:ID (the record to write)")
+        parser.error(f"{' and '.join(given)} {'go' if len(given) > 1 else 'goes'} with --export SUITE:ID (the "
+                     "record to write)")
     from rockstudy.model import record_suites
     suites = record_suites.suite_names()
     if args.suite is not None:
