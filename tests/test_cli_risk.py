@@ -123,10 +123,66 @@ def test_target_median_is_the_closed_form(tmp_path, hazard_file, capsys):
 def test_bad_risk_input_is_refused(tmp_path, hazard_file, capsys):
     bad = tmp_path / "bad.txt"
     bad.write_text("0.1, 1e-2\n0.2, 2e-2\n")
-    refused(["risk", "--median", "0.5", "--dispersion", "0.4", "--hazard", str(bad)], capsys, "line 2", "does not fall")
+    refused(["risk", "--median", "0.5", "--dispersion", "0.4", "--hazard", str(bad)], capsys, "line 2", "rises above")
     refused(["risk", "--median", "0.5", "--hazard", hazard_file], capsys, "--dispersion")
     refused(["risk", "--median", "0.5", "--dispersion", "0.4"], capsys, "--hazard")
     refused(["risk", "--median", "0.5", "--dispersion", "0.4", "--scenario", "mag=7,dist_rup"], capsys, "KEY=VALUE")
     refused(["risk", "--median", "0.5", "--dispersion", "9", "--hazard", hazard_file], capsys, "--dispersion")
     refused(["risk", "--dispersion", "0.4", "--hazard", hazard_file, "--target-probability", "1.5"], capsys,
             "--target-probability")
+
+
+DATA = ROOT / "tests" / "data" / "hazard"
+
+
+def test_risk_at_every_site_of_a_real_file(capsys):
+    """An nshmp-haz curves file of 7 sites: one entry each, with name, lon and lat; a step fragility at a level
+    of the curve gives that level's rate (Oakland: 1.28698458e-03 /yr at 0.103 g)."""
+    out = run(["risk", "--median", "0.103", "--dispersion", "0", "--hazard", str(DATA / "nshmp-haz" / "PGA" /
+                                                                                 "total.csv")], capsys)
+    assert len(out["sites"]) == 7 and out["median_g"] == 0.103
+    (oakland,) = [s for s in out["sites"] if s["name"] == "Oakland CA"]
+    assert (oakland["lon"], oakland["lat"]) == (-122.25, 37.8)
+    assert oakland["annual_rate"] == pytest.approx(1.28698458e-03, rel=1e-12)
+    one = run(["risk", "--median", "0.3", "--dispersion", "0.4", "--hazard", str(DATA / "usgs-hazard-tool-curve.json")],
+              capsys)
+    assert "sites" not in one and (one["lon"], one["lat"]) == (-118.0, 34.0) and 0 <= one["probability"] <= 1
+
+
+def test_a_curve_in_m_per_s2_is_refused_unless_its_unit_is_stated(tmp_path, capsys):
+    levels = np.array([0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 3.0])
+    rates = np.array([1.2e-1, 4e-2, 1.5e-2, 4e-3, 4.5e-4, 5e-5, 4e-6, 6e-7])
+    path = tmp_path / "ms2.txt"
+    path.write_text("".join(f"{float(x * 9.80665)!r} {float(r)!r}\n" for x, r in zip(levels, rates)))
+    refused(["risk", "--median", "0.5", "--dispersion", "0.4", "--hazard", str(path)], capsys, "--hazard",
+            "state it")
+    stated = run(["risk", "--median", "0.5", "--dispersion", "0.4", "--hazard", str(path), "--hazard-unit", "m/s2"],
+                 capsys)
+    path.write_text("".join(f"{float(x)!r} {float(r)!r}\n" for x, r in zip(levels, rates)))
+    in_g = run(["risk", "--median", "0.5", "--dispersion", "0.4", "--hazard", str(path)], capsys)
+    assert stated["annual_rate"] == pytest.approx(in_g["annual_rate"], rel=1e-12)
+
+
+def test_a_target_beyond_the_curve_is_refused_or_flagged(tmp_path, capsys):
+    path = tmp_path / "short.txt"
+    path.write_text("# PGA [g], annual rate [1/yr]\n0.001 1e-2\n0.002 3e-3\n0.005 5e-4\n")
+    refused(["risk", "--dispersion", "0.4", "--hazard", str(path), "--target-rate", "1e-6"], capsys,
+            "decades beyond")
+    out = run(["risk", "--dispersion", "0.4", "--hazard", str(path), "--target-rate", "1e-6",
+               "--allow-extrapolation"], capsys)
+    assert out["extrapolated"] is True and out["decades_outside_curve"] > 1
+
+
+def test_no_nan_or_infinity_leaves(hazard_file, capsys):
+    refused(["risk", "--median", "1e-300", "--dispersion", "0.4", "--hazard", hazard_file], capsys, "median 1e-300")
+    out = run(["risk", "--median", "0.6", "--dispersion", "1e-300", "--hazard", hazard_file], capsys)
+    assert out["annual_rate"] == pytest.approx(K0 * 0.6 ** -K, rel=1e-6)  # the step's λ_IM(θ)
+
+
+def test_a_scenario_outside_the_models_range(capsys):
+    pytest.importorskip("pygmm")
+    refused(["risk", "--median", "0.5", "--dispersion", "0.4", "--scenario", "mag=3,dist_rup=10,v_s30=400", "--gmm",
+             "CY14"], capsys, "mag = 3", "CY14")
+    out = run(["risk", "--median", "0.5", "--dispersion", "0.4", "--scenario", "mag=3,dist_rup=10,v_s30=400", "--gmm",
+               "CY14", "--outside-gmm-range"], capsys)
+    assert any("CY14's range" in w for w in out["warnings"])

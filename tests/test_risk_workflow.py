@@ -25,8 +25,10 @@ def tiny_with_risk(tmp_path, hazard=True):
     if hazard:
         x = np.geomspace(0.001, 20.0, 200)
         path = tmp_path / "site.txt"
-        path.write_text("".join(f"{float(a)!r} {float(1e-4 * a ** -2.5)!r}\n" for a in x))
-        config["risk"]["hazard_curves"] = {"site": str(path)}
+        path.write_text("# PGA [g], annual rate of exceedance [1/yr]\n"
+                        + "".join(f"{float(a)!r} {float(1e-4 * a ** -2.5)!r}\n" for a in x))
+        config["risk"]["hazard_curves"] = {"site": str(path), "bay": str(ROOT / "tests" / "data" / "hazard" /
+                                                                          "openquake-hazard_curve-mean_PGA.csv")}
     return config
 
 
@@ -45,7 +47,8 @@ def test_risk_targets_are_in_the_dag(tmp_path):
     res = dry_run(tiny_with_risk(tmp_path), tmp_path, "risk")
     assert res.returncode == 0, res.stderr + res.stdout
     for name in ("p695-far-field", "p695-near-field-pulse"):
-        for path in (f"risk/{name}.nc", f"tables/risk_{name}.md", f"figures/risk_{name}.png"):
+        for path in (f"risk/{name}.nc", f"tables/risk_{name}.md", f"figures/risk_{name}.png",
+                     f"figures/risk_sites_{name}.png"):
             assert path in res.stdout
     res = dry_run(tiny_with_risk(tmp_path), tmp_path)  # `all`: the report's pages of the risk tables too
     assert res.returncode == 0, res.stderr + res.stdout
@@ -58,6 +61,8 @@ def test_risk_targets_are_in_the_dag(tmp_path):
     (lambda r: r["scenarios"]["M7_R10"].update(mag=9.5), ["mag"]),
     (lambda r: r["scenarios"]["M7_R10"].pop("v_s30"), ["v_s30"]),
     (lambda r: r["hazard_curves"].update(site="nowhere.txt"), ["risk.hazard_curves.site", "does not exist"]),
+    (lambda r: r["scenarios"]["M7_R10"].update(v_s30=150.0), ["M7_R10", "v_s30 = 150", "ASK14"]),
+    (lambda r: r.update(hazard_units={"other": "g"}), ["risk.hazard_units", "other"]),
 ])
 def test_a_bad_risk_section_is_refused_on_load(tmp_path, change, words):
     config = tiny_with_risk(tmp_path)
@@ -90,6 +95,11 @@ def test_a_small_risk_study(tmp_path):
         p = float(risk.probability.sel(strategy=s, hazard="site"))
         assert p == pytest.approx(-math.expm1(-50 * expected), rel=1e-12)
     assert float(risk.reduction_percent.sel(strategy="FS", hazard="site")) == 0.0
+    # every site of the OpenQuake file, with its coordinates, and the map of them
+    bay = [h for h in risk.hazard.values if str(h).startswith("bay/")]
+    assert len(bay) == 4 and float(risk.lon.sel(hazard=bay[0])) == -122.34
+    assert np.all((risk.probability.sel(hazard=bay).values >= 0) & (risk.probability.sel(hazard=bay).values <= 1))
+    assert (out / "figures" / "risk_sites_selection.png").stat().st_size > 0
     assert '"dip": 90.0' in str(risk.scenario_values.values[0])
     assert risk.median_pga.attrs["units"] == STANDARD_GRAVITY_UNITS
     for name in ("tables/risk_selection.md", "figures/risk_selection.png"):  # its HTML page: report_pages

@@ -47,3 +47,29 @@ def test_bad_scenarios_are_refused(scenario, words):
     assert all(w in str(err.value) for w in words)
     with pytest.raises(ValueError, match="gmm"):
         ground_motion.pga({"mag": 7, "dist_rup": 10, "v_s30": 400}, "XYZ14")
+
+
+@pytest.mark.parametrize("gmm, scenario, words", [
+    ("CY14", {"mag": 3.0, "dist_rup": 10, "v_s30": 400}, ["mag = 3", "CY14's range 3.5 to 8.5"]),
+    ("ASK14", {"mag": 7.0, "dist_rup": 10, "v_s30": 150}, ["v_s30 = 150", "ASK14's range 180 to 1000"]),
+    ("CB14", {"mag": 8.2, "dist_rup": 10, "v_s30": 400, "mechanism": "NS"}, ["exceeds CB14's 7.5"]),
+])
+def test_a_scenario_outside_its_models_range_is_refused_or_warned(gmm, scenario, words):
+    with pytest.raises(ValueError) as err:
+        ground_motion.pga(scenario, gmm)
+    assert all(w in str(err.value) for w in words), str(err.value)
+    with pytest.warns(ground_motion.GmmRangeWarning):
+        risk = scenario_risk(LognormalFragility(0.5, 0.4), scenario, gmm, outside_range=True)
+    assert risk.warnings and all(w in " ".join(risk.warnings) for w in words)
+    assert 0.0 <= risk.probability <= 1.0
+
+
+@pytest.mark.parametrize("scenario, words", [
+    ({"mag": 7, "dist_rup": 10, "dist_jb": 12, "v_s30": 400}, ["dist_jb = 12", "exceeds dist_rup"]),
+    ({"mag": 7, "dist_rup": 2, "v_s30": 400, "depth_tor": 5, "dist_jb": 0}, ["depth_tor = 5"]),
+    ({"mag": 7, "dist_rup": 10, "v_s30": 400, "dist_x": -20}, ["|dist_x| = 20"]),
+])
+def test_inconsistent_scenarios_are_refused(scenario, words):
+    with pytest.raises(ValueError) as err:
+        ground_motion.check_scenario(scenario)
+    assert all(w in str(err.value) for w in words), str(err.value)

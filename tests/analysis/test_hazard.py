@@ -24,7 +24,7 @@ def test_hazard_file_comma_or_spaces_with_comments(tmp_path):
 
 
 @pytest.mark.parametrize("text, words", [
-    ("0.01 1e-2\n0.1 2e-2\n", ["line 2", "does not fall"]),
+    ("0.01 1e-2\n0.1 2e-2\n", ["line 2", "rises above"]),
     ("0.1 1e-2\n0.01 1e-3\n", ["line 2", "does not rise"]),
     ("# header\n0.1 1e-2 7\n", ["line 2", "not two positive numbers"]),
     ("0.1 abc\n", ["line 1", "not two positive numbers"]),
@@ -40,3 +40,13 @@ def test_bad_hazard_files_name_the_line(text, words):
 def test_missing_file_is_refused(tmp_path):
     with pytest.raises(ValueError, match="does not exist"):
         read_hazard_curve(tmp_path / "nowhere.txt")
+
+
+def test_a_flat_segment_is_a_curve_with_no_motion_between_its_levels():
+    """nshmp-haz curves hold one rate over their lowest levels: a slope of 0, integrable and invertible (to
+    the highest level of that rate)."""
+    curve = HazardCurve([0.005, 0.01, 0.1, 1.0], [3e-3, 3e-3, 1e-3, 1e-5])
+    assert curve.slopes[0] == 0.0 and curve.rate(0.007) == pytest.approx(3e-3, rel=1e-12)
+    assert curve.pga_at_rate(3e-3) == 0.01 and curve.pga_at_rate(1e-4) == pytest.approx(10 ** -0.5, rel=1e-12)
+    with pytest.raises(ValueError, match="must not rise"):
+        HazardCurve([0.01, 0.1], [1e-3, 2e-3])

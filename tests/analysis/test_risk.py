@@ -13,13 +13,13 @@ from rockstudy.analysis.risk import (
     HazardExtensionWarning,
     LognormalFragility,
     annual_rate,
-    devices_meeting,
     fragility_from_dataset,
     median_for_target,
     probability_in_years,
     rate_for_probability,
     scenario_probability,
 )
+from rockstudy.analysis.risk_devices import devices_meeting
 
 K0, K = 1e-4, 2.5
 """Power-law hazard λ(x) = k0 x^-k: k0 the rate of exceeding 1 g. [1/yr]"""
@@ -139,7 +139,7 @@ def test_risk_dataset_and_table(tmp_path):
     """Two strategies' fragilities on a power-law site and a scenario (needs pygmm): Cornell's rate, the
     reduction over FS, the range from the median's interval, and one table row per strategy."""
     pytest.importorskip("pygmm")
-    from rockstudy.analysis.risk import risk_dataset
+    from rockstudy.analysis.risk_sites import risk_dataset
     from rockstudy.report import risk_markdown
     fragility = xr.Dataset({"fragility_median_physical": ("strategy", [0.5, 0.8], {"units": "g"}),
                             "median_low_physical": ("strategy", [0.4, 0.7], {"units": "g"}),
@@ -164,3 +164,28 @@ def test_risk_dataset_and_table(tmp_path):
     from rockstudy.core import io
     io.write_netcdf(ds, tmp_path / "risk.nc")
     assert high_priority_findings(tmp_path / "risk.nc") == []
+
+
+def test_a_target_beyond_the_curve_is_refused_or_answered_with_how_far():
+    """A curve that stops at 0.005 g and a target of 1e-6/yr: the median lies decades beyond the curve."""
+    from rockstudy.analysis.risk import HazardExtrapolationWarning, target_median
+    short = HazardCurve([0.001, 0.002, 0.005], [1e-2, 3e-3, 5e-4])
+    with pytest.raises(ValueError, match="decades beyond the curve's last point, 0.005 g"):
+        median_for_target(short, 0.4, target_rate=1e-6)
+    with pytest.warns(HazardExtrapolationWarning, match="decades beyond"):
+        found = target_median(short, 0.4, target_rate=1e-6, allow_extrapolation=True)
+    assert found.extrapolated and found.decades_outside == pytest.approx(math.log10(found.median_g / 0.005))
+    inside = target_median(power_law(), 0.4, target_rate=1e-3)
+    assert not inside.extrapolated and inside.decades_outside == 0.0
+
+
+def test_devices_that_never_or_always_overturn_meet_every_or_no_target():
+    devices = xr.Dataset({"fragility_median": (("strategy", "kappa_max", "damping_ratio"),
+                                               [[[0.5], [np.nan], [np.nan]]], {"units": "g"}),
+                          "fit_status": (("strategy", "kappa_max", "damping_ratio"),
+                                         [[["ok"], ["all overturned"], ["no overturning"]]])},
+                         coords={"strategy": ["CS01"], "kappa_max": [1.0, 2.0, 4.0], "damping_ratio": [0.05]})
+    rows = devices_meeting(devices, 5.0)
+    assert [(r["kappa_max"], r["meets"], r["fit_status"]) for r in rows] == [
+        (1.0, False, "ok"), (2.0, False, "all overturned"), (4.0, True, "no overturning")]
+    assert rows[2]["median_g"] is None  # no NaN leaves: strict JSON

@@ -90,3 +90,21 @@ def test_the_design_answer_says_when_the_medians_interval_holds_the_target():
     assert "at κ_max = 0.5 the median, 0.800 g, is below the target but its 95 % interval, 0.750–0.850 g" in below
     clear = design.design_markdown(devices, 0.86, "block BLC06")  # neither interval holds 0.86 g
     assert "κ_max ≥ 1 keeps the median above 0.86 g" in clear and "do not settle" not in clear
+
+
+def test_the_sweep_carries_the_fit_status_and_a_device_that_never_overturns_meets_the_target():
+    """No record overturns the block with κ_max = 2 on any stripe: NaN median, status "no overturning"; it
+    meets the target (it is the best device), while "all overturned" meets none."""
+    import xarray as xr
+    points = []
+    for k, m, st in ((0.5, math.nan, "all overturned"), (1.0, 0.9, "ok"), (2.0, math.nan, "no overturning")):
+        points.append(xr.Dataset({"fragility_median": ("strategy", [0.6, m]), "fit_status": ("strategy", ["ok", st])},
+                                 coords={"strategy": ["FS", "CS01"], "kappa_max": k, "damping_ratio": 0.05},
+                                 attrs={"record_suite": "s", "n_records": 3, "compute_time_s": 1.0}))
+    devices = design.gather_devices(points)
+    assert devices.fit_status.sel(strategy="CS01", damping_ratio=0.05).values.tolist() == [
+        "all overturned", "ok", "no overturning"]
+    assert design.smallest_kappa(devices, "CS01", 0.05, 0.5) == 1.0
+    assert design.smallest_kappa(devices, "CS01", 0.05, 1.5) == 2.0  # before: NaN, "does not reach"
+    text = design.design_markdown(devices, 1.5, "block BLC06")
+    assert "κ_max ≥ 2 keeps the median above 1.5 g" in text and "never overturns" in text and "nan" not in text

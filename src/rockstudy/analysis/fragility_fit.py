@@ -33,6 +33,39 @@ DISPERSION_BOUNDS = (0.01, 5.0)
 """Range of β searched; a fit at a bound is flagged (separated or flat data). [-]"""
 
 
+NEVER_OVERTURNS = "no overturning"
+"""Fit status of an object that no record overturns at any stripe: its median lies above the last stripe."""
+ALWAYS_OVERTURNS = "all overturned"
+"""Fit status of an object that every record overturns at every stripe: its median lies below the first."""
+
+
+def median_reaches(median: float, status: str, target: float) -> bool:
+    """Whether a fitted fragility's median reaches ``target``, its fit status deciding where the median is NaN:
+    an object that never overturns on the stripes reaches every target, one that always overturns none.
+
+    Parameters
+    ----------
+    median : float
+        θ of the fit (NaN when the fit has none). [IM]
+    status : str
+        The fit's status (:class:`FragilityFit`).
+    target : float
+        The median to reach. [IM]
+
+    Raises
+    ------
+    ValueError
+        A NaN median with a status that does not say which side it lies on.
+    """
+    if status == NEVER_OVERTURNS:
+        return True
+    if status == ALWAYS_OVERTURNS:
+        return False
+    if not math.isfinite(median):
+        raise ValueError(f"a fit with status {status!r} has no finite median: neither meets nor fails {target:g}")
+    return bool(median >= target)
+
+
 @dataclass(frozen=True)
 class FragilityFit:
     """Lognormal fragility fitted by maximum likelihood (Eqs. F1–F2).

@@ -16,10 +16,13 @@ References
 from __future__ import annotations
 
 import math
+import warnings
 
 from rockstudy.core import validation
 from rockstudy.core.risk_inputs import (
     DEFAULT_GMM,
+    GMM_MAX_MAG_BY_MECHANISM,
+    GMM_RANGES,
     GMMS,
     MECHANISMS,
     SCENARIO_DEFAULTS,
@@ -62,10 +65,76 @@ def check_scenario(scenario: dict, name: str = "scenario") -> dict:
                                     f"{', '.join(MECHANISMS)}")
     for key, bound in SCENARIO_INPUTS.items():
         used[key] = bound.check(f"{name}.{key}", used[key])
+    # a site on the ground surface: the rupture is no nearer than its top, and no nearer than its surface projection
+    if used["dist_jb"] > used["dist_rup"]:
+        raise validation.InputError(f"{name}: dist_jb = {used['dist_jb']:g} km exceeds dist_rup = {used['dist_rup']:g}"
+                                    " km; the closest distance to the rupture is at least the Joyner-Boore distance")
+    if used["depth_tor"] > used["dist_rup"]:
+        raise validation.InputError(f"{name}: depth_tor = {used['depth_tor']:g} km exceeds dist_rup = "
+                                    f"{used['dist_rup']:g} km; a site on the surface is no nearer than the top")
+    if used["dip"] == 90 and abs(used["dist_x"]) > used["dist_jb"]:  # R_X: to the trace's line, R_JB: to the trace
+        raise validation.InputError(f"{name}: |dist_x| = {abs(used['dist_x']):g} km exceeds dist_jb = "
+                                    f"{used['dist_jb']:g} km, which a vertical rupture does not allow")
     return used
 
 
-def pga(scenario: dict, gmm: str = DEFAULT_GMM) -> tuple[float, float, dict]:
+class GmmRangeWarning(UserWarning):
+    """A scenario lies outside its ground-motion model's published range (answered on request)."""
+
+
+def range_problems(used: dict, gmm: str) -> list[str]:
+    """What of a scenario lies outside the published range of ``gmm``
+    (:data:`rockstudy.core.risk_inputs.GMM_RANGES`, :data:`~rockstudy.core.risk_inputs.GMM_MAX_MAG_BY_MECHANISM`).
+
+    Parameters
+    ----------
+    used : dict
+        The scenario with its defaults (:func:`check_scenario`).
+    gmm : str
+        A key of :data:`rockstudy.core.risk_inputs.GMMS`.
+
+    Returns
+    -------
+    list of str
+        One sentence per value outside the range; empty when the scenario lies within it.
+    """
+    problems = []
+    for key, (low, high) in GMM_RANGES[gmm].items():
+        if key in used and not low <= used[key] <= high:
+            problems.append(f"{key} = {used[key]:g} lies outside {gmm}'s range {low:g} to {high:g}")
+    top = GMM_MAX_MAG_BY_MECHANISM.get(gmm, {}).get(used.get("mechanism"))
+    if top is not None and used["mag"] > top:
+        problems.append(f"mag = {used['mag']:g} exceeds {gmm}'s {top:g} for mechanism {used['mechanism']}")
+    return problems
+
+
+def check_range(used: dict, gmm: str, name: str = "scenario", outside_range: bool = False) -> list[str]:
+    """Refuse a scenario outside the published range of ``gmm``, or (``outside_range``) warn
+    (:class:`GmmRangeWarning`) and return the sentences.
+
+    Parameters
+    ----------
+    used : dict
+        The scenario with its defaults (:func:`check_scenario`).
+    gmm : str
+        A key of :data:`rockstudy.core.risk_inputs.GMMS`.
+    name : str, default "scenario"
+        The scenario's name in messages.
+    outside_range : bool, default False
+        Answer outside the range with a warning instead of refusing.
+    """
+    problems = range_problems(used, gmm)
+    if problems and not outside_range:
+        raise validation.InputError(f"{name}: {'; '.join(problems)} (the model's published range; a model is not "
+                                    "valid outside it)")
+    for text in problems:
+        warnings.warn(f"{name}: {text}: the model is used outside its published range", GmmRangeWarning,
+                      stacklevel=2)
+    return problems
+
+
+def pga(scenario: dict, gmm: str = DEFAULT_GMM, *, name: str = "scenario",
+        outside_range: bool = False) -> tuple[float, float, dict]:
     """Median PGA and its log standard deviation for a scenario, from the model ``gmm`` (pygmm).
 
     Parameters
@@ -75,6 +144,11 @@ def pga(scenario: dict, gmm: str = DEFAULT_GMM) -> tuple[float, float, dict]:
         ``depth_tor``, ``dist_jb``, ``dist_x`` [km] (:func:`check_scenario`).
     gmm : str
         A key of :data:`rockstudy.core.risk_inputs.GMMS`.
+    name : str, default "scenario"
+        The scenario's name in messages.
+    outside_range : bool, default False
+        A scenario outside the model's published range (:func:`check_range`) is refused, or with True answered
+        with a :class:`GmmRangeWarning`.
 
     Returns
     -------
@@ -87,7 +161,8 @@ def pga(scenario: dict, gmm: str = DEFAULT_GMM) -> tuple[float, float, dict]:
     """
     if gmm not in GMMS:
         raise validation.InputError(f"gmm = {gmm!r} is not allowed: one of {', '.join(GMMS)}")
-    used = check_scenario(scenario)
+    used = check_scenario(scenario, name)
+    check_range(used, gmm, name, outside_range)
     try:
         import pygmm
     except ImportError:  # pragma: no cover - pygmm is a dependency

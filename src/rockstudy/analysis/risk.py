@@ -27,6 +27,10 @@ for a dispersion β.
 ground-motion model (:mod:`rockstudy.analysis.ground_motion`),
 P(overturn | scenario) = Φ((ln μ − ln θ)/√(β² + σ²)) (Eq. R3).
 
+The risk at many sites and the study's risk dataset are built in :mod:`rockstudy.analysis.risk_sites`; which
+devices of a design sweep reach a risk-targeted median, in :mod:`rockstudy.analysis.risk_devices`. Every rate
+leaving :func:`annual_rate` is finite and ≥ 0 (else :class:`RiskRangeError` names the fragility and the curve).
+
 The fragility of a record set's dataset (:func:`fragility_from_dataset`) is the stripes' lognormal
 fit in PGA: it estimates P(overturn | PGA = x) at each level, which is what Eq. R1 integrates. A fit
 of the records' thresholds (the first overturning scale of each record) would estimate a different
@@ -51,7 +55,7 @@ from scipy import optimize, special
 
 from rockstudy.analysis.hazard import EXTENSIONS, HazardCurve
 from rockstudy.core import validation
-from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, RISK_INPUTS
+from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, GMMS, RISK_INPUTS
 from rockstudy.model.records import STANDARD_GRAVITY_UNITS as G_N  # PGA in units of standard gravity
 
 if TYPE_CHECKING:
@@ -66,6 +70,18 @@ DEFAULT_EXTENSION = "loglog"
 
 class HazardExtensionWarning(UserWarning):
     """More than :data:`TAIL_WARNING_SHARE` of a rate of overturning comes from outside the hazard curve."""
+
+
+class HazardExtrapolationWarning(UserWarning):
+    """A risk-targeted median lies outside the hazard curve's PGA range (it rests on the curve's extension)."""
+
+
+class RiskRangeError(validation.InputError):
+    """A computed rate or probability outside its range (the message names the inputs that caused it)."""
+
+
+DISPERSION_STEP = 1e-9
+"""Below this dispersion β the fragility is integrated as a step at its median (the error is of order β²). [-]"""
 
 
 @dataclass(frozen=True)
@@ -241,7 +257,7 @@ def _piece_rates(fragility: LognormalFragility, u_lo, u_hi, u_ref, log_rate_ref,
     with np.errstate(over="ignore", invalid="ignore"):
         log_rate_lo = np.where(np.isfinite(u_lo), log_rate_ref - slope * (u_lo - u_ref), np.inf)
         log_rate_hi = np.where(np.isfinite(u_hi), log_rate_ref - slope * (u_hi - u_ref), -np.inf)
-    if beta == 0:  # a step at θ: the hazard's drop over the part of the piece above θ
+    if beta < DISPERSION_STEP:  # a step at θ: the hazard's drop over the part of the piece above θ
         u_from = np.maximum(u_lo, log_theta)
         with np.errstate(over="ignore", invalid="ignore"):
             rate_from = np.where(u_from < u_hi, np.exp(log_rate_ref - slope * (u_from - u_ref)), 0.0)
@@ -300,6 +316,12 @@ def annual_rate(fragility: LognormalFragility, hazard: HazardCurve, *, band_edge
     if extension == "none":
         rates = np.where(below | above, 0.0, rates)
     total = float(rates.sum())
+    if not (math.isfinite(with_tails) and total >= 0):
+        side = "below its first point" if not math.isfinite(rate_below) else "beyond its last point"
+        raise RiskRangeError(f"the rate of overturning of the fragility (median {fragility.median_g:g} g, "
+                             f"dispersion {fragility.dispersion:g}) on {hazard.source or 'the hazard curve'} is "
+                             f"{with_tails}, not a finite rate: the curve's end segment extended {side} outgrows "
+                             "the fragility; give the curve over the fragility's range of PGA")
     tail_share = (rate_below + rate_above) / with_tails if with_tails > 0 else 0.0
     if warn and tail_share > TAIL_WARNING_SHARE:
         where = "counted" if extension == "loglog" else "left out"
@@ -321,10 +343,33 @@ MEDIAN_SEARCH_DECADES = 12
 """The median meeting a target is searched within this many decades of PGA around the hazard curve."""
 
 
-def median_for_target(hazard: HazardCurve, dispersion: float, *, target_rate: float | None = None,
-                      target_probability: float | None = None, years: float = DEFAULT_YEARS,
-                      extension: str = DEFAULT_EXTENSION) -> float:
-    """The fragility median θ [g] at which the rate of overturning λ (Eq. R1) equals a target.
+@dataclass(frozen=True)
+class TargetMedian:
+    """The fragility median meeting a target rate on a hazard curve, and where it lies against the curve.
+
+    Attributes
+    ----------
+    median_g : float
+        θ: an object with a median at or above it meets the target. [g]
+    target_rate : float
+        The target annual rate of overturning. [1/yr]
+    extrapolated : bool
+        θ lies below the curve's first PGA or beyond its last, where the curve is its extension.
+    decades_outside : float
+        How far: log10 of θ over the curve's last PGA (or of its first PGA over θ); 0 within. [-]
+    """
+
+    median_g: float
+    target_rate: float
+    extrapolated: bool
+    decades_outside: float
+
+
+def target_median(hazard: HazardCurve, dispersion: float, *, target_rate: float | None = None,
+                  target_probability: float | None = None, years: float = DEFAULT_YEARS,
+                  extension: str = DEFAULT_EXTENSION, allow_extrapolation: bool = False) -> TargetMedian:
+    """The fragility median θ at which the rate of overturning λ (Eq. R1) equals a target, and whether it lies
+    within the hazard curve's PGA range.
 
     Parameters
     ----------
@@ -340,11 +385,15 @@ def median_for_target(hazard: HazardCurve, dispersion: float, *, target_rate: fl
         Exposure time of ``target_probability``. [yr]
     extension : {"loglog", "none"}
         As for :func:`annual_rate`.
+    allow_extrapolation : bool, default False
+        A θ outside the curve's PGA range rests on the curve's extension (or its absence): refused unless
+        allowed, and then answered with ``extrapolated`` and a :class:`HazardExtrapolationWarning` saying how far.
 
-    Returns
-    -------
-    float
-        θ: an object with a median at or above it meets the target. [g]
+    Raises
+    ------
+    ValueError
+        (:class:`~rockstudy.core.validation.InputError`) when no median meets the target, or θ lies outside the
+        curve and ``allow_extrapolation`` is False.
     """
     if (target_rate is None) == (target_probability is None):
         raise validation.InputError("give one target: target_rate or target_probability (with years)")
@@ -355,7 +404,10 @@ def median_for_target(hazard: HazardCurve, dispersion: float, *, target_rate: fl
 
     def excess(log_median):  # ln λ(θ) − ln target: falls as θ rises
         fragility = LognormalFragility(math.exp(log_median), dispersion)
-        rate = annual_rate(fragility, hazard, extension=extension, warn=False).annual_rate
+        try:
+            rate = annual_rate(fragility, hazard, extension=extension, warn=False).annual_rate
+        except RiskRangeError:  # an infinite rate far below the curve: above any target
+            return math.inf
         return (math.log(rate) if rate > 0 else -math.inf) - math.log(target_rate)
 
     span = MEDIAN_SEARCH_DECADES * math.log(10)
@@ -367,234 +419,49 @@ def median_for_target(hazard: HazardCurve, dispersion: float, *, target_rate: fl
     if excess(high) > 0:
         raise validation.InputError(f"no median up to {math.exp(high):.3g} g meets an annual rate of "
                                     f"{target_rate:.4g} on this hazard curve")
-    return float(math.exp(optimize.brentq(excess, low, high, xtol=1e-12, rtol=1e-12)))
+    median = float(math.exp(optimize.brentq(excess, low, high, xtol=1e-12, rtol=1e-12)))
+    first, last = float(hazard.pga_g[0]), float(hazard.pga_g[-1])
+    decades = math.log10(median / last) if median > last else math.log10(first / median) if median < first else 0.0
+    if decades > 0:
+        side = f"beyond the curve's last point, {last:g} g" if median > last else f"below its first point, {first:g} g"
+        text = (f"the median meeting an annual rate of {target_rate:.4g}, {median:.4g} g, lies {decades:.2g} decades "
+                f"{side}: it rests on the curve's {'extension' if extension == 'loglog' else 'absence'} there")
+        if not allow_extrapolation:
+            raise validation.InputError(f"{text}; give the curve over a wider range of PGA (or allow extrapolation)")
+        warnings.warn(text, HazardExtrapolationWarning, stacklevel=2)
+    return TargetMedian(median, target_rate, decades > 0, decades)
 
 
-def devices_meeting(devices: xr.Dataset, median_g: float) -> list[dict]:
-    """Which devices of a device sweep have a fragility median at or above ``median_g``, one row per
-    (strategy, κ_max, ξ).
-
-    Parameters
-    ----------
-    devices : xarray.Dataset
-        A device sweep (:func:`rockstudy.studies.design.gather_devices`): ``fragility_median`` [g] over
-        (strategy, kappa_max, damping_ratio).
-    median_g : float
-        The median a device must reach, e.g. from :func:`median_for_target`. [g]
-    """
-    rows = []
-    for s in devices["strategy"].values:
-        for k in devices["kappa_max"].values:
-            for xi in devices["damping_ratio"].values:
-                m = float(devices["fragility_median"].sel(strategy=s, kappa_max=k, damping_ratio=xi))
-                rows.append({"strategy": str(s), "kappa_max": float(k), "damping_ratio": float(xi), "median_g": m,
-                             "meets": bool(math.isfinite(m) and m >= median_g)})
-    return rows
-
-
-# --- Eq. R3: one scenario ---------------------------------------------------------------------------
-@dataclass(frozen=True)
-class ScenarioRisk:
-    """P(overturn | scenario) (Eq. R3) and what it is made of.
-
-    Attributes
-    ----------
-    gmm : str
-        The ground-motion model.
-    scenario : dict
-        Every scenario value the model used, defaults included.
-    median_pga_g : float
-        μ, the model's median PGA. [g]
-    ln_std : float
-        σ, its standard deviation of ln PGA. [-]
-    probability : float
-        Φ((ln μ − ln θ)/√(β² + σ²)). [-]
-    fragility : LognormalFragility
-    """
-
-    gmm: str
-    scenario: dict
-    median_pga_g: float
-    ln_std: float
-    probability: float
-    fragility: LognormalFragility
-
-
-def scenario_probability(fragility: LognormalFragility, median_pga_g: float, ln_std: float) -> float:
-    """P(overturn | scenario) = Φ((ln μ − ln θ)/√(β² + σ²)) (Eq. R3). [-]
+def median_for_target(hazard: HazardCurve, dispersion: float, *, target_rate: float | None = None,
+                      target_probability: float | None = None, years: float = DEFAULT_YEARS,
+                      extension: str = DEFAULT_EXTENSION, allow_extrapolation: bool = False) -> float:
+    """The fragility median θ [g] at which the rate of overturning λ (Eq. R1) equals a target
+    (:func:`target_median`, which says too whether θ lies within the hazard curve).
 
     Parameters
     ----------
-    fragility : LognormalFragility
-        θ and β of the object.
-    median_pga_g : float
-        μ, the scenario's median PGA. [g]
-    ln_std : float
-        σ, the standard deviation of ln PGA. [-]
-    """
-    spread = math.hypot(fragility.dispersion, ln_std)
-    if spread == 0:
-        return float(median_pga_g >= fragility.median_g)
-    return float(special.ndtr((math.log(median_pga_g) - math.log(fragility.median_g)) / spread))
-
-
-def scenario_risk(fragility: LognormalFragility, scenario: dict, gmm: str | None = None) -> ScenarioRisk:
-    """P(overturn | scenario) from a ground-motion model (:func:`rockstudy.analysis.ground_motion.pga`).
-
-    Parameters
-    ----------
-    fragility : LognormalFragility
-        θ and β of the object.
-    scenario : dict
-        The earthquake scenario, as for :func:`rockstudy.analysis.ground_motion.check_scenario`.
-    gmm : str or None, default None
-        Ground-motion model, a key of :data:`rockstudy.core.risk_inputs.GMMS`; None: the default model.
-    """
-    from rockstudy.analysis.ground_motion import pga
-    gmm = gmm or DEFAULT_GMM
-    median, sigma, used = pga(scenario, gmm)
-    return ScenarioRisk(gmm=gmm, scenario=used, median_pga_g=median, ln_std=sigma,
-                        probability=scenario_probability(fragility, median, sigma), fragility=fragility)
-
-
-# --- the study's dataset: every strategy of a record set at every site -------------------------------
-BAND_EDGES_G = (0.05, 0.1, 0.2, 0.4, 0.8, 1.6)
-"""Inner PGA band edges of the study's disaggregation (0 and inf added). [g]"""
-
-
-def risk_dataset(fragility: xr.Dataset, *, scenarios=None, hazard_curves=None, years: float = DEFAULT_YEARS,
-                 gmm: str = DEFAULT_GMM) -> xr.Dataset:
-    """Risk of overturning of every strategy of a record set's fragility at every site.
-
-    Parameters
-    ----------
-    fragility : xarray.Dataset
-        A record set's fragility in PGA (:func:`rockstudy.analysis.fragility.suite_fragility_dataset`), FS
-        among its strategies; each strategy's lognormal fit of the stripes is used (:func:`fragility_from_dataset`).
-    scenarios : dict of str to dict, optional
-        Named earthquake scenarios (:func:`rockstudy.analysis.ground_motion.check_scenario`).
-    hazard_curves : dict of str to HazardCurve, optional
-        Named hazard curves.
+    hazard : HazardCurve
+        λ_IM of the site.
+    dispersion : float
+        β of the fragility. [-]
+    target_rate : float, optional
+        Target λ. [1/yr]
+    target_probability : float, optional
+        Target probability in ``years`` instead (e.g. 0.01 in 50 years), turned into a rate by Eq. R2. [-]
     years : float
-        Exposure time T of the probabilities. [yr]
-    gmm : str
-        Ground-motion model of the scenarios.
+        Exposure time of ``target_probability``. [yr]
+    extension : {"loglog", "none"}
+        As for :func:`annual_rate`.
+    allow_extrapolation : bool, default False
+        As for :func:`target_median`.
 
     Returns
     -------
-    xarray.Dataset
-        Per strategy the fragility used; per scenario the model's median PGA and ln standard deviation and
-        per (strategy, scenario) P(overturn | scenario) (Eq. R3) and its reduction over FS; per hazard curve
-        its points, and per (strategy, hazard) the annual rate (Eq. R1), the probability in T years (Eq. R2),
-        the reduction over FS, the share from outside the curve and the disaggregation over
-        :data:`BAND_EDGES_G`.
+    float
+        θ: an object with a median at or above it meets the target. [g]
     """
-    import json
-
-    import xarray as xr
-
-    from rockstudy._version import __version__
-    from rockstudy.analysis.ground_motion import pga
-    scenarios, hazard_curves = dict(scenarios or {}), dict(hazard_curves or {})
-    if not scenarios and not hazard_curves:
-        raise validation.InputError("give at least one scenario or hazard curve")
-    years = RISK_INPUTS["years"].check("years", years)
-    strategies = [str(s) for s in fragility["strategy"].values]
-    if "FS" not in strategies:
-        raise validation.InputError(f"the fragility needs FS (the reference of the reduction), got {strategies}")
-    fits = {s: fragility_from_dataset(fragility, s) if _finite_fit(fragility, s) else None for s in strategies}
-    nan = math.nan
-    ds = xr.Dataset(coords={"strategy": ("strategy", strategies, {"long_name": "control strategy"})})
-    ds["fragility_median"] = ("strategy", [f.median_g if f else nan for f in fits.values()], {
-        "units": G_N, "long_name": "fragility median PGA used: the stripes' lognormal fit (MLE of P(overturn) at "
-                                  "each stripe level)"})
-    ds["fragility_dispersion"] = ("strategy", [f.dispersion if f else nan for f in fits.values()],
-                                  {"units": "1", "long_name": "fragility dispersion beta used (the stripes' fit)"})
-    for name in ("median_low_physical", "median_high_physical"):
-        if name in fragility:
-            ds[name.removesuffix("_physical")] = ("strategy", fragility[name].values.astype(float), {
-                "units": G_N, "long_name": f"95 % Wald interval of the median, {name.split('_')[1]}"})
-    if "threshold_pga" in fragility and "record_pga" in fragility.coords:
-        thr = [threshold_fit(fragility, s) for s in strategies]
-        ds["threshold_fit_median"] = ("strategy", [f.median for f in thr], {
-            "units": G_N, "long_name": "median of the records' threshold PGA (lognormal MLE, censored where a record "
-                                       "does not overturn the block up to the last level); not used by the risk"})
-        ds["threshold_fit_dispersion"] = ("strategy", [f.dispersion for f in thr], {
-            "units": "1", "long_name": "dispersion of the records' threshold PGA (lognormal MLE)"})
-    if scenarios:
-        names = list(scenarios)
-        ground = [pga(scenarios[n], gmm) for n in names]
-        p = np.array([[scenario_probability(fits[s], g[0], g[1]) if fits[s] else nan for g in ground]
-                      for s in strategies])
-        ds = ds.assign_coords(scenario=("scenario", names, {"long_name": "earthquake scenario"}))
-        ds["scenario_values"] = ("scenario", [json.dumps(g[2], sort_keys=True) for g in ground],
-                                 {"long_name": f"every scenario value {gmm} used (JSON), defaults included"})
-        ds["median_pga"] = ("scenario", [g[0] for g in ground], {"units": G_N, "long_name": f"median PGA ({gmm})"})
-        ds["ln_std_pga"] = ("scenario", [g[1] for g in ground],
-                            {"units": "1", "long_name": f"standard deviation of ln PGA ({gmm})"})
-        ds["scenario_probability"] = (("strategy", "scenario"), p, {
-            "units": "1", "long_name": "P(overturn | scenario) = Phi((ln mu - ln theta)/sqrt(beta^2 + sigma^2))"})
-        lo, hi = _probability_range(fits, ds, strategies, lambda f: [scenario_probability(f, g[0], g[1])
-                                                                     for g in ground], len(names))
-        ds["scenario_probability_low"] = (("strategy", "scenario"), lo, {
-            "units": "1", "long_name": "P(overturn | scenario) with the median at the high end of its 95 % interval"})
-        ds["scenario_probability_high"] = (("strategy", "scenario"), hi, {
-            "units": "1", "long_name": "P(overturn | scenario) with the median at the low end of its 95 % interval"})
-        ds["scenario_reduction_percent"] = (("strategy", "scenario"), 100 * (1 - p / p[strategies.index("FS")]), {
-            "units": "percent", "long_name": "reduction of P(overturn | scenario) over FS, 100 (1 - P/P_FS)"})
-    if hazard_curves:
-        names = list(hazard_curves)
-        n_points = max(h.pga_g.size for h in hazard_curves.values())
-        points = np.full((len(names), 2, n_points), nan)
-        rate, tail = np.full((len(strategies), len(names)), nan), np.full((len(strategies), len(names)), nan)
-        bands = np.full((len(strategies), len(names), len(BAND_EDGES_G) + 1), nan)
-        for j, name in enumerate(names):
-            h = hazard_curves[name]
-            points[j, 0, :h.pga_g.size], points[j, 1, :h.pga_g.size] = h.pga_g, h.annual_rate
-            for i, s in enumerate(strategies):
-                if fits[s] is None:
-                    continue
-                result = annual_rate(fits[s], h, band_edges_g=BAND_EDGES_G, warn=False)
-                rate[i, j], tail[i, j], bands[i, j] = result.annual_rate, result.tail_share, result.band_share
-        edges = np.array((0.0,) + BAND_EDGES_G + (np.inf,))
-        ds = ds.assign_coords(hazard=("hazard", names, {"long_name": "hazard curve"}),
-                              pga_band_low=("pga_band", edges[:-1], {"units": G_N, "long_name": "PGA band, low"}),
-                              pga_band_high=("pga_band", edges[1:], {"units": G_N, "long_name": "PGA band, high"}))
-        ds["hazard_pga"] = (("hazard", "hazard_point"), points[:, 0], {"units": G_N, "long_name": "PGA of the "
-                            "hazard curve's points (NaN: padding)"})
-        ds["hazard_rate"] = (("hazard", "hazard_point"), points[:, 1], {"units": "1/yr", "long_name": "annual rate "
-                             "of exceedance of the hazard curve's points (NaN: padding)"})
-        ds["hazard_source"] = ("hazard", [hazard_curves[n].source for n in names], {"long_name": "hazard file"})
-        ds["annual_rate"] = (("strategy", "hazard"), rate, {
-            "units": "1/yr", "long_name": "mean annual frequency of overturning, integral of P(overturn|x) "
-                                          "|d lambda_IM(x)|, the curve's end segments extended log-log"})
-        ds["probability"] = (("strategy", "hazard"), -np.expm1(-rate * years), {
-            "units": "1", "long_name": f"probability of overturning in {years:g} years, 1 - exp(-lambda T)"})
-        lo, hi = _probability_range(fits, ds, strategies, lambda f: [
-            -math.expm1(-annual_rate(f, hazard_curves[n], warn=False).annual_rate * years) for n in names], len(names))
-        ds["probability_low"] = (("strategy", "hazard"), lo, {
-            "units": "1", "long_name": f"probability in {years:g} years with the median at the high end of its 95 % "
-                                       "interval"})
-        ds["probability_high"] = (("strategy", "hazard"), hi, {
-            "units": "1", "long_name": f"probability in {years:g} years with the median at the low end of its 95 % "
-                                       "interval"})
-        ds["reduction_percent"] = (("strategy", "hazard"), 100 * (1 - rate / rate[strategies.index("FS")]), {
-            "units": "percent", "long_name": "reduction of the annual rate of overturning over FS"})
-        ds["tail_share"] = (("strategy", "hazard"), tail, {"units": "1", "long_name": "share of the annual rate "
-                            "from below the curve's first point and beyond its last"})
-        ds["disaggregation"] = (("strategy", "hazard", "pga_band"), bands, {
-            "units": "1", "long_name": "share of the annual rate of overturning from each PGA band"})
-    ds.attrs = {"title": f"Risk of overturning on {fragility.attrs.get('record_suite', 'a record set')}: every "
-                         "strategy at every site",
-                "rockstudy_version": __version__, "record_suite": fragility.attrs.get("record_suite", ""),
-                "years": years, "gmm": gmm, "hazard_extension": DEFAULT_EXTENSION,
-                "fragility_used": "the stripes' lognormal fit in PGA (P(overturn) at each PGA level, what the "
-                                  "hazard integral needs); the fit of the records' thresholds describes their first "
-                                  "overturning instead, and overturning is not monotone in the scale",
-                "method": "Eq. R1: exact integral on the log-log interpolated hazard curve (Cornell et al. 2002); "
-                          "Eq. R2: Poisson; Eq. R3: lognormal fragility and lognormal ground motion",
-                **{k: v for k, v in fragility.attrs.items() if k.startswith(("block_", "anchorage_"))}}
-    return ds
+    return target_median(hazard, dispersion, target_rate=target_rate, target_probability=target_probability,
+                         years=years, extension=extension, allow_extrapolation=allow_extrapolation).median_g
 
 
 def threshold_fit(fragility: xr.Dataset, strategy: str):
@@ -620,46 +487,79 @@ def threshold_fit(fragility: xr.Dataset, strategy: str):
     return fit_lognormal_thresholds(fragility["threshold_pga"].sel(strategy=strategy).values, top_pga)
 
 
-def _probability_range(fits, ds, strategies, probabilities, n_sites):
-    """Probabilities with each fragility's median at the ends of its 95 % interval (NaN without one)."""
-    lo, hi = np.full((len(strategies), n_sites), math.nan), np.full((len(strategies), n_sites), math.nan)
-    if "median_low" not in ds:
-        return lo, hi
-    for i, s in enumerate(strategies):
-        low, high = float(ds["median_low"].values[i]), float(ds["median_high"].values[i])
-        if fits[s] is None or not (math.isfinite(low) and math.isfinite(high)):
-            continue
-        lo[i] = probabilities(LognormalFragility(high, fits[s].dispersion))
-        hi[i] = probabilities(LognormalFragility(low, fits[s].dispersion))
-    return lo, hi
+# --- Eq. R3: one scenario ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class ScenarioRisk:
+    """P(overturn | scenario) (Eq. R3) and what it is made of.
+
+    Attributes
+    ----------
+    gmm : str
+        The ground-motion model.
+    scenario : dict
+        Every scenario value the model used, defaults included.
+    median_pga_g : float
+        μ, the model's median PGA. [g]
+    ln_std : float
+        σ, its standard deviation of ln PGA. [-]
+    probability : float
+        Φ((ln μ − ln θ)/√(β² + σ²)). [-]
+    fragility : LognormalFragility
+    warnings : tuple of str
+        Where the scenario lies outside the model's published range (answered on request only).
+    """
+
+    gmm: str
+    scenario: dict
+    median_pga_g: float
+    ln_std: float
+    probability: float
+    fragility: LognormalFragility
+    warnings: tuple[str, ...] = ()
 
 
-def _finite_fit(ds: xr.Dataset, strategy: str) -> bool:
-    return bool(np.isfinite(float(ds["fragility_dispersion"].sel(strategy=strategy)))
-                and np.isfinite(float(ds["fragility_median"].sel(strategy=strategy))))
-
-
-def check_config(section: dict, key: str = "risk") -> dict:
-    """The config's ``risk:`` section: its declaration (:class:`rockstudy.core.declarations.Risk`: every value
-    in range, no unknown key), at least one site, every hazard file readable. Returns the hazard curves by name.
+def scenario_probability(fragility: LognormalFragility, median_pga_g: float, ln_std: float) -> float:
+    """P(overturn | scenario) = Φ((ln μ − ln θ)/√(β² + σ²)) (Eq. R3). [-]
 
     Parameters
     ----------
-    section : dict
-        The ``risk:`` section: ``scenarios``, ``hazard_curves`` (name: file path) and the other keys of
-        :class:`rockstudy.core.declarations.Risk`.
-    key : str, default "risk"
-        Where the section sits in the config: errors name ``<key>.<entry>``.
-
-    Raises
-    ------
-    ValueError
-        (:class:`~rockstudy.core.validation.InputError`) naming ``<key>.<entry>``.
+    fragility : LognormalFragility
+        θ and β of the object.
+    median_pga_g : float
+        μ, the scenario's median PGA. [g]
+    ln_std : float
+        σ, the standard deviation of ln PGA. [-]
     """
-    from rockstudy.analysis.hazard import read_hazard_curve
-    from rockstudy.core import declarations
-    declarations.check_config(section, declarations.Risk, key)
-    scenarios, curves = section.get("scenarios") or {}, section.get("hazard_curves") or {}
-    if not scenarios and not curves:
-        raise validation.InputError(f"{key}: give at least one scenario or hazard curve")
-    return {name: read_hazard_curve(path, f"{key}.hazard_curves.{name}") for name, path in curves.items()}
+    spread = math.hypot(fragility.dispersion, ln_std)
+    if spread == 0:
+        return float(median_pga_g >= fragility.median_g)
+    return float(special.ndtr((math.log(median_pga_g) - math.log(fragility.median_g)) / spread))
+
+
+def scenario_risk(fragility: LognormalFragility, scenario: dict, gmm: str | None = None, *,
+                  outside_range: bool = False) -> ScenarioRisk:
+    """P(overturn | scenario) from a ground-motion model (:func:`rockstudy.analysis.ground_motion.pga`).
+
+    Parameters
+    ----------
+    fragility : LognormalFragility
+        θ and β of the object.
+    scenario : dict
+        The earthquake scenario, as for :func:`rockstudy.analysis.ground_motion.check_scenario`.
+    gmm : str or None, default None
+        Ground-motion model, a key of :data:`rockstudy.core.risk_inputs.GMMS`; None: the default model.
+    outside_range : bool, default False
+        A scenario outside the model's published range is refused, or with True answered, the reasons in
+        ``warnings`` (:func:`rockstudy.analysis.ground_motion.check_range`).
+    """
+    from rockstudy.analysis.ground_motion import check_range, check_scenario, pga
+    gmm = gmm or DEFAULT_GMM
+    if gmm not in GMMS:
+        raise validation.InputError(f"gmm = {gmm!r} is not allowed: one of {', '.join(GMMS)}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        problems = check_range(check_scenario(scenario), gmm, outside_range=outside_range)
+    median, sigma, used = pga(scenario, gmm, outside_range=outside_range)
+    return ScenarioRisk(gmm=gmm, scenario=used, median_pga_g=median, ln_std=sigma,
+                        probability=scenario_probability(fragility, median, sigma), fragility=fragility,
+                        warnings=tuple(problems))

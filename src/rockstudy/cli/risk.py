@@ -6,16 +6,16 @@ suite, and its risk of overturning at a site (:mod:`rockstudy.analysis.risk`).
   study's stripes, threshold resolution and bootstrap by default) for S beside free standing, writes
   the dataset and prints JSON with ``median_g`` and ``dispersion`` of S (the stripes' lognormal fit).
 * ``rockstudy risk (--median G --dispersion B | --fragility F.nc --strategy S)
-  (--hazard FILE [--years N] | --scenario mag=7,dist_rup=10,v_s30=400 [--gmm NAME])`` prints JSON with
-  ``annual_rate`` and ``probability`` (hazard), or ``gmm``, ``scenario``, ``median_pga_g``, ``ln_std``
-  and ``probability`` (scenario).
+  (--hazard FILE [--hazard-unit U] [--years N] | --scenario mag=7,dist_rup=10,v_s30=400 [--gmm NAME])``
+  prints JSON with ``annual_rate`` and ``probability`` (hazard; for a file of several sites, one entry
+  of ``sites`` each, with ``lon``, ``lat`` and ``name`` where the file gives them), or ``gmm``,
+  ``scenario``, ``median_pga_g``, ``ln_std`` and ``probability`` (scenario).
 * ``rockstudy risk --dispersion B --hazard FILE (--target-rate R | --target-probability P --years N)``
-  prints JSON with the ``median_g`` that meets the target (and, with ``--devices FILE``, which devices
-  of a design study's device sweep meet it).
+  prints JSON with the ``median_g`` that meets the target and ``extrapolated`` (and, with
+  ``--devices FILE``, which devices of a design study's device sweep meet it).
 """
 from __future__ import annotations
 
-import json
 import math
 import sys
 import warnings
@@ -25,7 +25,7 @@ from rockstudy.analysis.hazard import EXTENSIONS
 from rockstudy.cli import options
 from rockstudy.core import validation
 from rockstudy.core.quantities import QUANTITIES
-from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, GMMS, RISK_INPUTS
+from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, GMMS, HAZARD_UNITS, RISK_INPUTS
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS
 from rockstudy.model.control import STRATEGIES, Control
@@ -88,11 +88,17 @@ def register(sub) -> None:
                      "study's fragility/<set>.nc): its stripes' lognormal fit in PGA")
     src.add_argument("--strategy", choices=STRATEGIES, help="the strategy of --fragility")
     site = pr.add_argument_group("the site: --hazard, or --scenario")
-    site.add_argument("--hazard", metavar="FILE", help="hazard curve: two columns, PGA [g] and annual rate of "
-                      "exceedance [1/yr], comma or space separated, '#' comments")
+    site.add_argument("--hazard", metavar="FILE", help="hazard file of one or many sites: two columns (PGA [g], "
+                      "annual rate of exceedance [1/yr]), an OpenQuake hazard-curve CSV, an nshmp-haz curves CSV "
+                      "or a USGS hazard tool JSON")
+    site.add_argument("--hazard-unit", choices=tuple(HAZARD_UNITS), metavar="UNIT",
+                      help=f"unit of the hazard file's PGA levels ({', '.join(HAZARD_UNITS)}); default: the file's, "
+                           "else g, refused when the curve cannot be in g")
     site.add_argument("--scenario", metavar="KEY=VALUE,...", help="earthquake scenario, e.g. "
                       "mag=7,dist_rup=10,v_s30=400 (optional: mechanism, dip, depth_tor, dist_jb, dist_x)")
     site.add_argument("--gmm", default=DEFAULT_GMM, choices=sorted(GMMS), help="ground-motion model of --scenario")
+    site.add_argument("--outside-gmm-range", action="store_true",
+                      help="answer a scenario outside the model's published range with a warning instead of refusing")
     options._numeric(pr, "--years", DEFAULT_YEARS, "exposure time T of the probability 1 - exp(-lambda T) [yr]")
     pr.add_argument("--extension", default=EXTENSIONS[0], choices=EXTENSIONS,
                     help="below the first and beyond the last point of the hazard curve, extend its end "
@@ -103,6 +109,9 @@ def register(sub) -> None:
                         help="the median meeting this annual rate of overturning [1/yr]")
     target.add_argument("--target-probability", type=options._number("--target-probability"), metavar="P",
                         help="the median meeting this probability of overturning in --years")
+    target.add_argument("--allow-extrapolation", action="store_true",
+                        help="answer a median outside the hazard curve's PGA range (extrapolated: true, a warning) "
+                             "instead of refusing")
     target.add_argument("--devices", metavar="FILE", help="a design study's device sweep (design/devices.nc): "
                         "which devices meet the target")
     pr.set_defaults(run=run_risk)
@@ -123,7 +132,7 @@ def run_fragility(args, parser) -> None:
         The command's parser; a bad option is reported through it (exit status 2).
     """
     from rockstudy.analysis.fragility import suite_fragility_dataset
-    from rockstudy.core.io import write_netcdf
+    from rockstudy.cli.output import print_json
     from rockstudy.model import record_suites
     from rockstudy.studies import parameters
     try:
@@ -151,15 +160,15 @@ def run_fragility(args, parser) -> None:
                                  measure=args.intensity_measure, resolution=args.threshold_resolution,
                                  n_boot=args.bootstrap, seed=args.seed, overturn_criterion=args.overturn_criterion,
                                  free_time=args.free_time)
-    write_netcdf(ds, args.output)
+    options.write_output(ds, args.output, "fragility")
     d = ds.sel(strategy=args.strategy)
     unit = ds["fragility_median_physical"].attrs["units"]
     key = "median_g" if unit in (STANDARD_GRAVITY_UNITS, "g") else "median_pgv_m_per_s"
-    print(json.dumps({"strategy": args.strategy, "suite": args.suite, "n_records": len(entries),
+    print_json({"strategy": args.strategy, "suite": args.suite, "n_records": len(entries),
                       key: _value(d.fragility_median_physical), f"{key}_low": _value(d.median_low_physical),
                       f"{key}_high": _value(d.median_high_physical), "dispersion": _value(d.fragility_dispersion),
                       "fit": str(d.fit_status.values), "intensity_measure": args.intensity_measure,
-                      "fit_of": "the stripes' lognormal fit (P(overturn) at each level)", "output": args.output}))
+                      "fit_of": "the stripes' lognormal fit (P(overturn) at each level)", "output": args.output})
 
 
 def _block(args):
@@ -226,7 +235,7 @@ def _fragility(args, parser):
 
 
 def run_risk(args, parser) -> None:
-    """``rockstudy risk``: hazard, scenario or target mode; JSON on stdout.
+    """``rockstudy risk``: hazard, scenario or target mode; JSON on stdout (:func:`rockstudy.cli.output.print_json`).
 
     Parameters
     ----------
@@ -235,41 +244,55 @@ def run_risk(args, parser) -> None:
     parser : argparse.ArgumentParser
         The command's parser; a bad option is reported through it (exit status 2).
     """
+    from rockstudy.cli.output import NonFiniteOutputError, print_json
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            out = _risk(args, parser)
+        except validation.InputError as exc:
+            _fail(parser, exc)
+    for w in caught:
+        if issubclass(w.category, UserWarning):
+            print(f"rockstudy: warning: {w.message}", file=sys.stderr)
     try:
-        out = _risk(args, parser)
-    except validation.InputError as exc:
+        print_json(out)
+    except NonFiniteOutputError as exc:
         _fail(parser, exc)
-    print(json.dumps(out))
+
+
+def _sites(args):
+    from rockstudy.analysis.hazard import read_hazard_sites
+    sites = read_hazard_sites(args.hazard, f"--hazard {args.hazard}", args.hazard_unit)
+    return {(s.label if len(sites) > 1 else args.hazard): s for s in sites}
+
+
+def _where(site) -> dict:
+    """The site's lon, lat and name where the file gives them, and what reading it did."""
+    out = {k: getattr(site, k) for k in ("lon", "lat", "name") if getattr(site, k) is not None}
+    if site.notes:
+        out["hazard_notes"] = list(site.notes)
+    return out
+
+
+def _one_or_many(rows: list[dict], common: dict) -> dict:
+    """Today's keys for one site; ``{"sites": [...], ...}`` for several."""
+    return {**rows[0], **common} if len(rows) == 1 else {"sites": rows, **common}
 
 
 def _risk(args, parser) -> dict:
     from rockstudy.analysis import risk
-    from rockstudy.analysis.hazard import read_hazard_curve
     years = RISK_INPUTS["years"].check("--years", args.years)
     targets = [t for t in ("target_rate", "target_probability") if getattr(args, t) is not None]
     if (args.hazard is None) == (args.scenario is None):
         parser.error("give the site: --hazard FILE or --scenario KEY=VALUE,...")
+    if args.hazard_unit is not None and args.hazard is None:
+        parser.error("--hazard-unit goes with --hazard")
+    if args.outside_gmm_range and args.scenario is None:
+        parser.error("--outside-gmm-range goes with --scenario")
+    if args.allow_extrapolation and not targets:
+        parser.error("--allow-extrapolation goes with --target-rate or --target-probability")
     if targets:
-        if len(targets) > 1:
-            parser.error("give one target: --target-rate or --target-probability")
-        if args.hazard is None:
-            parser.error("a target needs --hazard (the median meeting it on the hazard curve)")
-        if args.dispersion is None or args.median is not None or args.fragility is not None:
-            parser.error("a target takes --dispersion only (the median is what it finds)")
-        hazard = read_hazard_curve(args.hazard, "--hazard")
-        dispersion = RISK_INPUTS["dispersion"].check("--dispersion", args.dispersion)
-        if args.target_rate is not None:
-            rate = RISK_INPUTS["target_rate"].check("--target-rate", args.target_rate)
-        else:
-            RISK_INPUTS["target_probability"].check("--target-probability", args.target_probability)
-            rate = risk.rate_for_probability(args.target_probability, years)
-        median = risk.median_for_target(hazard, dispersion, target_rate=rate, extension=args.extension)
-        out = {"median_g": median, "dispersion": dispersion, "target_rate": rate,
-               "target_probability": risk.probability_in_years(rate, years), "years": years, "hazard": args.hazard,
-               "extension": args.extension}
-        if args.devices is not None:
-            out["devices"] = _devices(args, parser, median)
-        return out
+        return _target(args, parser, targets, years)
     if args.devices is not None:
         parser.error("--devices goes with --target-rate or --target-probability")
     fragility = _fragility(args, parser)
@@ -277,34 +300,76 @@ def _risk(args, parser) -> dict:
     if args.fragility is not None:
         base.update(fragility=args.fragility, strategy=args.strategy)
     if args.scenario is not None:
-        result = risk.scenario_risk(fragility, _scenario(args.scenario, parser), args.gmm)
-        return {"gmm": result.gmm, "scenario": result.scenario, "median_pga_g": result.median_pga_g,
-                "ln_std": result.ln_std, "probability": result.probability, **base}
-    hazard = read_hazard_curve(args.hazard, "--hazard")
+        result = risk.scenario_risk(fragility, _scenario(args.scenario, parser), args.gmm,
+                                    outside_range=args.outside_gmm_range)
+        out = {"gmm": result.gmm, "scenario": result.scenario, "median_pga_g": result.median_pga_g,
+               "ln_std": result.ln_std, "probability": result.probability, **base}
+        if result.warnings:
+            out["warnings"] = list(result.warnings)
+        return out
     edges = None
     if args.bands is not None:
         try:
             edges = [float(v) for v in args.bands.split(",")]
         except ValueError:
             parser.error(f"argument --bands: {args.bands!r} is not a comma-separated list of PGA [g]")
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", risk.HazardExtensionWarning)
-        result = risk.annual_rate(fragility, hazard, band_edges_g=edges, extension=args.extension)
-    for w in caught:
-        print(f"rockstudy: warning: {w.message}", file=sys.stderr)
-    out = {"annual_rate": result.annual_rate, "probability": result.probability(years), "years": years, **base,
-           "hazard": args.hazard, "extension": args.extension, "rate_below_curve": result.rate_below,
-           "rate_above_curve": result.rate_above, "tail_share": result.tail_share}
-    if edges is not None:
-        out["disaggregation"] = [{"pga_low_g": float(lo), "pga_high_g": None if math.isinf(hi) else float(hi),
-                                  "share": float(s)}
-                                 for lo, hi, s in zip(result.band_edges_g[:-1], result.band_edges_g[1:],
-                                                      result.band_share)]
-    return out
+    return _hazard(args, fragility, edges, years, base)
 
 
-def _devices(args, parser, median: float) -> list[dict]:
-    from rockstudy.analysis.risk import devices_meeting
+def _hazard(args, fragility, edges, years: float, base: dict) -> dict:
+    from rockstudy.analysis.risk_sites import risk_at_sites
+    sites = _sites(args)
+    ds = risk_at_sites({"object": fragility}, sites, years=years, extension=args.extension, band_edges_g=edges)
+    rows = []
+    for name, site in sites.items():
+        d = ds.sel(strategy="object", site=name)
+        row = {**_where(site), "annual_rate": float(d.annual_rate), "probability": float(d.probability),
+               "rate_below_curve": float(d.rate_below), "rate_above_curve": float(d.rate_above),
+               "tail_share": float(d.tail_share)}
+        if edges is not None:
+            lows, highs = ds.pga_band_low.values, ds.pga_band_high.values
+            row["disaggregation"] = [{"pga_low_g": float(lo), "pga_high_g": None if math.isinf(hi) else float(hi),
+                                      "share": float(sh)} for lo, hi, sh in zip(lows, highs, d.disaggregation.values)]
+        rows.append(row)
+    return _one_or_many(rows, {"years": years, **base, "hazard": args.hazard, "extension": args.extension})
+
+
+def _target(args, parser, targets, years: float) -> dict:
+    from rockstudy.analysis import risk
+    from rockstudy.analysis.risk_devices import devices_meeting
+    if len(targets) > 1:
+        parser.error("give one target: --target-rate or --target-probability")
+    if args.hazard is None:
+        parser.error("a target needs --hazard (the median meeting it on the hazard curve)")
+    if args.dispersion is None or args.median is not None or args.fragility is not None:
+        parser.error("a target takes --dispersion only (the median is what it finds)")
+    sites = _sites(args)
+    dispersion = RISK_INPUTS["dispersion"].check("--dispersion", args.dispersion)
+    if args.target_rate is not None:
+        rate = RISK_INPUTS["target_rate"].check("--target-rate", args.target_rate)
+    else:
+        RISK_INPUTS["target_probability"].check("--target-probability", args.target_probability)
+        rate = risk.rate_for_probability(args.target_probability, years)
+    devices = _read_devices(args, parser) if args.devices is not None else None
+    rows = []
+    for name, site in sites.items():
+        try:
+            found = risk.target_median(site.curve, dispersion, target_rate=rate, extension=args.extension,
+                                       allow_extrapolation=args.allow_extrapolation)
+        except validation.InputError as exc:
+            raise validation.InputError(f"--hazard {name}: {exc}") from None
+        row = {**_where(site), "median_g": found.median_g, "extrapolated": found.extrapolated}
+        if found.extrapolated:
+            row["decades_outside_curve"] = found.decades_outside
+        if devices is not None:
+            row["devices"] = devices_meeting(devices, found.median_g)
+        rows.append(row)
+    return _one_or_many(rows, {"dispersion": dispersion, "target_rate": rate,
+                               "target_probability": risk.probability_in_years(rate, years), "years": years,
+                               "hazard": args.hazard, "extension": args.extension})
+
+
+def _read_devices(args, parser):
     from rockstudy.core.io import read_netcdf
     validation.check_input_file("--devices", args.devices, validation.MAX_DATASET_BYTES)
     try:
@@ -313,4 +378,4 @@ def _devices(args, parser, median: float) -> list[dict]:
         parser.error(f"argument --devices: cannot read {args.devices!r} as a netCDF file: {exc}")
     if not {"kappa_max", "damping_ratio", "strategy"} <= set(ds.coords) or "fragility_median" not in ds:
         parser.error(f"argument --devices: {args.devices!r} is not a device sweep (design/devices.nc)")
-    return devices_meeting(ds, median)
+    return ds

@@ -1,19 +1,32 @@
 """``rockstudy records``: the record suites and their records, and ``records --export SUITE:ID``, one record of a
 suite as a file other tools read.
 
+``records`` prints a plain table; ``--json`` and ``--csv`` print the same rows for programs, with the NGA-West2
+record sequence number (``rsn``) where the suite has one.
+
 ``--format one-column`` writes one acceleration sample a line, the layout OpenSees'
-``timeSeries Path -dt DT -filePath FILE`` reads (and SAP2000, SeismoStruct and most others);
-``two-column`` writes time and acceleration; ``at2`` the PEER NGA layout. The samples keep the
-record's unit (g for the FEMA P695 sets); the summary printed as JSON gives the step ``dt``, the
-number of samples, the unit, the factor to m/s² and the OpenSees line that reads the file.
+``timeSeries Path -dt DT -filePath FILE -factor F`` reads (and SAP2000, SeismoStruct and most others);
+``two-column`` writes a header naming the units (``time [s], acceleration [g]``) and then time and
+acceleration a line; ``at2`` the PEER NGA layout (in g by the format). The samples are in the record's own
+unit (g for the FEMA P695 sets), stated as ``unit``; ``to_m_per_s2`` is the factor that turns them into m/s²,
+and the OpenSees line carries it as ``-factor`` so that the model receives m/s².
 """
 from __future__ import annotations
 
-import json
+import csv
+import io
+import math
 import sys
-from pathlib import Path
 
 from rockstudy.cli import COMMANDS
+
+FORMATS = ("one-column", "two-column", "at2")
+"""What ``--format`` accepts."""
+DEFAULT_FORMAT = "one-column"
+"""The export format unless ``--format`` names another."""
+LISTING_FIELDS = ("record", "suite", "id", "rsn", "event", "year", "magnitude", "station", "distance_km",
+                  "site_class", "pga_g", "pgv_m_per_s", "pulse", "dt_s", "npts")
+"""The columns of ``records --json`` and ``--csv``."""
 
 
 def register(sub) -> None:
@@ -26,14 +39,23 @@ def register(sub) -> None:
     """
     pr = sub.add_parser("records", help=COMMANDS["records"].help)
     pr.add_argument("--suite", help="list only this suite's records (default: every suite)")
+    listing = pr.add_mutually_exclusive_group()
+    listing.add_argument("--json", action="store_true", help="print the records as JSON (with the NGA RSN)")
+    listing.add_argument("--csv", action="store_true", help="print the records as CSV (with the NGA RSN)")
     add_export_arguments(pr)
     pr.set_defaults(run=_cmd_records)
 
 
 def _cmd_records(args, parser):
     """``records``: the suites and their records (``--export``: one record to a file)."""
+    given = [o for o, v in (("--format", args.format), ("--output", args.output)) if v is not None]
     if args.export is not None:
+        if args.json or args.csv:
+            parser.error("--json and --csv list records; --export writes one (its summary is JSON already)")
         return run_export(args, parser)
+    if given:
+        parser.error(f"{' and '.join(given)} {'go' if len(given) > 1 else 'goes'} with --export SUITE:ID (the "
+                     "record to write)")
     from rockstudy.model import record_suites
     suites = record_suites.suite_names()
     if args.suite is not None:
@@ -41,6 +63,8 @@ def _cmd_records(args, parser):
             suites = (record_suites.check_suite(args.suite, "--suite"),)
         except record_suites.RecordSuiteError as exc:
             parser.error(f"argument {exc}")
+    if args.json or args.csv:
+        return _listing(args, parser, suites)
     for suite in suites:
         print(f"{suite}: {record_suites.SUITES[suite]}")
         try:
@@ -52,8 +76,47 @@ def _cmd_records(args, parser):
     sys.stdout.flush()
 
 
-FORMATS = ("one-column", "two-column", "at2")
-"""What ``--format`` accepts."""
+def listing_rows(suite: str) -> list[dict]:
+    """One row per record of ``suite`` (:data:`LISTING_FIELDS`), None where a field does not apply.
+
+    Parameters
+    ----------
+    suite : str
+        A suite name.
+    """
+    from rockstudy.model import record_suites
+    rsn = record_suites.record_sequence_numbers(suite)
+
+    def number(value):
+        return None if value is None or (isinstance(value, float) and not math.isfinite(value)) else value
+
+    return [{"record": i.name, "suite": i.suite, "id": i.id, "rsn": rsn.get(i.id), "event": i.event,
+             "year": i.year or None, "magnitude": number(i.magnitude), "station": i.station,
+             "distance_km": number(i.distance_km), "site_class": i.site_class or None, "pga_g": i.pga_g,
+             "pgv_m_per_s": i.pgv, "pulse": i.pulse, "dt_s": i.dt, "npts": i.npts}
+            for i in record_suites.catalogue(suite)]
+
+
+def _listing(args, parser, suites) -> None:
+    from rockstudy.cli.output import print_json
+    from rockstudy.model import record_suites
+    rows = []
+    for suite in suites:
+        try:
+            rows += listing_rows(suite)
+        except record_suites.MissingPackageError as exc:
+            if args.suite is not None:
+                parser.error(f"argument --suite: {exc}")
+            print(f"rockstudy: warning: {suite} not listed: {exc}", file=sys.stderr)
+    if args.json:
+        print_json({"records": rows})
+        return
+    text = io.StringIO()
+    writer = csv.DictWriter(text, fieldnames=LISTING_FIELDS, lineterminator="\n")
+    writer.writeheader()
+    writer.writerows({k: ("" if v is None else v) for k, v in row.items()} for row in rows)
+    sys.stdout.write(text.getvalue())
+    sys.stdout.flush()
 
 
 def add_export_arguments(parser) -> None:
@@ -66,32 +129,67 @@ def add_export_arguments(parser) -> None:
     """
     parser.add_argument("--export", metavar="SUITE:ID",
                         help="write this record to a file (--format, --output) and print its dt as JSON")
-    parser.add_argument("--format", choices=FORMATS, default="one-column",
-                        help="one-column: one sample a line (OpenSees timeSeries Path); two-column: time and "
-                             "acceleration; at2: PEER NGA [default: one-column]")
-    parser.add_argument("--output", help="file to write [default: SUITE_ID.txt, or .AT2 with --format at2]")
+    parser.add_argument("--format", choices=FORMATS, default=None,
+                        help="with --export: one-column, one sample a line (OpenSees timeSeries Path); "
+                             "two-column: a units header, then time and acceleration; at2: PEER NGA "
+                             f"[default: {DEFAULT_FORMAT}]")
+    parser.add_argument("--output", help="with --export: file to write [default: SUITE_ID.txt, or .AT2 with "
+                                         "--format at2]")
 
 
-def export_text(times, acceleration, fmt: str) -> str:
-    """The samples as text: one a line (``one-column``) or time and sample a line (``two-column``).
+def export_text(times, values, fmt: str, unit: str = "g") -> str:
+    """The samples as text: one a line (``one-column``) or a header naming the units and then time and sample a
+    line (``two-column``).
 
     Parameters
     ----------
     times : array_like
         Sample times, written by ``two-column``. [s]
-    acceleration : array_like
-        The samples, in the record's unit.
+    values : array_like
+        The samples, in ``unit``.
     fmt : {"one-column", "two-column"}
         The layout.
+    unit : str, default "g"
+        The samples' unit, named in the two-column header.
     """
     import numpy as np
 
-    acceleration = np.asarray(acceleration, dtype=float)
+    values = np.asarray(values, dtype=float)
     if fmt == "one-column":
-        return "".join(f"{a:.9e}\n" for a in acceleration)
+        return "".join(f"{a:.9e}\n" for a in values)
     if fmt == "two-column":
-        return "".join(f"{t:.6f} {a:.9e}\n" for t, a in zip(np.asarray(times, float), acceleration))
+        return f"time [s], acceleration [{unit}]\n" + "".join(
+            f"{t:.6f} {a:.9e}\n" for t, a in zip(np.asarray(times, float), values))
     raise ValueError(f"format: {fmt!r} is not one of {', '.join(FORMATS)}")
+
+
+def export_record(record, path, fmt: str, title: str = "") -> dict:
+    """Write ``record`` to ``path`` in ``fmt`` and return what a reader needs: ``unit`` of the values written,
+    ``to_m_per_s2`` (the factor to m/s²) and, for one column, the OpenSees line reading the file in m/s².
+
+    Parameters
+    ----------
+    record : rockstudy.model.records.Record
+        The record (its ``acceleration`` in m/s², its ``unit`` the unit of its source).
+    path : str or pathlib.Path
+        The file to write (checked by the caller).
+    fmt : {"one-column", "two-column", "at2"}
+        The layout.
+    title : str, default ""
+        An AT2 file's first header line.
+    """
+    from rockstudy.core.io import write_text
+    from rockstudy.model.records import unit_factor, write_at2
+    if fmt == "at2":
+        write_at2(record, path, title=title or record.name)
+        unit = "g"  # the AT2 format's unit
+    else:
+        unit = record.unit
+        write_text(export_text(record.times, record.acceleration / unit_factor(unit), fmt, unit), path)
+    factor = unit_factor(unit)
+    return {"format": fmt, "unit": unit, "to_m_per_s2": factor,
+            "opensees": f"timeSeries Path 1 -dt {record.dt!r} -filePath {path} -factor {factor!r}"
+                        if fmt == "one-column" else None}
 
 
 def run_export(args, parser) -> dict:
@@ -102,29 +200,31 @@ def run_export(args, parser) -> dict:
     args : argparse.Namespace
         The parsed options of ``rockstudy records``: ``export`` (``SUITE:ID``), ``format`` and ``output``.
     parser : argparse.ArgumentParser
-        The command's parser; a bad record name is reported through it (exit status 2).
+        The command's parser; a bad record name or output is reported through it (exit status 2).
     """
-    from rockstudy.core.io import write_text
+    from rockstudy.cli.output import print_json
+    from rockstudy.core import validation
     from rockstudy.model import record_suites
-    from rockstudy.model.records import unit_factor, write_at2
 
+    fmt = args.format or DEFAULT_FORMAT
     try:
         info, record = record_suites.load_record(args.export, "--export")
     except record_suites.RecordSuiteError as exc:
         parser.error(f"argument {exc}")
-    default = f"{info.suite}_{info.id}" + (".AT2" if args.format == "at2" else ".txt")
-    path = Path(args.output or default)
+    default = f"{info.suite}_{info.id}" + (".AT2" if fmt == "at2" else ".txt")
+    try:
+        path = validation.check_output_path("--output", args.output or default)
+    except validation.InputError as exc:
+        parser.error(str(exc))
+    if path.exists() and not path.is_file():  # a device node or a FIFO outside /dev: never replaced
+        parser.error(f"argument --output: {str(path)!r} exists and is not a regular file; give a file name")
     times = record_suites.record_time(record)
-    if args.format == "at2":
-        write_at2(record, path, title=f"{info.name} {info.event} {info.station}")
-    else:
-        write_text(export_text(times, record.acceleration, args.format), path)
-    factor = unit_factor(record.unit)
+    try:
+        written = export_record(record, path, fmt, title=f"{info.name} {info.event} {info.station}")
+    except OSError as exc:
+        parser.error(f"argument --output: cannot write {str(path)!r}: {exc.strerror or exc}")
     summary = {"record": info.name, "event": info.event, "station": info.station, "file": str(path),
-               "format": args.format, "dt_s": record.dt, "npts": int(record.acceleration.size),
-               "duration_s": float(times[-1]) if times.size else 0.0, "unit": record.unit,
-               "to_m_per_s2": factor,
-               "opensees": f"timeSeries Path 1 -dt {record.dt:g} -filePath {path} -factor {factor:g}"
-                           if args.format == "one-column" else None}
-    print(json.dumps(summary, indent=2))
+               "dt_s": record.dt, "npts": int(record.acceleration.size),
+               "duration_s": float(times[-1]) if times.size else 0.0, **written}
+    print_json(summary)
     return summary

@@ -361,6 +361,8 @@ class Risk(Section):
     scenarios: Annotated[dict[RiskName, Scenario], Field(max_length=r.MAX_SCENARIOS)] = None
     hazard_curves: Annotated[dict[RiskName, Annotated[str, StringConstraints(min_length=1, max_length=MAX_TEXT)]],
                              Field(max_length=r.MAX_SCENARIOS)] = None
+    hazard_units: Annotated[dict[RiskName, Literal[tuple(r.HAZARD_UNITS)]], Field(max_length=r.MAX_SCENARIOS)] = None
+    outside_gmm_range: bool = None
 
 
 class Study(Section):

