@@ -9,6 +9,7 @@ from __future__ import annotations
 import copy
 from collections.abc import Mapping
 
+from rockstudy.core import limits
 from rockstudy.core import validation as v
 from rockstudy.core.validation import InputError
 
@@ -16,9 +17,8 @@ REPLACED_BY_OVERLAY = ("block", "noise_levels", "reproduction.readings", "beyond
 """Config keys whose value an overlay replaces whole instead of merging into: sections with alternatives
 (a block by preset or by dimensions) and mappings of names (noise levels, readings)."""
 
-MAX_NODES = 100_000
-"""Most nodes (mappings, lists and scalars, aliases expanded) of a config: a few-hundred-byte YAML alias
-bomb expands to billions, which any walk over it would take hours to visit."""
+MAX_NODES = limits.MAX_NODES
+"""Most nodes of a config (:data:`rockstudy.core.limits.MAX_NODES`)."""
 
 
 def replace_sections(config: dict, overlay: dict) -> dict:

@@ -37,6 +37,7 @@ from pydantic import (
 from rockstudy.core import risk_inputs as r
 from rockstudy.core import validation as v
 from rockstudy.core.config_files import count_nodes
+from rockstudy.core.limits import EXCITATIONS, LEVEL_MEANINGS, MAX_TEXT, OVERTURN_CRITERIA, RESCALES, STRATEGIES
 from rockstudy.core.quantities import (  # noqa: F401 -- the limits, where the config's readers look for them
     MAX_A_MAX0_G,
     MAX_ALPHA,
@@ -56,19 +57,12 @@ from rockstudy.core.validation import InputError
 SCHEMA_PATH = "workflow/schemas/config.schema.yaml"
 """Where the generated schema is checked in, relative to the repository."""
 
-# The names the library accepts (they equal the library's tuples, which load numba: a test keeps them equal).
-STRATEGIES = ("FS", "PASSIVE", "CS01", "CS02")
-EXCITATIONS = ("modulated", "one-sine")
-OVERTURN_CRITERIA = ("flat", "alpha")
-RESCALES = ("energy", "pga", "both", "none")
-LEVEL_MEANINGS = ("energy", "rms")
+# The names the library accepts: the library's own tuples (core.limits), and those of modules that load numba
+# (a test keeps these equal to theirs)
 BLOCK_PRESETS = ("BLC06",)
 SUITES = ("p695-far-field", "p695-near-field-pulse", "p695-near-field-no-pulse", "synthetic")
 RECORD_UNITS = ("g", "m/s^2", "m/s2", "cm/s^2", "cm/s2", "gal", "mm/s^2", "mm/s2")
 INTENSITY_MEASURES = ("pga_ratio", "pgv_ratio")
-
-MAX_TEXT = 4096
-"""Longest string of a config (a path or a label)."""
 
 
 def _unique(items: list) -> list:
@@ -268,11 +262,11 @@ RecordName = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_-]+(:[^/\\:]
 class Synthetic(Section):
     n_records: Q("suite_records")
     seed: Seed
-    ground_frequency_hz: _list(_number("Hz", gt=0, le=v.MAX_FREQUENCY_RATIO), low=2, high=2, unique=False)
-    ground_damping: _list(_number("-", gt=0, le=v.MAX_FREQUENCY_RATIO), low=2, high=2, unique=False)
+    ground_frequency_hz: _list(Q("ground_frequency_hz"), low=2, high=2, unique=False)
+    ground_damping: _list(Q("ground_damping"), low=2, high=2, unique=False)
     peak_time: _list(Seconds, low=2, high=2, unique=False)
-    envelope_shape: Ratio
-    filter_ratio: _number("-", gt=0, lt=1)
+    envelope_shape: Q("envelope_shape")
+    filter_ratio: Q("filter_ratio")
     duration: Seconds
     dt: Seconds
     pga_g: Q("pga_g")

@@ -24,7 +24,25 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from rockstudy.core import limits as lim
 from rockstudy.core import validation as v
+from rockstudy.core.limits import (  # noqa: F401 -- aliased where the config's and the engines' readers look
+    ATOL_RANGE,
+    MAX_A_MAX0_G,
+    MAX_ALPHA,
+    MAX_BAND,
+    MAX_BLOCK_SIZE,
+    MAX_DENSITY,
+    MAX_PGA_G,
+    MAX_RECORD_SCALE,
+    MAX_ROTATION_RATIO,
+    MIN_ALPHA,
+    MIN_BLOCK_SIZE,
+    MIN_DESIGN_RESOLUTION,
+    MIN_DESIGN_STEP,
+    MIN_PGA_G,
+    RTOL_RANGE,
+)
 
 
 @dataclass(frozen=True)
@@ -70,8 +88,8 @@ class Quantity:
         if value is None and self.optional:
             return None
         if self.integer:
-            low = -v.MAX_INTEGER - 1 if self.low is None else int(math.ceil(self.low + (1 if self.low_open else 0)))
-            high = v.MAX_INTEGER if self.high is None else int(self.high)
+            low = -lim.MAX_INTEGER - 1 if self.low is None else int(math.ceil(self.low + (1 if self.low_open else 0)))
+            high = lim.MAX_INTEGER if self.high is None else int(self.high)
             return v.check_int_range(name, value, low, high)
         return v.check_range(name, value, self.low, self.high, "" if self.unit == "-" else self.unit,
                              low_open=self.low_open, high_open=self.high_open,
@@ -99,96 +117,74 @@ class Quantity:
 
 
 
-MAX_PGA_G = 100.0
-"""Largest peak ground acceleration of a design stripe or a synthetic suite. [g]"""
-MIN_PGA_G = 1e-4
-"""Smallest peak ground acceleration of a design stripe. [g]"""
-MAX_A_MAX0_G = 100.0
-"""Largest protection level a_max,0. [g]"""
-MAX_BLOCK_SIZE = 1000.0
-"""Largest block dimension. [m]"""
-MIN_BLOCK_SIZE = 1e-4
-"""Smallest block dimension. [m]"""
-MAX_DENSITY = 1e5
-"""Largest block density. [kg/m^3]"""
-MIN_DESIGN_STEP = 1e-3
-"""Smallest step of a design block's amplitude scan (it has no stop: it scans up to a_max,0). [-]"""
-MIN_DESIGN_RESOLUTION = 1e-6
-"""Smallest resolution of a design block's threshold. [-]"""
-MIN_ALPHA = 1e-3
-"""Smallest slenderness alpha of a design block. [rad]"""
-MAX_ALPHA = 0.6
-"""Largest slenderness alpha of a design block. [rad]"""
-MAX_ROTATION_RATIO = 10.0
-"""Largest ultimate rotation of a calibration device, as a multiple of alpha. [-]"""
-MAX_BAND = 1e6
-"""Largest filter cut-off of a noise reading or a sensor. [Hz]"""
-MAX_RECORD_SCALE = 1e6
-"""Largest factor a record is scaled by. [-]"""
-RTOL_RANGE = (1e-14, 1e-3)
-"""Allowed relative tolerances of the integrators [-]: tighter than 1e-14 is below round-off, looser than 1e-3
-is not a result."""
-ATOL_RANGE = (1e-16, 1e-3)
-"""Allowed absolute tolerances of the integrators (θ in rad, θ̇ in rad/s). [-]"""
-
 QUANTITIES = {
     # the excitation and its scan
-    "frequency_ratio": Quantity(0.0, v.MAX_FREQUENCY_RATIO, "-", "frequency ratio omega_p/p"),
-    "amplitude_ratio": Quantity(0.0, v.MAX_AMPLITUDE_RATIO, "-", "amplitude ratio a_p/(g tan alpha)"),
-    "amplitude_resolution": Quantity(0.0, v.MAX_AMPLITUDE_RATIO, "-", "width of a threshold's final bracket"),
+    "frequency_ratio": Quantity(0.0, lim.MAX_FREQUENCY_RATIO, "-", "frequency ratio omega_p/p"),
+    "amplitude_ratio": Quantity(0.0, lim.MAX_AMPLITUDE_RATIO, "-", "amplitude ratio a_p/(g tan alpha)"),
+    "amplitude_resolution": Quantity(0.0, lim.MAX_AMPLITUDE_RATIO, "-", "width of a threshold's final bracket"),
     "a_max0_g": Quantity(0.0, MAX_A_MAX0_G, "g", "protection level a_max,0"),
     "pga_g": Quantity(0.0, MAX_PGA_G, "g", "peak ground acceleration"),
     "design_pga_g": Quantity(MIN_PGA_G, MAX_PGA_G, "g", "peak ground acceleration of a design stripe", low_open=False),
     "acceleration": Quantity(None, None, "m/s^2", "ground acceleration amplitude"),
     "circular_frequency": Quantity(0.0, None, "rad/s", "circular frequency"),
-    "duration": Quantity(0.0, v.MAX_TIME_SPAN, "s", "duration"),
+    "duration": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "duration"),
     "angular_rate": Quantity(None, None, "rad/s", "circular frequency or rate (> 0 where it is a frequency)"),
-    "free_time": Quantity(0.0, v.MAX_FREE_TIME, "s", "free motion after the excitation", low_open=False),
-    "record_dt": Quantity(0.0, v.MAX_TIME_SPAN, "s", "sampling step of a record"),
-    "column_dt": Quantity(0.0, v.MAX_TIME_SPAN, "s", "sampling step of a one-column record (None: a time column)",
+    "free_time": Quantity(0.0, lim.MAX_FREE_TIME, "s", "free motion after the excitation", low_open=False),
+    "record_dt": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "sampling step of a record"),
+    "column_dt": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "sampling step of a one-column record (None: a time column)",
                     optional=True),
     "record_scale": Quantity(0.0, MAX_RECORD_SCALE, "-", "factor a record is scaled by"),
     "signed_factor": Quantity(None, None, "-", "factor (negative: the record reversed)"),
-    "design_step": Quantity(MIN_DESIGN_STEP, v.MAX_AMPLITUDE_RATIO, "-", "step of a design block's amplitude scan",
+    "design_step": Quantity(MIN_DESIGN_STEP, lim.MAX_AMPLITUDE_RATIO, "-", "step of a design block's amplitude scan",
                       low_open=False),
-    "design_resolution": Quantity(MIN_DESIGN_RESOLUTION, v.MAX_AMPLITUDE_RATIO, "-",
+    "design_resolution": Quantity(MIN_DESIGN_RESOLUTION, lim.MAX_AMPLITUDE_RATIO, "-",
                             "resolution of a design block's threshold", low_open=False),
     # the block and its restrainers
     "slenderness": Quantity(MIN_ALPHA, MAX_ALPHA, "rad", "slenderness alpha of a design block", low_open=False),
-    "half_diagonal": Quantity(MIN_BLOCK_SIZE, 50.0, "m", "half diagonal R of a design block", low_open=False),
+    "half_diagonal": Quantity(MIN_BLOCK_SIZE, lim.MAX_HALF_DIAGONAL, "m", "half diagonal R of a design block",
+                              low_open=False),
     "length": Quantity(MIN_BLOCK_SIZE, MAX_BLOCK_SIZE, "m", "block dimension", low_open=False),
     "density": Quantity(0.0, MAX_DENSITY, "kg/m^3", "mass density"),
-    "gravity": Quantity(0.0, 1000.0, "m/s^2", "acceleration of gravity"),
+    "gravity": Quantity(0.0, lim.MAX_GRAVITY, "m/s^2", "acceleration of gravity"),
     "restitution": Quantity(0.0, 1.0, "-", "coefficient of restitution (None: Housner's, Eq. 14)", low_open=False,
                       optional=True),
-    "kappa": Quantity(0.0, v.MAX_KAPPA, "-", "dimensionless stiffness 4 K b^2/(m g R)", low_open=False),
-    "damping_ratio": Quantity(0.0, v.MAX_DAMPING_RATIO, "-", "damping ratio xi", low_open=False),
-    "ultimate_rotation": Quantity(0.0, math.pi / 2, "rad", "rotation at which a restrainer breaks (None: alpha)",
+    "kappa": Quantity(0.0, lim.MAX_KAPPA, "-", "dimensionless stiffness 4 K b^2/(m g R)", low_open=False),
+    "damping_ratio": Quantity(0.0, lim.MAX_DAMPING_RATIO, "-", "damping ratio xi", low_open=False),
+    "ultimate_rotation": Quantity(0.0, lim.MAX_ROTATION, "rad", "rotation at which a restrainer breaks (None: alpha)",
                             optional=True),
     # control, sensing and noise
-    "sampling_time": Quantity(0.0, v.MAX_TIME_SPAN, "s", "controller sampling time T_s (0: continuous)",
+    "sampling_time": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "controller sampling time T_s (0: continuous)",
                               low_open=False),
-    "delay": Quantity(0.0, v.MAX_TIME_SPAN, "s", "actuation delay", low_open=False),
+    "delay": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "actuation delay", low_open=False),
     "band": Quantity(0.0, MAX_BAND, "Hz", "low-pass cut-off (None: no filter)", optional=True),
     "noise_level": Quantity(0.0, 1.0, "-", "noise level N", low_open=False, high_open=True),
-    "noise_step": Quantity(0.0, v.MAX_NOISE_STEP, "s", "sampling step of a noisy record"),
-    "noise_span": Quantity(0.0, v.MAX_TIME_SPAN, "s", "noise after the excitation", low_open=False),
-    "seed": Quantity(0.0, v.MAX_INTEGER, "", "seed of the random numbers", low_open=False, integer=True),
-    "realisation": Quantity(0.0, v.MAX_INTEGER, "", "index of a noise realisation", low_open=False, integer=True),
-    "sample_count": Quantity(0.0, v.MAX_RECORD_SAMPLES, "", "number of samples", low_open=False, integer=True),
+    "noise_step": Quantity(0.0, lim.MAX_NOISE_STEP, "s", "sampling step of a noisy record"),
+    "noise_span": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "noise after the excitation", low_open=False),
+    "seed": Quantity(0.0, lim.MAX_INTEGER, "", "seed of the random numbers", low_open=False, integer=True),
+    "realisation": Quantity(0.0, lim.MAX_INTEGER, "", "index of a noise realisation", low_open=False, integer=True),
+    "sample_count": Quantity(0.0, lim.MAX_RECORD_SAMPLES, "", "number of samples", low_open=False, integer=True),
     # integration
-    "initial_rotation": Quantity(-math.pi / 2, math.pi / 2, "rad", "initial rotation theta_0", low_open=False),
+    "initial_rotation": Quantity(-lim.MAX_ROTATION, lim.MAX_ROTATION, "rad", "initial rotation theta_0",
+                                 low_open=False),
     "initial_velocity": Quantity(None, None, "rad/s", "initial rotational velocity"),
     "rest_velocity": Quantity(0.0, None, "rad/s", "|theta_dot+| below which an impact ends the motion",
                         low_open=False, optional=True),
     "rtol": Quantity(*RTOL_RANGE, "-", "relative integration tolerance", low_open=False, optional=True),
     "atol": Quantity(*ATOL_RANGE, "-", "absolute integration tolerance", low_open=False, optional=True),
     # fragility
-    "intensity_resolution": Quantity(0.0, v.MAX_AMPLITUDE_RATIO, "intensity measure",
+    "intensity_resolution": Quantity(0.0, lim.MAX_AMPLITUDE_RATIO, "intensity measure",
                                "width of a record threshold's final bracket"),
-    "suite_records": Quantity(1, v.MAX_SUITE_RECORDS, "", "number of records of a suite", low_open=False, integer=True),
-    "stripe_count": Quantity(2, v.MAX_LIST_ITEMS, "", "number of PGA levels (stripes)", low_open=False, integer=True),
-    "bootstrap": Quantity(0.0, v.MAX_BOOTSTRAP, "", "bootstrap draws", low_open=False, integer=True),
+    "suite_records": Quantity(1, lim.MAX_SUITE_RECORDS, "", "number of records of a suite", low_open=False,
+                              integer=True),
+    "stripe_count": Quantity(lim.MIN_STRIPES, lim.MAX_LIST_ITEMS, "", "number of PGA levels (stripes)",
+                             low_open=False, integer=True),
+    # the synthetic record suite (Kanai-Tajimi filtered noise under an envelope)
+    "ground_frequency_hz": Quantity(0.0, lim.MAX_GROUND_FREQUENCY_HZ, "Hz", "ground frequency of the filter"),
+    "ground_damping": Quantity(0.0, lim.MAX_GROUND_DAMPING, "-", "ground damping ratio of the filter"),
+    "envelope_shape": Quantity(0.0, lim.MAX_ENVELOPE_SHAPE, "-", "shape exponent of the envelope"),
+    "filter_ratio": Quantity(0.0, 1.0, "-", "frequency of the high-pass filter over the ground frequency",
+                             high_open=True),
+    "bootstrap": Quantity(0.0, lim.MAX_BOOTSTRAP, "", "bootstrap draws", low_open=False, integer=True),
 }
 """Every kind of numeric input, by name."""
 
@@ -236,11 +232,11 @@ that takes a sequence (``spectrum``'s ``frequency_ratios``) is checked item by i
 
 
 SIZES = {
-    ("spectrum", "frequency_ratios"): v.MAX_GRID_POINTS,
-    ("spectrum", "realisations"): v.MAX_REALISATIONS,
-    ("GroundMotion", "record"): v.MAX_RECORD_SAMPLES,
-    ("GroundMotion", "vertical"): v.MAX_RECORD_SAMPLES,
-    ("Record", "acceleration"): v.MAX_RECORD_SAMPLES,
+    ("spectrum", "frequency_ratios"): lim.MAX_GRID_POINTS,
+    ("spectrum", "realisations"): lim.MAX_REALISATIONS,
+    ("GroundMotion", "record"): lim.MAX_RECORD_SAMPLES,
+    ("GroundMotion", "vertical"): lim.MAX_RECORD_SAMPLES,
+    ("Record", "acceleration"): lim.MAX_RECORD_SAMPLES,
 }
 """Most items of each sequence argument of the public classes and functions, by (owner, argument): what
 bounds the work and the memory a call may take (the engine steps to every record sample)."""

@@ -1,46 +1,19 @@
-"""Input limits and the checks that enforce them: numbers, relations between inputs, work size, files.
+"""The checks every input goes through: numbers, relations between inputs, the size of the work, files.
 
-A numeric input's type, unit and range are declared once in :mod:`rockstudy.core.quantities`
-(:data:`~rockstudy.core.quantities.QUANTITIES`, :data:`~rockstudy.core.quantities.ARGUMENTS`,
-:func:`~rockstudy.core.quantities.check_arguments`). This module holds what those declarations build on:
-the limits (``MAX_*``), the low-level checks they call (:func:`check_number`, :func:`check_range`,
-:func:`check_int_range`), and the checks no single input's range covers: relations between inputs (a grid's
-start, stop and step, a_max,0 within the amplitude scan), the size of the work (:func:`check_workload`,
-:func:`check_sizes`) and the files read and written.
+A numeric input's type, unit and range are declared once in :mod:`rockstudy.core.quantities`, and every
+limit is written once in :mod:`rockstudy.core.limits` (its names are aliased here, ``validation.MAX_TIME_SPAN``,
+for the modules that read them beside the checks). This module holds the low-level checks the
+declarations call (:func:`check_number`, :func:`check_range`, :func:`check_int_range`), and the checks no
+single input's range covers: relations between inputs (a grid's start, stop and step, a_max,0 within the
+amplitude scan), the size of the work (:func:`check_workload`, :func:`check_sizes`) and the files read and
+written.
 
 Every check takes the name the user typed (``--frequency-step``, ``frequency_grid.step``,
 ``Block.width``), the value, and the unit the user gave it in, and raises :class:`InputError`
 (a :class:`ValueError`) whose message names the input, the value and what is allowed. The checks
 run before any work, so a bad input never costs a computation and never leaves a partial output.
-
-Limits
-------
-The limits below bound everything that becomes an array size, a loop count or a time span. They
-are derived from what one machine can do; with the default study a case (one realisation at one
-frequency) takes about 0.05 s on one core, about 50 simulations of ~1 ms, and needs one noise
-record of ``duration / 0.0025 s`` samples (8 bytes each).
-
-* :data:`MAX_INTEGER` -- seeds and realisation indices are stored as netCDF ``int64``
-  attributes and coordinates, so they must fit in a signed 64-bit integer.
-* :data:`MAX_GRID_POINTS` -- points of one frequency or amplitude grid (a grid of 10^5 points
-  already means 10^5 cases per realisation; the paper uses about 50).
-* :data:`MAX_SIMULATIONS` -- upper bound of the simulations one command or one workflow job
-  may need (cases x (coarse grid points + bisection steps)): 10^8 simulations is about
-  one day on one core at ~1 ms each.
-* :data:`MAX_JOBS_PER_SPECTRUM` -- realisation chunks of one spectrum in the workflow (the DAG of
-  all spectra must stay small enough for Snakemake to plan).
-* :func:`memory_budget` -- the noise records of one command or job must fit in a quarter of the
-  machine's physical memory (they are all held at once).
-* :data:`MAX_TIME_SPAN` -- excitation duration plus free time of one simulation. [s]
-* :data:`MAX_STEPS` -- integrator steps one simulation may need: its time span over the engine's
-  largest step (1/20 of the shorter of the free-rocking and excitation periods).
-* :data:`MAX_CONTROLLER_SAMPLES` -- controller samples of one simulation (time span / T_s), half
-  the fast engine's event cap of 2 000 000, so sampled control cannot exhaust it.
-* :data:`MAX_AMPLITUDE_RATIO`, :data:`MAX_FREQUENCY_RATIO`, :data:`MAX_KAPPA`,
-  :data:`MAX_DAMPING_RATIO` -- physical ranges far beyond the paper's (amplitude ratios up to 6,
-  frequency ratios up to 5, kappa up to 1), kept finite so the integrator's step stays resolvable.
-* :data:`MIN_RELATIVE_RESOLUTION` -- the bisection of a threshold stops when its bracket is
-  narrower than the resolution; below 1e-9 of the scan bound floating point cannot narrow it.
+:func:`memory_budget` bounds the noise records one command or job holds at once (a quarter of the machine's
+physical memory).
 """
 from __future__ import annotations
 
@@ -50,64 +23,36 @@ import os
 import tempfile
 from pathlib import Path
 
-MAX_INTEGER = 2**63 - 1
-"""Largest seed or realisation index: netCDF ``int64`` attributes hold up to 2^63 - 1."""
-MAX_GRID_POINTS = 100_000
-"""Largest number of points of one frequency grid or one coarse amplitude grid."""
-MAX_REALISATIONS = 100_000
-"""Largest number of noise realisations of one spectrum (the paper uses 100)."""
-MAX_JOBS_PER_SPECTRUM = 10_000
-"""Largest number of realisation chunks (workflow jobs) of one spectrum."""
-MAX_SIMULATIONS = 10**8
-"""Largest number of simulations one command or workflow job may need (about a day on one core)."""
-MAX_TIME_SPAN = 3600.0
-"""Longest simulated time span, excitation plus free time. [s]"""
-MAX_FREE_TIME = 3600.0
-"""Longest free motion after the excitation. [s]"""
-MAX_STEPS = 10**7
-"""Largest number of integrator steps one simulation may need."""
-MAX_CONTROLLER_SAMPLES = 10**6
-"""Largest number of controller samples (time span / T_s) in one simulation (half the event cap)."""
-MAX_AMPLITUDE_RATIO = 1000.0
-"""Largest amplitude ratio a_p/(g tan alpha) (for BLC06 about 245 g). [-]"""
-MAX_FREQUENCY_RATIO = 1000.0
-"""Largest frequency ratio omega_p/p. [-]"""
-MAX_KAPPA = 1.0e4
-"""Largest dimensionless stiffness 4 K b^2/(m g R). [-]"""
-MAX_DAMPING_RATIO = 100.0
-"""Largest damping ratio xi. [-]"""
-MIN_RELATIVE_RESOLUTION = 1e-9
-"""Smallest amplitude resolution relative to the scan bound (floating point cannot bisect finer)."""
-RECORD_DT = 0.0025
-"""Sampling step of the noise records (``noise.NOISE_DT``). [s]"""
-RECORD_BYTES_PER_SAMPLE = 24
-"""Bytes held per record sample while a spectrum runs (the record, its baseline and a copy)."""
-MAX_NOISE_STEP = 0.1
-"""Largest sampling step of a noisy record (the study's records use 0.0025 s). [s]"""
-MAX_RECORD_SAMPLES = MAX_STEPS
-"""Largest number of samples of one ground-motion record: the engine ends a step at every sample, so a
-record of more samples than :data:`MAX_STEPS` cannot be simulated within that limit."""
-MAX_RECORD_BYTES = 256 * 2**20
-"""Largest record file read (a text record of :data:`MAX_RECORD_SAMPLES` samples takes about 150 MB). [B]"""
-MAX_DATASET_BYTES = 2**30
-"""Largest netCDF dataset read by ``rockstudy jos`` (a spectrum of the paper's study takes about 100 kB). [B]"""
-MAX_HISTORY_SAMPLES = 2 * MAX_STEPS
-"""Largest number of samples of a stored time history (integrator steps or uniform ground samples)."""
-MAX_LIST_ITEMS = 200
-"""Largest number of entries of one list or mapping of a study config (sampling times, delays, readings,
-strategies ...): each entry multiplies the workflow's jobs, and Snakemake plans them all before any runs."""
-MAX_BOOTSTRAP = 100_000
-"""Largest number of bootstrap draws (the study uses 200)."""
-MAX_SUITE_RECORDS = 10_000
-"""Largest number of records of one fragility suite (a P695 far-field set has 44)."""
-MAX_DEVICES = 1_000
-"""Largest number of devices one calibration screens (every combination of its lists; the study's 48)."""
-SYSTEM_FOLDERS = ("/bin", "/boot", "/etc", "/lib", "/lib32", "/lib64", "/libx32", "/sbin", "/usr", "/var")
-"""Folders of the operating system: a results folder may not be one of them or lie inside one (nor be /)."""
-PSEUDO_FILESYSTEMS = ("/proc", "/sys", "/dev")
-"""Folders no data product may be written to."""
-FIGURE_FORMATS = ("png", "pdf", "svg")
-"""Suffixes a figure may be written as."""
+from rockstudy.core.limits import (  # noqa: F401 -- the limits, aliased where the checks' callers look
+    FIGURE_FORMATS,
+    MAX_AMPLITUDE_RATIO,
+    MAX_BOOTSTRAP,
+    MAX_CONTROLLER_SAMPLES,
+    MAX_DAMPING_RATIO,
+    MAX_DATASET_BYTES,
+    MAX_DEVICES,
+    MAX_FREE_TIME,
+    MAX_FREQUENCY_RATIO,
+    MAX_GRID_POINTS,
+    MAX_HISTORY_SAMPLES,
+    MAX_INTEGER,
+    MAX_JOBS_PER_SPECTRUM,
+    MAX_KAPPA,
+    MAX_LIST_ITEMS,
+    MAX_NOISE_STEP,
+    MAX_REALISATIONS,
+    MAX_RECORD_BYTES,
+    MAX_RECORD_SAMPLES,
+    MAX_SIMULATIONS,
+    MAX_STEPS,
+    MAX_SUITE_RECORDS,
+    MAX_TIME_SPAN,
+    MIN_RELATIVE_RESOLUTION,
+    PSEUDO_FILESYSTEMS,
+    RECORD_BYTES_PER_SAMPLE,
+    RECORD_DT,
+    SYSTEM_FOLDERS,
+)
 
 
 class InputError(ValueError):

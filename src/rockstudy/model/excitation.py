@@ -13,6 +13,7 @@ import numpy as np
 from numba import njit
 
 from rockstudy.core._inline import inline_into
+from rockstudy.core.limits import EXCITATIONS
 from rockstudy.core.quantities import SIZES, check_arguments
 from rockstudy.core.validation import (
     MAX_CONTROLLER_SAMPLES,
@@ -22,7 +23,6 @@ from rockstudy.core.validation import (
     fail,
 )
 
-EXCITATIONS = ("one-sine", "modulated")
 KIND_CODE = {"one-sine": 0, "modulated": 1, "record": 2, "rectangular": 3}
 """Integer code of each kind of ground motion, the one the compiled engine reads."""
 ONE_SINE, MODULATED, RECORD, RECTANGULAR = (KIND_CODE[k] for k in ("one-sine", "modulated", "record", "rectangular"))

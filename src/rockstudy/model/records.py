@@ -40,6 +40,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rockstudy.core import limits
 from rockstudy.core.io import write_text
 from rockstudy.core.quantities import SIZES, check_arguments
 from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, InputError, check_input_file
@@ -286,9 +287,8 @@ def read_at2(path) -> Record:
     return Record(name=name, dt=dt, acceleration=np.asarray(values) * STANDARD_GRAVITY, source=str(path), unit="g")
 
 
-MAX_LINE_CHARS = 2**16
-"""Longest line of a record file: a record is a few numbers per line (one line of a 255 MB file would be
-split into millions of fields, and quoted whole in an error)."""
+MAX_LINE_CHARS = limits.MAX_LINE_CHARS
+"""Longest line of a record file (:data:`rockstudy.core.limits.MAX_LINE_CHARS`)."""
 
 
 def _lines(path):
