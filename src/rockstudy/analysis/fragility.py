@@ -30,7 +30,7 @@ import xarray as xr
 from rockstudy._version import __version__
 from rockstudy.analysis.fragility_fit import BOOTSTRAP_KEY, bootstrap_median_ratios, fit_lognormal, fit_lognormal_points
 from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturned, stripes_and_thresholds
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.engine.outcome import OUTCOME_MEANINGS
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME
 from rockstudy.model.anchorage import Anchorage
@@ -123,6 +123,7 @@ def _outcome_variable(outcome) -> tuple:
              "flag_meanings": " ".join(OUTCOME_MEANINGS)})
 
 
+@declares(n_boot="bootstrap", seed="seed", free_time="free_time")
 def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, levels, *,
                       measure: str = "pga_ratio", n_boot: int = 200, seed: int = 0,
                       overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
@@ -180,6 +181,7 @@ def _check_fragility_inputs(controls, n_boot):
     return strategies
 
 
+@declares(n_boot="bootstrap", seed="seed", free_time="free_time")
 def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records, levels, overturned, scale, *,
                            measure: str = "pga_ratio", n_boot: int = 200, seed: int = 0,
                            overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
@@ -295,6 +297,7 @@ def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records
 OTHER_MEASURE = {"pga_ratio": "pgv_ratio", "pgv_ratio": "pga_ratio"}
 
 
+@declares(resolution="intensity_resolution", n_boot="bootstrap", seed="seed", free_time="free_time")
 def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entries, levels, *,
                             suite: str, measure: str = "pga_ratio", resolution: float = 0.01, n_boot: int = 200,
                             seed: int = 0, overturn_criterion: str = "flat",

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.engine import _kernel
 from rockstudy.engine._kernel.scan import S_J, S_PHASE, SCANNING
 from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, UNDETERMINED
@@ -91,6 +91,7 @@ def is_overturned(code) -> np.ndarray:
     return np.isin(np.asarray(code), (OVERTURNED_WITHOUT_IMPACT, OVERTURNED_AFTER_IMPACT))
 
 
+@declares(resolution="amplitude_resolution")
 def record_threshold(run: RecordRun, grid, resolution: float, outcomes=None) -> dict:
     """Smallest amplitude ratio PGA/(g·tanα) that overturns the block under the scaled record.
 

@@ -10,7 +10,7 @@ from typing import NamedTuple
 import numpy as np
 
 from rockstudy.core import validation
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.engine.simulate import (
     DEFAULT_FREE_TIME,
     OVERTURN_CRITERIA,
@@ -61,6 +61,7 @@ class KernelCase(NamedTuple):
     pga_ratio: float
 
 
+@declares(noise_level="noise_level", seed="seed", free_time="free_time")
 @dataclass(frozen=True)
 class Scenario:
     """Everything but frequency, amplitude and realisation that defines a simulation.

@@ -3,8 +3,9 @@
 A :class:`Quantity` declares one kind of input (a frequency ratio, a block dimension, a seed). Each way a
 value enters names the quantity it is, and takes its check from it:
 
-* the library's arguments -- :data:`ARGUMENTS` maps each public class and function to the quantity of each
-  of its numeric arguments, and :func:`check_arguments` is the check those classes and functions run first;
+* the library's arguments -- each public class and function declares the quantity of each of its numeric
+  arguments where it is defined (:func:`declares`, which fills :data:`ARGUMENTS`), and
+  :func:`check_arguments` is the check those classes and functions run first;
 * the study config -- :mod:`rockstudy.core.declarations` builds its pydantic fields from
   :meth:`Quantity.annotated`, so the JSON schema Snakemake validates against carries the same ranges;
 * the command line -- :data:`rockstudy.core.declarations.OPTIONS` gives each numeric option the quantity of
@@ -188,58 +189,63 @@ QUANTITIES = {
 }
 """Every kind of numeric input, by name."""
 
-ARGUMENTS = {
-    "Block": {"width": "length", "height": "length", "depth": "length", "density": "density",
-              "gravity": "gravity", "restitution": "restitution"},
-    "Anchorage": {"kappa_max": "kappa", "kappa_min": "kappa", "damping_ratio": "damping_ratio",
-                  "spring_ultimate_rotation": "ultimate_rotation", "damper_ultimate_rotation": "ultimate_rotation"},
-    "Control": {"sampling_time": "sampling_time", "delay": "delay", "sensor_band": "band"},
-    "NoiseReading": {"step": "noise_step", "band": "band", "span": "noise_span"},
-    "GroundMotion": {"amplitude": "acceleration", "omega": "angular_rate", "duration": "duration",
-                     "record_dt": "record_dt", "vertical_dt": "record_dt"},
-    "Scenario": {"noise_level": "noise_level", "seed": "seed", "free_time": "free_time"},
-    "AmplitudeGrid": {"start": "amplitude_ratio", "stop": "amplitude_ratio", "step": "amplitude_ratio",
-                      "resolution": "amplitude_resolution"},
-    "frequency_grid": {"start": "frequency_ratio", "stop": "frequency_ratio", "step": "frequency_ratio"},
-    "simulate": {"free_time": "free_time", "initial_rotation": "initial_rotation",
-                 "initial_velocity": "initial_velocity", "rest_velocity": "rest_velocity", "rtol": "rtol",
-                 "atol": "atol"},
-    "threshold": {"frequency_ratio": "frequency_ratio", "realisation": "realisation"},
-    "spectrum": {"frequency_ratios": "frequency_ratio", "realisations": "realisation"},
-    "jos": {"a_max0_g": "a_max0_g"},
-    "Record": {"dt": "record_dt"},
-    "Record.motion": {"scale": "signed_factor"},
-    "read_record": {"dt": "column_dt"},
-    "read_one_column": {"dt": "record_dt"},
-    "noise_generator": {"seed": "seed", "level": "noise_level", "realisation": "realisation"},
-    "noisy_record": {"omega": "circular_frequency", "level": "noise_level", "realisation": "realisation",
-                     "seed": "seed"},
-    "record_threshold": {"resolution": "amplitude_resolution"},
-    "suite_fragility_dataset": {"resolution": "intensity_resolution", "n_boot": "bootstrap", "seed": "seed",
-                                "free_time": "free_time"},
-    "fragility_dataset": {"n_boot": "bootstrap", "seed": "seed", "free_time": "free_time"},
-    "fragility_from_stripes": {"n_boot": "bootstrap", "seed": "seed", "free_time": "free_time"},
-    "pga_levels": {"start": "design_pga_g", "stop": "design_pga_g", "count": "stripe_count"},
-    "block_point": {"R": "half_diagonal", "alpha": "slenderness", "amplitude_start": "amplitude_ratio",
-                    "amplitude_step": "design_step", "resolution": "design_resolution", "a_max0_g": "a_max0_g",
-                    "free_time": "free_time"},
-    "device_point": {"kappa_max": "kappa", "damping_ratio": "damping_ratio", "kappa_min": "kappa",
-                     "free_time": "free_time"},
-}
-"""The quantity of each numeric argument of the public classes and functions, by the name the library
-gives them (``"Block"`` is :class:`rockstudy.Block`, ``"simulate"`` :func:`rockstudy.simulate`). An argument
-that takes a sequence (``spectrum``'s ``frequency_ratios``) is checked item by item."""
+ARGUMENTS: dict[str, dict[str, str]] = {}
+"""The quantity of each numeric argument of the public classes and functions, by the name the library gives
+them (``"Block"`` is :class:`rockstudy.Block`, ``"simulate"`` :func:`rockstudy.simulate`, ``"Record.motion"``
+the method): filled by :func:`declares` where each class or function is defined, when its module is imported.
+An argument that takes a sequence (``spectrum``'s ``frequency_ratios``) is checked item by item."""
 
-
-SIZES = {
-    ("spectrum", "frequency_ratios"): lim.MAX_GRID_POINTS,
-    ("spectrum", "realisations"): lim.MAX_REALISATIONS,
-    ("GroundMotion", "record"): lim.MAX_RECORD_SAMPLES,
-    ("GroundMotion", "vertical"): lim.MAX_RECORD_SAMPLES,
-    ("Record", "acceleration"): lim.MAX_RECORD_SAMPLES,
-}
+SIZES: dict[tuple[str, str], int] = {}
 """Most items of each sequence argument of the public classes and functions, by (owner, argument): what
-bounds the work and the memory a call may take (the engine steps to every record sample)."""
+bounds the work and the memory a call may take (the engine steps to every record sample); filled by
+:func:`declares`."""
+
+
+def declare(owner: str, sizes: dict | None = None, **arguments: str) -> None:
+    """Declare the numeric arguments of ``owner``: the quantity (a key of :data:`QUANTITIES`) of each, and
+    the most items of each sequence argument. Used through :func:`declares`.
+
+    Parameters
+    ----------
+    owner : str
+        The class's or function's qualified name (``"Block"``, ``"Record.motion"``).
+    sizes : dict, optional
+        The most items of each sequence argument, by argument name.
+    **arguments : str
+        The quantity of each argument, by argument name.
+
+    Raises
+    ------
+    KeyError
+        If a quantity is not one of :data:`QUANTITIES`, or ``owner`` is declared twice differently.
+    """
+    unknown = sorted(set(arguments.values()) - set(QUANTITIES))
+    if unknown:
+        raise KeyError(f"{owner}: {', '.join(unknown)} is not a declared quantity (core.quantities.QUANTITIES)")
+    if ARGUMENTS.get(owner, arguments) != arguments:
+        raise KeyError(f"{owner} is declared twice, differently")
+    ARGUMENTS[owner] = dict(arguments)
+    for arg, most in (sizes or {}).items():
+        SIZES[owner, arg] = int(most)
+
+
+def declares(sizes: dict | None = None, **arguments: str):
+    """Decorator declaring, where a class or function is defined, the quantity of each of its numeric
+    arguments (``@declares(width="length", height="length")``) and the most items of each sequence
+    argument (``sizes={"acceleration": MAX_RECORD_SAMPLES}``); :func:`check_arguments` then checks them by
+    the object's qualified name. The object is returned unchanged.
+
+    Parameters
+    ----------
+    sizes : dict, optional
+        The most items of each sequence argument, by argument name.
+    **arguments : str
+        The quantity (a key of :data:`QUANTITIES`) of each argument, by argument name.
+    """
+    def mark(obj):
+        declare(obj.__qualname__, sizes, **arguments)
+        return obj
+    return mark
 
 
 def check_arguments(owner: str, values: dict, names=None) -> dict:
@@ -252,7 +258,7 @@ def check_arguments(owner: str, values: dict, names=None) -> dict:
     Parameters
     ----------
     owner : str
-        A key of :data:`ARGUMENTS` (``"Block"``, ``"simulate"`` ...).
+        A declared class or function, by its qualified name (``"Block"``, ``"simulate"`` ...).
     values : dict
         The arguments by name; names the declaration does not list are passed over.
     names : dict, optional
@@ -262,7 +268,12 @@ def check_arguments(owner: str, values: dict, names=None) -> dict:
     ------
     rockstudy.core.validation.InputError
         For the first argument out of its declared type or range, naming it, the value and the range.
+    KeyError
+        If ``owner`` declares no arguments (its module is not imported, or it has no declaration).
     """
+    if owner not in ARGUMENTS:
+        raise KeyError(f"{owner} declares no arguments (core.quantities.declares, where it is defined); is its "
+                       "module imported?")
     names = names or {}
     # a class's field is Block.width; a function's or a method's argument (Record.motion's scale) is its name
     prefix = f"{owner}." if owner[:1].isupper() and "." not in owner else ""

@@ -14,7 +14,7 @@ from numba import njit
 
 from rockstudy.core._inline import inline_into
 from rockstudy.core.limits import EXCITATIONS
-from rockstudy.core.quantities import SIZES, check_arguments
+from rockstudy.core.quantities import SIZES, check_arguments, declares
 from rockstudy.core.validation import (
     MAX_CONTROLLER_SAMPLES,
     MAX_RECORD_SAMPLES,
@@ -214,6 +214,8 @@ def analytic(kind: str, t, amplitude, omega):
     raise ValueError(f"excitation must be one of {', '.join(EXCITATIONS)}, got {kind!r}")
 
 
+@declares(sizes={"record": MAX_RECORD_SAMPLES, "vertical": MAX_RECORD_SAMPLES}, amplitude="acceleration",
+          omega="angular_rate", duration="duration", record_dt="record_dt", vertical_dt="record_dt")
 @dataclass(frozen=True)
 class GroundMotion:
     """A horizontal (and optional vertical) ground acceleration history.

@@ -33,7 +33,7 @@ from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturn
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.analysis.spectra import AmplitudeGrid, spectrum
 from rockstudy.analysis.utility_index import utility_index
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
@@ -54,6 +54,7 @@ def gravity_comment(block: Block) -> str:
             f"model uses g = {block.gravity:g} m s-2 (block_gravity)")
 
 
+@declares(start="design_pga_g", stop="design_pga_g", count="stripe_count")
 def pga_levels(start: float = 0.05, stop: float = 3.0, count: int = 30) -> np.ndarray:
     """Geometric PGA levels of the stripes, from ``start`` to ``stop`` in ``count`` points. [g]
 
@@ -116,6 +117,8 @@ def fragility_medians_g(block: Block, anchorage: Anchorage, controls, records, l
             [f.status for f in fits], intervals.reshape(len(fits), 2))
 
 
+@declares(R="half_diagonal", alpha="slenderness", amplitude_start="amplitude_ratio",
+          amplitude_step="design_step", resolution="design_resolution", a_max0_g="a_max0_g", free_time="free_time")
 def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, frequency_ratios, *,
                 amplitude_start: float, amplitude_step: float, resolution: float, a_max0_g: float, records,
                 levels_g, suite: str, excitation: str = "modulated", overturn_criterion: str = "flat",
@@ -195,6 +198,7 @@ def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, freque
     return ds
 
 
+@declares(kappa_max="kappa", damping_ratio="damping_ratio", kappa_min="kappa", free_time="free_time")
 def device_point(block: Block, kappa_max: float, damping_ratio: float, strategies, records, levels_g, *,
                  suite: str, kappa_min: float = 0.0, overturn_criterion: str = "flat",
                  free_time: float = DEFAULT_FREE_TIME) -> xr.Dataset:
