@@ -30,6 +30,7 @@ import xarray as xr
 from rockstudy._version import __version__
 from rockstudy.analysis.fragility_fit import BOOTSTRAP_KEY, bootstrap_median_ratios, fit_lognormal, fit_lognormal_points
 from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturned, stripes_and_thresholds
+from rockstudy.core import validation
 from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.engine.outcome import OUTCOME_MEANINGS
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME
@@ -99,6 +100,7 @@ def stripe_outcomes(block: Block, anchorage: Anchorage, controls, records, level
     scale : ndarray, shape (record, level)
         Factor applied to each record. [-]
     """
+    _check_fragility_inputs(controls, records, levels, reference=False)
     levels = np.asarray(levels, dtype=float)
     if levels.ndim != 1 or levels.size < 2 or np.any(levels <= 0) or np.any(np.diff(levels) <= 0):
         raise ValueError("levels must be an increasing 1-D list of at least 2 positive IM values")
@@ -161,7 +163,7 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
         draw has a finite ratio) and ``median_shift_percent`` 100·(θ/θ_FS − 1), per strategy.
     """
     check_arguments("fragility_dataset", {"n_boot": n_boot, "seed": seed, "free_time": free_time})
-    _check_fragility_inputs(controls, n_boot)
+    _check_fragility_inputs(controls, records, levels)
     levels = np.asarray(levels, dtype=float)
     t0 = time.perf_counter()
     outcome, scale = stripe_outcomes(block, anchorage, controls, records, levels, measure=measure,
@@ -174,8 +176,14 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
     return ds
 
 
-def _check_fragility_inputs(controls, n_boot):
-    strategies = [c.strategy for c in controls]
+def _check_fragility_inputs(controls, records, levels, records_name: str = "records", reference: bool = True):
+    """The strategies (FS among them when it is the ``reference`` of the median shift), a record or more and
+    two levels or more; returns the strategies' names."""
+    strategies = [c.strategy for c in validation.check_items("controls", controls, what="control")]
+    validation.check_items(records_name, records, what="record")
+    validation.check_items("levels", levels, low=2, what="level")
+    if not reference:
+        return strategies
     if "FS" not in strategies:
         raise ValueError(f"controls must include FS, the reference of the median shift, got {strategies}")
     return strategies
@@ -215,7 +223,7 @@ def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records
         Extra global attributes describing the suite (e.g. the synthetic model).
     """
     check_arguments("fragility_from_stripes", {"n_boot": n_boot, "seed": seed, "free_time": free_time})
-    strategies = _check_fragility_inputs(controls, n_boot)
+    strategies = _check_fragility_inputs(controls, records, levels)
     levels = np.asarray(levels, dtype=float)
     overturned = np.asarray(overturned, dtype=bool)
     dims3 = ("strategy", "record", "intensity")
@@ -339,7 +347,7 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
     """
     check_arguments("suite_fragility_dataset", {"resolution": resolution, "n_boot": n_boot, "seed": seed,
                                                 "free_time": free_time})
-    _check_fragility_inputs(controls, n_boot)
+    _check_fragility_inputs(controls, entries, levels, records_name="entries")
     if measure not in INTENSITY_MEASURES:
         raise ValueError(f"intensity measure must be one of {', '.join(INTENSITY_MEASURES)}, got {measure!r}")
     infos = [i for i, _ in entries]
@@ -436,7 +444,7 @@ def suite_summary(datasets) -> "list[dict]":
         Datasets of :func:`suite_fragility_dataset`, one per suite.
     """
     rows = []
-    for ds in datasets:
+    for ds in validation.check_items("datasets", datasets, what="dataset"):
         for s in ds.strategy.values:
             d = ds.sel(strategy=s)
             rows.append({"suite": ds.attrs["record_suite"], "strategy": str(s), "n_records": ds.attrs["n_records"],

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rockstudy.core import validation
 from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.engine import _kernel
 from rockstudy.engine._kernel.scan import S_J, S_PHASE, SCANNING
@@ -173,6 +174,9 @@ def stripes_and_thresholds(block: Block, anchorage: Anchorage, controls, records
         ``threshold`` and ``last_safe`` (control, record) in the unit of ``levels`` (NaN: no overturning
         on the grid); ``n_simulations`` (control, record).
     """
+    validation.check_items("controls", controls, what="control")
+    validation.check_items("records", records, what="record")
+    validation.check_items("levels", levels, what="level")
     levels = np.asarray(levels, dtype=float)
     intensities = np.asarray(intensities, dtype=float)
     shape = (len(controls), len(records))

@@ -226,6 +226,38 @@ def check_int_range(name: str, value, low: int = 0, high: int = MAX_INTEGER, why
     return value
 
 
+def check_items(name: str, values, low: int = 1, what: str = "item"):
+    """A sequence of at least ``low`` items (a list, a tuple, an array, any iterable): empty data is refused,
+    never turned into a number.
+
+    Parameters
+    ----------
+    name : str
+        The argument's name in the message (``"records"``).
+    values : iterable
+        The items given; a string or a mapping is not a sequence of items.
+    low : int, optional
+        The fewest items allowed (default 1).
+    what : str, optional
+        What one item is, in the message (``"record"``).
+
+    Returns
+    -------
+    sequence
+        ``values`` itself when it has a length, else its items as a list.
+    """
+    if values is None or isinstance(values, (str, bytes, dict)):
+        fail(name, values, f"give a sequence of at least {low} {what}(s)")
+    try:  # a sized sequence is counted, not copied; an iterator is read into a list
+        items = values if hasattr(values, "__len__") else list(values)
+        count = len(items)
+    except TypeError:
+        fail(name, values, f"give a sequence of at least {low} {what}(s)")
+    if count < low:
+        fail(name, f"{count} {what}(s)", f"give at least {low}")
+    return items
+
+
 def grid_size(start: float, stop: float, step: float) -> int:
     """Number of points of the grid ``start, start + step, ..., <= stop`` (computed without building it).
 

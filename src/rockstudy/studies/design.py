@@ -33,6 +33,7 @@ from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturn
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.analysis.spectra import AmplitudeGrid, spectrum
 from rockstudy.analysis.utility_index import utility_index
+from rockstudy.core import validation
 from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME
 from rockstudy.model.anchorage import Anchorage
@@ -103,6 +104,9 @@ def fragility_medians_g(block: Block, anchorage: Anchorage, controls, records, l
     intervals : ndarray, shape (control, 2)
         95 % Wald interval of each median [g] (NaN without a fit).
     """
+    validation.check_items("controls", controls, what="control")
+    validation.check_items("records", records, what="record")
+    validation.check_items("levels_g", levels_g, low=2, what="level")
     levels_g = np.asarray(levels_g, dtype=float)
     ratio = levels_g * STANDARD_GRAVITY / block.uplift_acceleration  # PGA/(g tan(alpha)) of each level
     counts = np.zeros((len(controls), levels_g.size))
@@ -229,6 +233,7 @@ def device_point(block: Block, kappa_max: float, damping_ratio: float, strategie
     """
     check_arguments("device_point", {"kappa_max": kappa_max, "damping_ratio": damping_ratio, "kappa_min": kappa_min,
                                      "free_time": free_time})
+    strategies = validation.check_items("strategies", strategies, what="strategy")
     t0 = time.perf_counter()
     anchorage = Anchorage(kappa_max=kappa_max, kappa_min=kappa_min, damping_ratio=damping_ratio)
     medians, betas, _, status, interval = fragility_medians_g(block, anchorage, [Control(s) for s in strategies],
@@ -265,7 +270,7 @@ def gather_blocks(points) -> xr.Dataset:
         The datasets of :func:`block_point`, one per (R, alpha), sharing strategies and settings; the
         first one's attributes label the result.
     """
-    points = list(points)
+    points = list(validation.check_items("points", points, what="block point"))
     Rs = sorted({float(p.R) for p in points})
     alphas = sorted({float(p.alpha) for p in points})
     strategies = list(points[0].strategy.values)
@@ -296,7 +301,7 @@ def gather_devices(points) -> xr.Dataset:
         The datasets of :func:`device_point`, one per (kappa_max, damping_ratio), sharing strategies; the
         first one's block and suite label the result.
     """
-    points = list(points)
+    points = list(validation.check_items("points", points, what="device point"))
     kappas = sorted({float(p.kappa_max) for p in points})
     xis = sorted({float(p.damping_ratio) for p in points})
     strategies = list(points[0].strategy.values)
