@@ -22,7 +22,9 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 
 from rockstudy._version import __version__
+from rockstudy.core import limits
 from rockstudy.core.constants import CF_CONVENTIONS, PAPER_REFERENCE
+from rockstudy.core.validation import InputError
 
 if TYPE_CHECKING:  # xarray is imported where a dataset is read (writers get one)
     import xarray as xr
@@ -191,22 +193,92 @@ def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
     return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
 
 
-def read_netcdf(path) -> xr.Dataset:
-    """Open a rockstudy netCDF file fully into memory (and close the file); a folder, a FIFO or a device
-    is refused at once (``ValueError`` naming the path), never opened.
+def declared_sizes(path) -> dict:
+    """The number of values each variable of a netCDF file declares, read from its header alone (nothing
+    is loaded: a file of a few kB may declare billions of unwritten values).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The netCDF file.
+
+    Returns
+    -------
+    dict
+        ``{variable: (values, bytes per value, dimensions)}``.
+    """
+    import netCDF4
+
+    try:
+        with netCDF4.Dataset(path) as nc:
+            return {name: (int(var.size), int(getattr(var.dtype, "itemsize", 8) or 8), tuple(var.dimensions))
+                    for name, var in nc.variables.items()}
+    except OSError as exc:
+        raise InputError(f"{path}: not a netCDF file ({exc.strerror or exc})") from None
+
+
+def check_declared_sizes(path, variables=None, max_values: int = limits.MAX_DATASET_VALUES,
+                         max_bytes: int = limits.MAX_DATASET_BYTES) -> None:
+    """Refuse, in one line naming the file and the variable, a netCDF file whose header declares a variable
+    of more than ``max_values`` values, or variables (``variables`` only, if given) of more than
+    ``max_bytes`` bytes together, before anything is loaded.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The netCDF file.
+    variables : iterable of str, optional
+        The variables that will be loaded (their dimensions' coordinates count too); None: all.
+    max_values : int, optional
+        Most values of one variable (default :data:`rockstudy.core.limits.MAX_DATASET_VALUES`).
+    max_bytes : int, optional
+        Most bytes of the variables loaded together (default :data:`rockstudy.core.limits.MAX_DATASET_BYTES`).
+    """
+    sizes = declared_sizes(path)
+    if variables is None:
+        wanted = sizes
+    else:  # the variables asked for, their dimensions' coordinates, and every dimension coordinate (xarray
+        # loads those when it opens the file)
+        names = set(variables)
+        names |= {dim for name in list(names) if name in sizes for dim in sizes[name][2]}
+        names |= {name for name, (_, _, dims) in sizes.items() if dims == (name,)}
+        wanted = {k: sizes[k] for k in sizes if k in names}
+    for name, (values, _, _) in wanted.items():
+        if values > max_values:
+            raise InputError(f"{path}: variable {name!r} declares {values:.3g} values, the limit is {max_values:.3g}; "
+                             "this is not a rockstudy dataset")
+    total = sum(values * width for values, width, _ in wanted.values())
+    if total > max_bytes:
+        raise InputError(f"{path}: the variables declare {total / 2**30:.3g} GiB, the limit is "
+                         f"{max_bytes / 2**30:.3g} GiB; this is not a rockstudy dataset")
+
+
+def read_netcdf(path, variables=None) -> xr.Dataset:
+    """Open a rockstudy netCDF file into memory (and close the file): the sizes its header declares are
+    checked first (:func:`check_declared_sizes`), and only ``variables`` (and their coordinates) are
+    loaded when given. A folder, a FIFO or a device is refused at once (``ValueError`` naming the path),
+    never opened.
 
     Parameters
     ----------
     path : str or pathlib.Path
         The netCDF file to read.
+    variables : iterable of str, optional
+        The data variables the caller uses; None: all of them.
     """
     import stat
     if not stat.S_ISREG(os.stat(path).st_mode):
         raise ValueError(f"{path}: not a regular file (a folder, a FIFO or a device); give a netCDF file")
     import xarray as xr
 
+    if variables is not None:
+        variables = list(variables)
+        missing = sorted(set(variables) - set(declared_sizes(path)))
+        if missing:
+            raise InputError(f"{path}: no variable {', '.join(map(repr, missing))}; is it the right dataset?")
+    check_declared_sizes(path, variables)  # from the header, before xarray opens (and indexes) anything
     with xr.open_dataset(path, engine="netcdf4") as ds:
-        return ds.load()
+        return (ds[variables] if variables is not None else ds).load()
 
 
 def write_text(text: str, path) -> Path:
