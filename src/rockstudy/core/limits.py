@@ -119,9 +119,10 @@ MAX_A_MAX0_G = 100.0
 """Largest protection level a_max,0. [g]"""
 MAX_RECORD_SCALE = 1e6
 """Largest factor a record is scaled by. [-]"""
-MAX_GROUND_ACCELERATION = MAX_PGA_G * 9.80665
-"""Largest ground acceleration amplitude of a ground motion (:data:`MAX_PGA_G` in m/s^2): a ground motion
-beyond it is not an earthquake, and a run of it says nothing. [m/s^2]"""
+MAX_GROUND_ACCELERATION = 2 * MAX_AMPLITUDE_RATIO * 9.80665
+"""Largest peak ground acceleration of any ground motion (2000 g): twice the top amplitude ratio for a block of
+tan(alpha) = 1, so every scan the declarations allow on a slender block (tan(alpha) <= sqrt(2)) stays below it,
+while a strength no declaration allows is refused where the ground motion is made. [m/s^2]"""
 MIN_DESIGN_STEP = 1e-3
 """Smallest step of a design block's amplitude scan (it has no stop: it scans up to a_max,0). [-]"""
 MIN_DESIGN_RESOLUTION = 1e-6
