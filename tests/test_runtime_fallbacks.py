@@ -62,7 +62,7 @@ def test_a_dependency_that_fails_to_import_is_one_line_naming_it(dependency, tmp
     names the dependency."""
     broken = tmp_path / dependency
     broken.mkdir()
-    (broken / "__init__.py").write_text(f"raise ImportError('lib{dependency}.so: cannot open shared object file', "
+    (broken / "__init__.py").write_text(f"raise ImportError('libcompiled-7.so.1: cannot open shared object file', "
                                         f"name={dependency!r})\n")
     code = ("import rockstudy\n"
             "for name in sorted(rockstudy._PUBLIC):\n"
