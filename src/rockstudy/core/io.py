@@ -69,9 +69,24 @@ def current_umask() -> int:
     return mask
 
 
+class OutputError(OSError):
+    """An output file could not be written; the one-line message names the file, the reason and where the
+    computed result was kept instead."""
+
+
+def kept_path(path) -> Path:
+    """Where :func:`atomic_write` keeps a result it could not write to ``path``: the temporary folder's
+    ``rockstudy-kept/`` with the file's name."""
+    return Path(tempfile.gettempdir()) / "rockstudy-kept" / Path(path).name
+
+
 def atomic_write(path, write: Callable[[str], None]) -> Path:
     """Write ``path`` atomically: ``write(tmp)`` fills a temporary file in the same folder, which is
     fsynced, given mode ``0o666 & ~umask`` and renamed over ``path``. Folders are created as needed.
+
+    When the file cannot be written (the path is a folder, its folder cannot be made, the disk is full or
+    read-only ...), nothing is left at ``path``, the result is written to :func:`kept_path` instead, and
+    :class:`OutputError` says so in one line.
 
     Parameters
     ----------
@@ -84,8 +99,38 @@ def atomic_write(path, write: Callable[[str], None]) -> Path:
     -------
     Path
         ``path``.
+
+    Raises
+    ------
+    OutputError
+        If ``path`` cannot be written (an :class:`OSError`), naming where the result was kept.
     """
     path = Path(path)
+    try:
+        return _atomic_write(path, write)
+    except OSError as exc:
+        reason = exc.strerror or str(exc).splitlines()[0]
+        kept = kept_path(path)
+        try:
+            if kept.resolve() == path.resolve():
+                raise exc
+            _atomic_write(kept, write)
+            where = f"the result was written to {kept} instead"
+        except OSError as again:
+            where = f"nor to {kept} ({again.strerror or again}): nothing was written"
+        error = OutputError(f"{path}: cannot write it ({reason}); {where}")
+        error.errno = exc.errno
+        raise error from None
+
+
+def _atomic_write(path: Path, write: Callable[[str], None]) -> Path:
+    if path.is_dir():
+        raise IsADirectoryError(21, "it is a folder")
+    existing = path.parent.absolute()
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        raise NotADirectoryError(20, f"{existing} is a file, not a folder")
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
     os.close(fd)
