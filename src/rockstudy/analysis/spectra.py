@@ -23,7 +23,7 @@ from rockstudy.analysis.scenario import Scenario
 from rockstudy.core import validation
 from rockstudy.core.constants import PAPER
 from rockstudy.core.interrupts import interruptible
-from rockstudy.core.limits import MAX_GRID_POINTS, MAX_REALISATIONS
+from rockstudy.core.limits import MAX_FREQUENCY_RATIO, MAX_GRID_POINTS, MAX_REALISATIONS
 from rockstudy.core.quantities import QUANTITIES, SIZES, check_arguments, declares
 from rockstudy.engine import _kernel as kernel
 from rockstudy.engine.outcome import OUTCOME_MEANINGS, Outcome
@@ -96,7 +96,7 @@ def frequency_grid(start: float = DEFAULT_FREQUENCY_GRID["start"], stop: float =
     # finite numbers (not bools), 0 < start <= stop <= the largest ratio, at most MAX_GRID_POINTS points: the
     # size is bounded before the grid is made
     check_arguments("frequency_grid", {"start": start, "stop": stop, "step": step})
-    validation.check_grid("frequency_grid", start, stop, step, high=QUANTITIES["frequency_ratio"].high,
+    validation.check_grid("frequency_grid", start, stop, step, high=MAX_FREQUENCY_RATIO,
                           names=("start", "stop", "step"))
     n = int(math.floor((stop - start) / step + 1e-9))
     return np.round(start + step * np.arange(n + 1), 10)

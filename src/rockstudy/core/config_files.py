@@ -42,7 +42,8 @@ def replace_sections(config: dict, overlay: dict) -> dict:
         return config
     for path in REPLACED_BY_OVERLAY:
         *parents, key = path.split(".")
-        src, dst = overlay, config
+        src: object = overlay
+        dst: object = config
         for part in parents:
             src, dst = (src.get(part) if isinstance(src, dict) else None), (
                 dst.get(part) if isinstance(dst, dict) else None)

@@ -27,6 +27,7 @@ from pydantic import (
     BaseModel,
     ConfigDict,
     Field,
+    JsonValue,
     StringConstraints,
     TypeAdapter,
     ValidationError,
@@ -73,7 +74,7 @@ def _unique(items: list) -> list:
 
 def _list(item, low: int = 1, high: int = v.MAX_LIST_ITEMS, unique: bool = True):
     """A list of ``item``, ``low`` to ``high`` entries (distinct if ``unique``)."""
-    extra = {"uniqueItems": True} if unique else None
+    extra: dict[str, JsonValue] | None = {"uniqueItems": True} if unique else None
     checks = [AfterValidator(_unique)] if unique else []
     field = Field(min_length=low, max_length=high, json_schema_extra=extra)
     return Annotated[(list[item], field, *checks)]

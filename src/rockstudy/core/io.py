@@ -17,7 +17,7 @@ import os
 import tempfile
 import threading
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING, Callable, Hashable
 
 import numpy as np
 
@@ -230,7 +230,7 @@ def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
     ds.attrs = clean_attrs(cf_attributes(ds.attrs))
     for name in list(ds.variables):
         ds[name].attrs = clean_attrs(ds[name].attrs)
-    encoding = {name: {"_FillValue": None} for name in ds.coords}
+    encoding: dict[Hashable, dict[str, object]] = {name: {"_FillValue": None} for name in ds.coords}
     if compress:
         for name, var in ds.data_vars.items():
             if var.dtype.kind in "fiub" and var.ndim > 0:
@@ -443,8 +443,8 @@ def read_checked(path, expectations: dict | None) -> xr.Dataset:
     DatasetMismatch
         If the file is not the expected dataset.
     """
-    if str(path) not in expectations:
-        raise KeyError(f"{path}: no expectation for this input (known: {', '.join(sorted(expectations))})")
+    if expectations is None or str(path) not in expectations:
+        raise KeyError(f"{path}: no expectation for this input (known: {', '.join(sorted(expectations or {}))})")
     return check_dataset(read_netcdf(path), path, expectations[str(path)])
 
 

@@ -218,7 +218,7 @@ def check_int_range(name: str, value, low: int = 0, high: int = MAX_INTEGER, why
     if isinstance(value, numbers.Integral):
         value = int(value)
     elif isinstance(value, numbers.Real) and math.isfinite(value) and float(value).is_integer():
-        value = int(value)
+        value = int(float(value))
     else:
         fail(name, value, f"it must be an integer in [{low}, {high}]")
     if not (low <= value <= high):
