@@ -76,7 +76,13 @@ class OutputError(OSError):
 
 def kept_path(path) -> Path:
     """Where :func:`atomic_write` keeps a result it could not write to ``path``: the temporary folder's
-    ``rockstudy-kept/`` with the file's name."""
+    ``rockstudy-kept/`` with the file's name.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file that could not be written.
+    """
     return Path(tempfile.gettempdir()) / "rockstudy-kept" / Path(path).name
 
 
