@@ -404,13 +404,28 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
     ds["median_low_other"] = ("strategy", intervals[:, 0], {**other_attrs, "long_name": "95 % Wald interval, low"})
     ds["median_high_other"] = ("strategy", intervals[:, 1], {**other_attrs, "long_name": "95 % Wald interval, high"})
     ds["fit_status_other"] = ("strategy", [f.status for f in fits], {"long_name": "see FragilityFit.status"})
+    ds = ds.assign_coords(_catalogue_coordinates(infos, pga_g, base * ratio_other, other))
+    ds.attrs.update(title=f"Fragility of the controlled block over the record suite {suite} (multiple stripe "
+                          "analysis) and each record's threshold",
+                    record_suite=suite, other_intensity_measure=other,
+                    other_intensity_measure_definition=INTENSITY_MEASURES[other],
+                    threshold_resolution=float(resolution),
+                    threshold_rule="upward scan of the intensity levels, every lower level shown safe, then "
+                                   "bisection (the overturning spectra's rule)",
+                    engine="fast (compiled), energy bound on", compute_time_s=time.perf_counter() - t0)
+    return ds
+
+
+def _catalogue_coordinates(infos, pga_g, other_intensity, other: str) -> dict:
+    """The records' catalogue as ``record`` coordinates (suite, id, event, station, year, magnitude, distance,
+    site class, PGA [g], PGV, pulse, the other intensity measure of the unscaled record)."""
     coords = {
         "record_suite_name": [i.suite for i in infos], "record_id": [i.id for i in infos],
         "record_event": [i.event for i in infos], "record_station": [i.station for i in infos],
         "record_year": [i.year for i in infos], "record_magnitude": [i.magnitude for i in infos],
         "record_distance": [i.distance_km for i in infos], "record_site_class": [i.site_class for i in infos],
         "record_pga": pga_g, "record_pgv": [i.pgv for i in infos], "record_pulse": [i.pulse for i in infos],
-        "record_other_intensity": base * ratio_other,
+        "record_other_intensity": other_intensity,
     }
     units = {"record_distance": "km", "record_pga": STANDARD_GRAVITY_UNITS, "record_pgv": "m/s",
              "record_magnitude": "1", "record_other_intensity": "1"}
@@ -422,17 +437,8 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
              "record_pgv": "peak ground velocity of the unscaled record",
              "record_pulse": "velocity pulse (P695 classification)",
              "record_other_intensity": f"{INTENSITY_MEASURES[other]} of the unscaled record"}
-    ds = ds.assign_coords({k: ("record", v, {**({"units": units[k]} if k in units else {}), "long_name": names[k]})
-                           for k, v in coords.items()})
-    ds.attrs.update(title=f"Fragility of the controlled block over the record suite {suite} (multiple stripe "
-                          "analysis) and each record's threshold",
-                    record_suite=suite, other_intensity_measure=other,
-                    other_intensity_measure_definition=INTENSITY_MEASURES[other],
-                    threshold_resolution=float(resolution),
-                    threshold_rule="upward scan of the intensity levels, every lower level shown safe, then "
-                                   "bisection (the overturning spectra's rule)",
-                    engine="fast (compiled), energy bound on", compute_time_s=time.perf_counter() - t0)
-    return ds
+    return {k: ("record", v, {**({"units": units[k]} if k in units else {}), "long_name": names[k]})
+            for k, v in coords.items()}
 
 
 def suite_summary(datasets) -> "list[dict]":
