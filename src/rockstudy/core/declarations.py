@@ -19,7 +19,6 @@ checks: neither ``rockstudy --help`` nor a simulation loads it.
 """
 from __future__ import annotations
 
-import difflib
 from typing import Annotated, Literal, Union
 
 from pydantic import (
@@ -35,9 +34,11 @@ from pydantic import (
     model_validator,
 )
 
+from rockstudy.core import config_messages
 from rockstudy.core import risk_inputs as r
 from rockstudy.core import validation as v
 from rockstudy.core.config_files import count_nodes
+from rockstudy.core.config_messages import _model_at, _short
 from rockstudy.core.limits import EXCITATIONS, LEVEL_MEANINGS, MAX_TEXT, OVERTURN_CRITERIA, RESCALES, STRATEGIES
 from rockstudy.core.quantities import (  # noqa: F401 -- the limits, where the config's readers look for them
     MAX_A_MAX0_G,
@@ -422,77 +423,20 @@ OPTIONS = {
 
 # ----------------------------------------------------------------------------------------------- checks
 
-def _short(value, width: int = 60) -> str:
-    text = repr(value)
-    return text if len(text) <= width else text[:width - 3] + "..."
-
-
-_TYPE_TAGS = ("str", "int", "float", "bool", "dict", "list", "none", "literal", "union", "function", "constrained",
-              "lax", "strict", "json", "tagged")
-
-
-def _path(loc) -> str:
-    """``a.b[0].c`` from a pydantic location, without pydantic's union tags."""
-    out = ""
-    for part in loc:
-        if isinstance(part, int):
-            out += f"[{part}]"
-        elif "[" in str(part) or str(part) in _MODEL_NAMES or str(part).split("-")[0] in _TYPE_TAGS:
-            continue
-        else:
-            out += f".{part}" if out else str(part)
-    return out or "config"
-
-
-def _model_at(model, loc):
-    """The section model at a location (for the known keys of an unknown one), or None."""
-    for part in loc:
-        field = model.model_fields.get(part) if isinstance(part, str) else None
-        if field is None:
-            return None
-        ann = field.annotation
-        for arg in (ann, *getattr(ann, "__args__", ())):
-            if isinstance(arg, type) and issubclass(arg, BaseModel):
-                model = arg
-                break
-        else:
-            return None
-    return model
-
-
 def message(error: ValidationError, model=None, prefix: str = "") -> str:
-    """At most three lines for the first error of ``error``: the key path, the value, what is allowed and,
-    for an unknown key, the closest known one.
-
-    The first error is the one deepest in the config (pydantic reports one per branch of a union).
+    """At most three lines for the first error of ``error`` (:func:`rockstudy.core.config_messages.message`,
+    with the sections' class names left out of the key path).
 
     Parameters
     ----------
     error : pydantic.ValidationError
         The error pydantic raised for a config.
     model : type of pydantic.BaseModel, optional
-        The model the config was checked against, which lists the known keys next to an unknown one;
-        None: no hint.
+        The model the config was checked against (it lists the known keys next to an unknown one).
     prefix : str, optional
         Text put before the key path (``"config.yaml: "``).
     """
-    errors = error.errors(include_url=False)
-    first = max(errors, key=lambda e: len([p for p in e["loc"] if not str(p).startswith(_TYPE_TAGS)]))
-    loc = first["loc"]
-    path = prefix + _path(loc)
-    if first["type"] == "extra_forbidden":
-        known = sorted(_model_at(model, loc[:-1]).model_fields) if model is not None and _model_at(
-            model, loc[:-1]) is not None else []
-        close = difflib.get_close_matches(str(loc[-1]), known, n=1)
-        hint = f"; did you mean `{close[0]}`?" if close else ""
-        listing = f"\nknown keys here: {', '.join(known)}" if known and len(", ".join(known)) < 200 else ""
-        return f"{path}: unknown key{hint}{listing}"
-    if first["type"] == "missing":
-        return f"{path}: the key is missing (required)"
-    text = f"{path} = {_short(first.get('input'))} is not allowed: {first['msg']}"
-    if len(errors) > 1:
-        text += f"\n({len(errors) - 1} more problem(s) after this one)"
-    return text
+    return config_messages.message(error, model, prefix, _MODEL_NAMES)
 
 
 def check_config(config, model=Study, name: str = "") -> None:
