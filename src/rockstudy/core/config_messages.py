@@ -9,6 +9,11 @@ import difflib
 from pydantic import BaseModel, ValidationError
 
 
+class KeyRelationError(ValueError):
+    """A relation between config keys does not hold; the message names the keys (``"convergence.noise_level:
+    'R002' is not one of noise_levels (R000, R001)"``) and is given as it is."""
+
+
 def _short(value, width: int = 60) -> str:
     text = repr(value)
     return text if len(text) <= width else text[:width - 3] + "..."
@@ -79,6 +84,8 @@ def message(error: ValidationError, model=None, prefix: str = "", model_names=()
         return f"{path}: unknown key{hint}{listing}"
     if first["type"] == "missing":
         return f"{path}: the key is missing (required)"
+    if first["type"] == "value_error" and isinstance(first.get("ctx", {}).get("error"), KeyRelationError):
+        return prefix + str(first["ctx"]["error"])  # a relation between keys, worded by the model's validator
     text = f"{path} = {_short(first.get('input'))} is not allowed: {first['msg']}"
     if len(errors) > 1:
         text += f"\n({len(errors) - 1} more problem(s) after this one)"

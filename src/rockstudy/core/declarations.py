@@ -38,7 +38,7 @@ from rockstudy.core import config_messages
 from rockstudy.core import risk_inputs as r
 from rockstudy.core import validation as v
 from rockstudy.core.config_files import count_nodes
-from rockstudy.core.config_messages import _model_at, _short
+from rockstudy.core.config_messages import KeyRelationError, _model_at, _short
 from rockstudy.core.limits import EXCITATIONS, LEVEL_MEANINGS, MAX_TEXT, OVERTURN_CRITERIA, RESCALES, STRATEGIES
 from rockstudy.core.quantities import (  # noqa: F401 -- the limits, where the config's readers look for them
     MAX_A_MAX0_G,
@@ -362,6 +362,8 @@ class Risk(Section):
 class Study(Section):
     """The study of the paper (§5). Every key is required except ``beyond``, ``design`` and ``risk``; no other keys are
     allowed. Relations between keys are checked by rockstudy.studies.study.check_study."""
+    # (the relations that need no computation are this model's validators, which check_study runs first; the
+    # class docstring is the schema's description)
     results_dir: Annotated[str, StringConstraints(min_length=1, max_length=MAX_TEXT)]
     block: Block
     anchorage: Anchorage
@@ -393,6 +395,26 @@ class Study(Section):
     beyond: Beyond = None
     design: Design = None
     risk: Risk = None
+
+    @model_validator(mode="after")
+    def _names_exist(self):
+        """The noise level each sweep names is one of ``noise_levels``; the strategies of each table and sweep
+        are studied, FS among them; the example's realisations are among the study's."""
+        levels = self.noise_levels
+        for key in ("convergence", "sampling_sweep", "delay_sweep", "example_point"):
+            name = getattr(self, key).noise_level
+            if name not in levels:
+                raise KeyRelationError(f"{key}.noise_level: {name!r} is not one of noise_levels ({', '.join(levels)})")
+        for key in ("table1", "maps", "control_histories", "sampling_sweep", "delay_sweep"):
+            missing = set(getattr(self, key).strategies) - set(self.strategies)
+            if missing:
+                raise KeyRelationError(f"{key}.strategies: {sorted(missing)} not in strategies {list(self.strategies)}")
+        if "FS" not in self.strategies:
+            raise KeyRelationError("strategies: FS is needed as the reference of Table 1 and of the timing tables")
+        too_high = [k for k in self.example_point.realisations if k >= self.realisations]
+        if too_high:
+            raise KeyRelationError(f"example_point.realisations: {too_high} >= realisations ({self.realisations})")
+        return self
 
 
 def _declared(info):
