@@ -44,10 +44,23 @@ __all__ = ["Block", "BLOCK_PRESETS", "GRAVITY", "Anchorage", "Control", "STRATEG
            "__version__"]
 
 
+def _import(module: str):
+    """``module`` imported; a dependency that fails to import is one line naming it (ImportError)."""
+    try:
+        return importlib.import_module(module)
+    except ImportError as exc:
+        failing = exc.name or ""
+        if failing.startswith("rockstudy"):
+            raise
+        raise ImportError(f"rockstudy: {module} needs {failing or 'a dependency'}, which failed to import "
+                          f"({str(exc).splitlines()[0] if str(exc) else type(exc).__name__}); reinstall it "
+                          "(pip install -e .)") from None
+
+
 def __getattr__(name):
     """The public API and the subpackages, imported on first use (PEP 562)."""
     if name in _PUBLIC:
-        value = getattr(importlib.import_module(_PUBLIC[name]), name)
+        value = getattr(_import(_PUBLIC[name]), name)
         globals()[name] = value  # the next lookup is an ordinary attribute
         return value
     if name in _SUBPACKAGES:
@@ -59,23 +72,63 @@ def __dir__():
     return sorted(set(globals()) | set(__all__) | set(_SUBPACKAGES))
 
 
-def _numba_cache_dir() -> str:
-    """numba's cache folder for this exact source tree.
+def _source_digest(root) -> str:
+    """A hash of every module under ``root``: the key of numba's cache folder."""
+    import hashlib
+
+    digest = hashlib.sha256()
+    for path in sorted(root.rglob("*.py")):
+        digest.update(path.relative_to(root).as_posix().encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+def _writable(folder) -> bool:
+    """Whether ``folder`` exists or can be made, and a file can be created in it (tried, then removed)."""
+    import tempfile
+
+    try:
+        os.makedirs(folder, exist_ok=True)
+        fd, probe = tempfile.mkstemp(dir=folder, prefix=".probe-")
+        os.close(fd)
+        os.remove(probe)
+    except OSError:
+        return False
+    return True
+
+
+def _numba_cache_dir(root=None) -> str:
+    """numba's cache folder for this exact source tree: the package's ``__pycache__``, else (a read-only
+    install) the user's cache folder (``$XDG_CACHE_HOME`` or ``~/.cache``), else the temporary folder --
+    the first that can be written. With none writable, ImportError says to set ``NUMBA_CACHE_DIR``.
 
     numba invalidates a cached function only when its own file changes, not when a compiled
     function it calls from another module does (``motion.angular_acceleration`` inside
     ``_kernel.engine``): keying the folder by a hash of every module keeps a stale kernel from
     being loaded after any edit. ``NUMBA_CACHE_DIR`` in the environment still wins.
+
+    Parameters
+    ----------
+    root : pathlib.Path, optional
+        The package's folder (default: this package's).
     """
-    import hashlib
+    import tempfile
     from pathlib import Path
 
-    root = Path(__file__).parent
-    digest = hashlib.sha256()
-    for path in sorted(root.rglob("*.py")):
-        digest.update(path.relative_to(root).as_posix().encode())
-        digest.update(path.read_bytes())
-    return str(root / "__pycache__" / f"numba-{digest.hexdigest()[:16]}")
+    root = Path(__file__).parent if root is None else Path(root)
+    name = f"numba-{_source_digest(root)}"
+    user = Path(os.environ.get("XDG_CACHE_HOME") or Path("~/.cache").expanduser())
+    try:
+        temporary = Path(tempfile.gettempdir())
+    except FileNotFoundError:  # no usable temporary folder at all
+        temporary = Path("/tmp")
+    candidates = [root / "__pycache__" / name, user / "rockstudy" / name,
+                  temporary / f"rockstudy-{os.getuid() if hasattr(os, 'getuid') else 0}" / name]
+    for folder in candidates:
+        if _writable(folder):
+            return str(folder)
+    raise ImportError(f"rockstudy: no writable folder for numba's compiled cache ({', '.join(map(str, candidates))}); "
+                      "set NUMBA_CACHE_DIR to a writable folder")
 
 
 def _set_numba_cache_dir(numba) -> None:

@@ -2,4 +2,4 @@
 here; ``pyproject.toml`` reads it for the package metadata, and ``CITATION.cff`` states it, checked by
 ``tests/test_docs.py``)."""
 
-__version__ = "0.2.0"
+__version__ = "0.3.0.dev0"

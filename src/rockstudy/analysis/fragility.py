@@ -30,7 +30,8 @@ import xarray as xr
 from rockstudy._version import __version__
 from rockstudy.analysis.fragility_fit import BOOTSTRAP_KEY, bootstrap_median_ratios, fit_lognormal, fit_lognormal_points
 from rockstudy.analysis.record_scan import RecordRun, grid_outcomes, is_overturned, stripes_and_thresholds
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core import validation
+from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.engine.outcome import OUTCOME_MEANINGS
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME
 from rockstudy.model.anchorage import Anchorage
@@ -99,6 +100,7 @@ def stripe_outcomes(block: Block, anchorage: Anchorage, controls, records, level
     scale : ndarray, shape (record, level)
         Factor applied to each record. [-]
     """
+    _check_fragility_inputs(controls, records, levels, reference=False)
     levels = np.asarray(levels, dtype=float)
     if levels.ndim != 1 or levels.size < 2 or np.any(levels <= 0) or np.any(np.diff(levels) <= 0):
         raise ValueError("levels must be an increasing 1-D list of at least 2 positive IM values")
@@ -123,6 +125,7 @@ def _outcome_variable(outcome) -> tuple:
              "flag_meanings": " ".join(OUTCOME_MEANINGS)})
 
 
+@declares(n_boot="bootstrap", seed="seed", free_time="free_time")
 def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, levels, *,
                       measure: str = "pga_ratio", n_boot: int = 200, seed: int = 0,
                       overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
@@ -160,7 +163,7 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
         draw has a finite ratio) and ``median_shift_percent`` 100·(θ/θ_FS − 1), per strategy.
     """
     check_arguments("fragility_dataset", {"n_boot": n_boot, "seed": seed, "free_time": free_time})
-    _check_fragility_inputs(controls, n_boot)
+    _check_fragility_inputs(controls, records, levels)
     levels = np.asarray(levels, dtype=float)
     t0 = time.perf_counter()
     outcome, scale = stripe_outcomes(block, anchorage, controls, records, levels, measure=measure,
@@ -173,13 +176,20 @@ def fragility_dataset(block: Block, anchorage: Anchorage, controls, records, lev
     return ds
 
 
-def _check_fragility_inputs(controls, n_boot):
-    strategies = [c.strategy for c in controls]
+def _check_fragility_inputs(controls, records, levels, records_name: str = "records", reference: bool = True):
+    """The strategies (FS among them when it is the ``reference`` of the median shift), a record or more and
+    two levels or more; returns the strategies' names."""
+    strategies = [c.strategy for c in validation.check_items("controls", controls, what="control")]
+    validation.check_items(records_name, records, what="record")
+    validation.check_items("levels", levels, low=2, what="level")
+    if not reference:
+        return strategies
     if "FS" not in strategies:
         raise ValueError(f"controls must include FS, the reference of the median shift, got {strategies}")
     return strategies
 
 
+@declares(n_boot="bootstrap", seed="seed", free_time="free_time")
 def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records, levels, overturned, scale, *,
                            measure: str = "pga_ratio", n_boot: int = 200, seed: int = 0,
                            overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
@@ -213,7 +223,7 @@ def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records
         Extra global attributes describing the suite (e.g. the synthetic model).
     """
     check_arguments("fragility_from_stripes", {"n_boot": n_boot, "seed": seed, "free_time": free_time})
-    strategies = _check_fragility_inputs(controls, n_boot)
+    strategies = _check_fragility_inputs(controls, records, levels)
     levels = np.asarray(levels, dtype=float)
     overturned = np.asarray(overturned, dtype=bool)
     dims3 = ("strategy", "record", "intensity")
@@ -295,6 +305,7 @@ def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records
 OTHER_MEASURE = {"pga_ratio": "pgv_ratio", "pgv_ratio": "pga_ratio"}
 
 
+@declares(resolution="intensity_resolution", n_boot="bootstrap", seed="seed", free_time="free_time")
 def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entries, levels, *,
                             suite: str, measure: str = "pga_ratio", resolution: float = 0.01, n_boot: int = 200,
                             seed: int = 0, overturn_criterion: str = "flat",
@@ -336,7 +347,7 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
     """
     check_arguments("suite_fragility_dataset", {"resolution": resolution, "n_boot": n_boot, "seed": seed,
                                                 "free_time": free_time})
-    _check_fragility_inputs(controls, n_boot)
+    _check_fragility_inputs(controls, entries, levels, records_name="entries")
     if measure not in INTENSITY_MEASURES:
         raise ValueError(f"intensity measure must be one of {', '.join(INTENSITY_MEASURES)}, got {measure!r}")
     infos = [i for i, _ in entries]
@@ -393,26 +404,7 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
     ds["median_low_other"] = ("strategy", intervals[:, 0], {**other_attrs, "long_name": "95 % Wald interval, low"})
     ds["median_high_other"] = ("strategy", intervals[:, 1], {**other_attrs, "long_name": "95 % Wald interval, high"})
     ds["fit_status_other"] = ("strategy", [f.status for f in fits], {"long_name": "see FragilityFit.status"})
-    coords = {
-        "record_suite_name": [i.suite for i in infos], "record_id": [i.id for i in infos],
-        "record_event": [i.event for i in infos], "record_station": [i.station for i in infos],
-        "record_year": [i.year for i in infos], "record_magnitude": [i.magnitude for i in infos],
-        "record_distance": [i.distance_km for i in infos], "record_site_class": [i.site_class for i in infos],
-        "record_pga": pga_g, "record_pgv": [i.pgv for i in infos], "record_pulse": [i.pulse for i in infos],
-        "record_other_intensity": base * ratio_other,
-    }
-    units = {"record_distance": "km", "record_pga": STANDARD_GRAVITY_UNITS, "record_pgv": "m/s",
-             "record_magnitude": "1", "record_other_intensity": "1"}
-    names = {"record_suite_name": "record suite", "record_id": "id within the suite", "record_event": "earthquake",
-             "record_station": "recording station (component)",
-             "record_year": "year of the event (0: not applicable)", "record_magnitude": "moment magnitude",
-             "record_distance": "closest distance to the fault rupture plane", "record_site_class": "NEHRP site class",
-             "record_pga": "peak ground acceleration of the unscaled record (standard gravity)",
-             "record_pgv": "peak ground velocity of the unscaled record",
-             "record_pulse": "velocity pulse (P695 classification)",
-             "record_other_intensity": f"{INTENSITY_MEASURES[other]} of the unscaled record"}
-    ds = ds.assign_coords({k: ("record", v, {**({"units": units[k]} if k in units else {}), "long_name": names[k]})
-                           for k, v in coords.items()})
+    ds = ds.assign_coords(_catalogue_coordinates(infos, pga_g, base * ratio_other, other))
     ds.attrs.update(title=f"Fragility of the controlled block over the record suite {suite} (multiple stripe "
                           "analysis) and each record's threshold",
                     record_suite=suite, other_intensity_measure=other,
@@ -424,6 +416,31 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
     return ds
 
 
+def _catalogue_coordinates(infos, pga_g, other_intensity, other: str) -> dict:
+    """The records' catalogue as ``record`` coordinates (suite, id, event, station, year, magnitude, distance,
+    site class, PGA [g], PGV, pulse, the other intensity measure of the unscaled record)."""
+    coords = {
+        "record_suite_name": [i.suite for i in infos], "record_id": [i.id for i in infos],
+        "record_event": [i.event for i in infos], "record_station": [i.station for i in infos],
+        "record_year": [i.year for i in infos], "record_magnitude": [i.magnitude for i in infos],
+        "record_distance": [i.distance_km for i in infos], "record_site_class": [i.site_class for i in infos],
+        "record_pga": pga_g, "record_pgv": [i.pgv for i in infos], "record_pulse": [i.pulse for i in infos],
+        "record_other_intensity": other_intensity,
+    }
+    units = {"record_distance": "km", "record_pga": STANDARD_GRAVITY_UNITS, "record_pgv": "m/s",
+             "record_magnitude": "1", "record_other_intensity": "1"}
+    names = {"record_suite_name": "record suite", "record_id": "id within the suite", "record_event": "earthquake",
+             "record_station": "recording station (component)",
+             "record_year": "year of the event (0: not applicable)", "record_magnitude": "moment magnitude",
+             "record_distance": "closest distance to the fault rupture plane", "record_site_class": "NEHRP site class",
+             "record_pga": "peak ground acceleration of the unscaled record (standard gravity)",
+             "record_pgv": "peak ground velocity of the unscaled record",
+             "record_pulse": "velocity pulse (P695 classification)",
+             "record_other_intensity": f"{INTENSITY_MEASURES[other]} of the unscaled record"}
+    return {k: ("record", v, {**({"units": units[k]} if k in units else {}), "long_name": names[k]})
+            for k, v in coords.items()}
+
+
 def suite_summary(datasets) -> "list[dict]":
     """One row per (suite, strategy): medians with 95 % intervals in every unit, dispersion, shift over FS.
 
@@ -433,7 +450,7 @@ def suite_summary(datasets) -> "list[dict]":
         Datasets of :func:`suite_fragility_dataset`, one per suite.
     """
     rows = []
-    for ds in datasets:
+    for ds in validation.check_items("datasets", datasets, what="dataset"):
         for s in ds.strategy.values:
             d = ds.sel(strategy=s)
             rows.append({"suite": ds.attrs["record_suite"], "strategy": str(s), "n_records": ds.attrs["n_records"],

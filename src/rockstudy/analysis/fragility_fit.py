@@ -26,6 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
+from rockstudy.core import validation
+
 BOOTSTRAP_KEY = 1302
 """Spawn key of the bootstrap's seed sequence."""
 
@@ -251,6 +253,8 @@ def fit_lognormal_points(im, overturned) -> FragilityFit:
     """
     im = np.asarray(im, dtype=float).ravel()
     overturned = np.asarray(overturned, dtype=float).ravel()
+    if overturned.size != im.size:
+        raise validation.InputError(f"overturned has {overturned.size} values, im has {im.size}: give one per run")
     order = np.argsort(im, kind="stable")
     return fit_lognormal(im[order], np.ones(im.size), overturned[order])
 

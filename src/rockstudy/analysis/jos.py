@@ -15,7 +15,7 @@ import numpy as np
 
 from rockstudy.analysis.utility_index import DEFAULT_A_MAX0, utility_index, utility_terms
 from rockstudy.core import validation
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core.quantities import check_arguments, declares
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -77,6 +77,7 @@ class JosResult:
         return self.n_star > 0 and not math.isnan(self.j_os)
 
 
+@declares(a_max0_g="a_max0_g")
 def jos(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float = DEFAULT_A_MAX0, *,
         a_max0_name: str = "a_max0_g") -> JosResult:
     """Utility index J_OS of the spectrum ``system`` against the spectrum ``reference`` (Eq. 21).

@@ -14,7 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core import validation
+from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.engine import _kernel
 from rockstudy.engine._kernel.scan import S_J, S_PHASE, SCANNING
 from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, UNDETERMINED
@@ -91,6 +92,7 @@ def is_overturned(code) -> np.ndarray:
     return np.isin(np.asarray(code), (OVERTURNED_WITHOUT_IMPACT, OVERTURNED_AFTER_IMPACT))
 
 
+@declares(resolution="amplitude_resolution")
 def record_threshold(run: RecordRun, grid, resolution: float, outcomes=None) -> dict:
     """Smallest amplitude ratio PGA/(g·tanα) that overturns the block under the scaled record.
 
@@ -172,6 +174,9 @@ def stripes_and_thresholds(block: Block, anchorage: Anchorage, controls, records
         ``threshold`` and ``last_safe`` (control, record) in the unit of ``levels`` (NaN: no overturning
         on the grid); ``n_simulations`` (control, record).
     """
+    validation.check_items("controls", controls, what="control")
+    validation.check_items("records", records, what="record")
+    validation.check_items("levels", levels, what="level")
     levels = np.asarray(levels, dtype=float)
     intensities = np.asarray(intensities, dtype=float)
     shape = (len(controls), len(records))

@@ -10,7 +10,7 @@ from typing import NamedTuple
 import numpy as np
 
 from rockstudy.core import validation
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.engine.simulate import (
     DEFAULT_FREE_TIME,
     OVERTURN_CRITERIA,
@@ -61,6 +61,7 @@ class KernelCase(NamedTuple):
     pga_ratio: float
 
 
+@declares(noise_level="noise_level", seed="seed", free_time="free_time")
 @dataclass(frozen=True)
 class Scenario:
     """Everything but frequency, amplitude and realisation that defines a simulation.
@@ -118,6 +119,7 @@ class Scenario:
         """
         return frequency_ratio * self.block.p
 
+    @declares(frequency_ratio="frequency_ratio", amplitude_ratio="run_amplitude_ratio", realisation="realisation")
     def motion(self, frequency_ratio: float, amplitude_ratio: float, realisation: int = 0):
         """The ground motion and its noise record info (None without noise).
 
@@ -130,6 +132,8 @@ class Scenario:
         realisation : int, default 0
             Noise realisation index k, >= 0 (unused without noise).
         """
+        check_arguments("Scenario.motion", {"frequency_ratio": frequency_ratio, "amplitude_ratio": amplitude_ratio,
+                                            "realisation": realisation})
         omega = self.omega(frequency_ratio)
         amplitude = amplitude_ratio * self.block.uplift_acceleration
         if self.noise_level == 0:

@@ -23,7 +23,8 @@ from rockstudy.analysis.scenario import Scenario
 from rockstudy.core import validation
 from rockstudy.core.constants import PAPER
 from rockstudy.core.interrupts import interruptible
-from rockstudy.core.quantities import QUANTITIES, SIZES, check_arguments
+from rockstudy.core.limits import MAX_FREQUENCY_RATIO, MAX_GRID_POINTS, MAX_REALISATIONS
+from rockstudy.core.quantities import QUANTITIES, SIZES, check_arguments, declares
 from rockstudy.engine import _kernel as kernel
 from rockstudy.engine.outcome import OUTCOME_MEANINGS, Outcome
 from rockstudy.model.excitation import GroundMotion
@@ -33,6 +34,8 @@ log = logging.getLogger("rockstudy")
 PAPER_EQUATIONS = "Eqs. 1-17 (model), Eq. 23 (excitation), Figs. 5-8 (spectra)"
 
 
+@declares(start="amplitude_ratio", stop="amplitude_ratio", step="amplitude_ratio",
+          resolution="amplitude_resolution")
 @dataclass(frozen=True)
 class AmplitudeGrid:
     """Amplitude ratios a_p/(g·tanα) scanned upward, and the refinement resolution.
@@ -66,6 +69,7 @@ DEFAULT_FREQUENCY_GRID = {"start": 0.25, "stop": 5.0, "step": 0.1}
 """The study's frequency ratios ω_p/p (``frequency_grid`` of config.yaml). [-]"""
 
 
+@declares(start="frequency_ratio", stop="frequency_ratio", step="frequency_ratio")
 def frequency_grid(start: float = DEFAULT_FREQUENCY_GRID["start"], stop: float = DEFAULT_FREQUENCY_GRID["stop"],
                    step: float = DEFAULT_FREQUENCY_GRID["step"]) -> np.ndarray:
     """Frequency ratios ω_p/p from ``start`` to ``stop`` (inclusive) in ``step``: the abscissa of an
@@ -92,7 +96,7 @@ def frequency_grid(start: float = DEFAULT_FREQUENCY_GRID["start"], stop: float =
     # finite numbers (not bools), 0 < start <= stop <= the largest ratio, at most MAX_GRID_POINTS points: the
     # size is bounded before the grid is made
     check_arguments("frequency_grid", {"start": start, "stop": stop, "step": step})
-    validation.check_grid("frequency_grid", start, stop, step, high=QUANTITIES["frequency_ratio"].high,
+    validation.check_grid("frequency_grid", start, stop, step, high=MAX_FREQUENCY_RATIO,
                           names=("start", "stop", "step"))
     n = int(math.floor((stop - start) / step + 1e-9))
     return np.round(start + step * np.arange(n + 1), 10)
@@ -190,6 +194,7 @@ class ThresholdResult:
         return getattr(self, name)
 
 
+@declares(frequency_ratio="frequency_ratio", realisation="realisation")
 def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 0,
               grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast",
               energy_bound: bool = True) -> ThresholdResult:
@@ -294,6 +299,8 @@ def _run_chunked(fn, n_cases: int, label: str, n_chunks: int):
     return parts
 
 
+@declares(sizes={"frequency_ratios": MAX_GRID_POINTS, "realisations": MAX_REALISATIONS},
+          frequency_ratios="frequency_ratio", realisations="realisation")
 def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: AmplitudeGrid = AmplitudeGrid(),
              with_map: bool = False, progress_chunks: int = 10, energy_bound: bool = True) -> xr.Dataset:
     """Overturning spectrum: the threshold at each frequency for each noise realisation.

@@ -30,7 +30,8 @@ DEFAULT_A_MAX0 = 1.0
 
 
 def _check_a_max0(a_max0) -> float:
-    if isinstance(a_max0, bool) or not np.isscalar(a_max0) or not (math.isfinite(a_max0) and a_max0 > 0):
+    if isinstance(a_max0, bool) or not isinstance(a_max0, (int, float, np.integer, np.floating)) or not (
+            math.isfinite(a_max0) and a_max0 > 0):
         raise ValueError(f"a_max0 must be a positive finite number (in the thresholds' unit), got {a_max0!r}")
     return float(a_max0)
 

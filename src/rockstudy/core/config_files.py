@@ -7,18 +7,22 @@ only bounds a file's shape and applies an overlay, so that a config is never wal
 from __future__ import annotations
 
 import copy
+import re
 from collections.abc import Mapping
 
+from rockstudy.core import limits
 from rockstudy.core import validation as v
 from rockstudy.core.validation import InputError
 
-REPLACED_BY_OVERLAY = ("block", "noise_levels", "reproduction.readings", "beyond.fragility.records")
+REPLACED_BY_OVERLAY = ("block", "noise_levels", "reproduction.readings", "beyond.fragility.records", "risk.scenarios",
+                       "risk.hazard_curves")
 """Config keys whose value an overlay replaces whole instead of merging into: sections with alternatives
-(a block by preset or by dimensions) and mappings of names (noise levels, readings)."""
+(a block by preset or by dimensions, a record set by suite or by list) and every mapping of names (noise
+levels, readings, earthquake scenarios, hazard curves), so a name the overlay leaves out does not stay
+(a test keeps this list equal to the config model's mappings of names)."""
 
-MAX_NODES = 100_000
-"""Most nodes (mappings, lists and scalars, aliases expanded) of a config: a few-hundred-byte YAML alias
-bomb expands to billions, which any walk over it would take hours to visit."""
+MAX_NODES = limits.MAX_NODES
+"""Most nodes of a config (:data:`rockstudy.core.limits.MAX_NODES`)."""
 
 
 def replace_sections(config: dict, overlay: dict) -> dict:
@@ -38,7 +42,8 @@ def replace_sections(config: dict, overlay: dict) -> dict:
         return config
     for path in REPLACED_BY_OVERLAY:
         *parents, key = path.split(".")
-        src, dst = overlay, config
+        src: object = overlay
+        dst: object = config
         for part in parents:
             src, dst = (src.get(part) if isinstance(src, dict) else None), (
                 dst.get(part) if isinstance(dst, dict) else None)
@@ -178,9 +183,37 @@ def count_nodes(value, limit: int = MAX_NODES, name: str = "config") -> int:
     return count
 
 
+NOT_DECIMAL = re.compile(r"[-+]?(0[0-7_]+|0o[0-7_]+|0x[0-9a-fA-F_]+|0b[01_]+"  # octal, hexadecimal, binary
+                         r"|[0-9][0-9_]*(:[0-5]?[0-9])+(\.[0-9_]*)?)")  # sexagesimal
+"""Numbers YAML 1.1 (PyYAML, Snakemake) does not read as written: ``010`` is octal 8, ``0x10`` 16, ``0b10`` 2
+and ``1:30`` sexagesimal 90, while ``--config free_time=010`` and YAML 1.2 read 10 or text."""
+
+
+def _loader(name: str):
+    """A :class:`yaml.SafeLoader` that refuses a number :data:`NOT_DECIMAL` would misread, naming the file,
+    the line and the text."""
+    import yaml
+
+    def number(loader, node):
+        if NOT_DECIMAL.fullmatch(node.value):
+            raise InputError(f"{name}: line {node.start_mark.line + 1}: {node.value} is not allowed: YAML reads it as "
+                             f"{yaml.safe_load(node.value)!r}, not as written; write the number in decimal without a "
+                             "leading zero (or quote it if it is text)")
+        kind = "int" if node.tag.endswith(":int") else "float"
+        return getattr(yaml.SafeLoader, f"construct_yaml_{kind}")(loader, node)
+
+    class Loader(yaml.SafeLoader):
+        pass
+
+    Loader.add_constructor("tag:yaml.org,2002:int", number)
+    Loader.add_constructor("tag:yaml.org,2002:float", number)
+    return Loader
+
+
 def load_yaml(path, name: str | None = None) -> dict:
     """A YAML (or JSON) config file as a dict, refused when it is not a bounded mapping (:func:`count_nodes`),
-    not a regular file of at most 1 MiB, or not valid YAML; the message names the file.
+    not a regular file of at most 1 MiB, not valid YAML, or holds a number YAML does not read as written
+    (``010`` is octal 8 in YAML 1.1: :data:`NOT_DECIMAL`); the message names the file.
 
     Parameters
     ----------
@@ -194,7 +227,7 @@ def load_yaml(path, name: str | None = None) -> dict:
     p = v.check_input_file(name, path, 2**20)
     try:
         with open(p, encoding="utf-8") as f:
-            data = yaml.safe_load(f)
+            data = yaml.load(f, Loader=_loader(name))  # noqa: S506 -- a SafeLoader, see _loader
     except (yaml.YAMLError, UnicodeDecodeError) as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f" (line {mark.line + 1})" if mark is not None else ""

@@ -19,7 +19,6 @@ checks: neither ``rockstudy --help`` nor a simulation loads it.
 """
 from __future__ import annotations
 
-import difflib
 from typing import Annotated, Literal, Union
 
 from pydantic import (
@@ -27,6 +26,7 @@ from pydantic import (
     BaseModel,
     ConfigDict,
     Field,
+    JsonValue,
     StringConstraints,
     TypeAdapter,
     ValidationError,
@@ -34,9 +34,12 @@ from pydantic import (
     model_validator,
 )
 
+from rockstudy.core import config_messages
 from rockstudy.core import risk_inputs as r
 from rockstudy.core import validation as v
 from rockstudy.core.config_files import count_nodes
+from rockstudy.core.config_messages import KeyRelationError, _model_at, _short
+from rockstudy.core.limits import EXCITATIONS, LEVEL_MEANINGS, MAX_TEXT, OVERTURN_CRITERIA, RESCALES, STRATEGIES
 from rockstudy.core.quantities import (  # noqa: F401 -- the limits, where the config's readers look for them
     MAX_A_MAX0_G,
     MAX_ALPHA,
@@ -56,19 +59,12 @@ from rockstudy.core.validation import InputError
 SCHEMA_PATH = "workflow/schemas/config.schema.yaml"
 """Where the generated schema is checked in, relative to the repository."""
 
-# The names the library accepts (they equal the library's tuples, which load numba: a test keeps them equal).
-STRATEGIES = ("FS", "PASSIVE", "CS01", "CS02")
-EXCITATIONS = ("modulated", "one-sine")
-OVERTURN_CRITERIA = ("flat", "alpha")
-RESCALES = ("energy", "pga", "both", "none")
-LEVEL_MEANINGS = ("energy", "rms")
+# The names the library accepts: the library's own tuples (core.limits), and those of modules that load numba
+# (a test keeps these equal to theirs)
 BLOCK_PRESETS = ("BLC06",)
 SUITES = ("p695-far-field", "p695-near-field-pulse", "p695-near-field-no-pulse", "synthetic")
 RECORD_UNITS = ("g", "m/s^2", "m/s2", "cm/s^2", "cm/s2", "gal", "mm/s^2", "mm/s2")
 INTENSITY_MEASURES = ("pga_ratio", "pgv_ratio")
-
-MAX_TEXT = 4096
-"""Longest string of a config (a path or a label)."""
 
 
 def _unique(items: list) -> list:
@@ -79,7 +75,7 @@ def _unique(items: list) -> list:
 
 def _list(item, low: int = 1, high: int = v.MAX_LIST_ITEMS, unique: bool = True):
     """A list of ``item``, ``low`` to ``high`` entries (distinct if ``unique``)."""
-    extra = {"uniqueItems": True} if unique else None
+    extra: dict[str, JsonValue] | None = {"uniqueItems": True} if unique else None
     checks = [AfterValidator(_unique)] if unique else []
     field = Field(min_length=low, max_length=high, json_schema_extra=extra)
     return Annotated[(list[item], field, *checks)]
@@ -268,11 +264,11 @@ RecordName = Annotated[str, StringConstraints(pattern=r"^[A-Za-z0-9_-]+(:[^/\\:]
 class Synthetic(Section):
     n_records: Q("suite_records")
     seed: Seed
-    ground_frequency_hz: _list(_number("Hz", gt=0, le=v.MAX_FREQUENCY_RATIO), low=2, high=2, unique=False)
-    ground_damping: _list(_number("-", gt=0, le=v.MAX_FREQUENCY_RATIO), low=2, high=2, unique=False)
+    ground_frequency_hz: _list(Q("ground_frequency_hz"), low=2, high=2, unique=False)
+    ground_damping: _list(Q("ground_damping"), low=2, high=2, unique=False)
     peak_time: _list(Seconds, low=2, high=2, unique=False)
-    envelope_shape: Ratio
-    filter_ratio: _number("-", gt=0, lt=1)
+    envelope_shape: Q("envelope_shape")
+    filter_ratio: Q("filter_ratio")
     duration: Seconds
     dt: Seconds
     pga_g: Q("pga_g")
@@ -368,6 +364,8 @@ class Risk(Section):
 class Study(Section):
     """The study of the paper (§5). Every key is required except ``beyond``, ``design`` and ``risk``; no other keys are
     allowed. Relations between keys are checked by rockstudy.studies.study.check_study."""
+    # (the relations that need no computation are this model's validators, which check_study runs first; the
+    # class docstring is the schema's description)
     results_dir: Annotated[str, StringConstraints(min_length=1, max_length=MAX_TEXT)]
     block: Block
     anchorage: Anchorage
@@ -400,6 +398,26 @@ class Study(Section):
     design: Design = None
     risk: Risk = None
 
+    @model_validator(mode="after")
+    def _names_exist(self):
+        """The noise level each sweep names is one of ``noise_levels``; the strategies of each table and sweep
+        are studied, FS among them; the example's realisations are among the study's."""
+        levels = self.noise_levels
+        for key in ("convergence", "sampling_sweep", "delay_sweep", "example_point"):
+            name = getattr(self, key).noise_level
+            if name not in levels:
+                raise KeyRelationError(f"{key}.noise_level: {name!r} is not one of noise_levels ({', '.join(levels)})")
+        for key in ("table1", "maps", "control_histories", "sampling_sweep", "delay_sweep"):
+            missing = set(getattr(self, key).strategies) - set(self.strategies)
+            if missing:
+                raise KeyRelationError(f"{key}.strategies: {sorted(missing)} not in strategies {list(self.strategies)}")
+        if "FS" not in self.strategies:
+            raise KeyRelationError("strategies: FS is needed as the reference of Table 1 and of the timing tables")
+        too_high = [k for k in self.example_point.realisations if k >= self.realisations]
+        if too_high:
+            raise KeyRelationError(f"example_point.realisations: {too_high} >= realisations ({self.realisations})")
+        return self
+
 
 def _declared(info):
     """The declared type of a model field, with its constraints."""
@@ -429,77 +447,20 @@ OPTIONS = {
 
 # ----------------------------------------------------------------------------------------------- checks
 
-def _short(value, width: int = 60) -> str:
-    text = repr(value)
-    return text if len(text) <= width else text[:width - 3] + "..."
-
-
-_TYPE_TAGS = ("str", "int", "float", "bool", "dict", "list", "none", "literal", "union", "function", "constrained",
-              "lax", "strict", "json", "tagged")
-
-
-def _path(loc) -> str:
-    """``a.b[0].c`` from a pydantic location, without pydantic's union tags."""
-    out = ""
-    for part in loc:
-        if isinstance(part, int):
-            out += f"[{part}]"
-        elif "[" in str(part) or str(part) in _MODEL_NAMES or str(part).split("-")[0] in _TYPE_TAGS:
-            continue
-        else:
-            out += f".{part}" if out else str(part)
-    return out or "config"
-
-
-def _model_at(model, loc):
-    """The section model at a location (for the known keys of an unknown one), or None."""
-    for part in loc:
-        field = model.model_fields.get(part) if isinstance(part, str) else None
-        if field is None:
-            return None
-        ann = field.annotation
-        for arg in (ann, *getattr(ann, "__args__", ())):
-            if isinstance(arg, type) and issubclass(arg, BaseModel):
-                model = arg
-                break
-        else:
-            return None
-    return model
-
-
 def message(error: ValidationError, model=None, prefix: str = "") -> str:
-    """At most three lines for the first error of ``error``: the key path, the value, what is allowed and,
-    for an unknown key, the closest known one.
-
-    The first error is the one deepest in the config (pydantic reports one per branch of a union).
+    """At most three lines for the first error of ``error`` (:func:`rockstudy.core.config_messages.message`,
+    with the sections' class names left out of the key path).
 
     Parameters
     ----------
     error : pydantic.ValidationError
         The error pydantic raised for a config.
     model : type of pydantic.BaseModel, optional
-        The model the config was checked against, which lists the known keys next to an unknown one;
-        None: no hint.
+        The model the config was checked against (it lists the known keys next to an unknown one).
     prefix : str, optional
         Text put before the key path (``"config.yaml: "``).
     """
-    errors = error.errors(include_url=False)
-    first = max(errors, key=lambda e: len([p for p in e["loc"] if not str(p).startswith(_TYPE_TAGS)]))
-    loc = first["loc"]
-    path = prefix + _path(loc)
-    if first["type"] == "extra_forbidden":
-        known = sorted(_model_at(model, loc[:-1]).model_fields) if model is not None and _model_at(
-            model, loc[:-1]) is not None else []
-        close = difflib.get_close_matches(str(loc[-1]), known, n=1)
-        hint = f"; did you mean `{close[0]}`?" if close else ""
-        listing = f"\nknown keys here: {', '.join(known)}" if known and len(", ".join(known)) < 200 else ""
-        return f"{path}: unknown key{hint}{listing}"
-    if first["type"] == "missing":
-        return f"{path}: the key is missing (required)"
-    text = f"{path} = {_short(first.get('input'))} is not allowed: {first['msg']}"
-    if len(errors) > 1:
-        text += f"\n({len(errors) - 1} more problem(s) after this one)"
-    return text
+    return config_messages.message(error, model, prefix, _MODEL_NAMES)
 
 
 def check_config(config, model=Study, name: str = "") -> None:

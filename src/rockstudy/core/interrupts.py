@@ -10,7 +10,7 @@ from __future__ import annotations
 from contextlib import contextmanager
 
 
-def caused_by_interrupt(exc: BaseException) -> bool:
+def caused_by_interrupt(exc: BaseException | None) -> bool:
     """Whether ``exc`` is, or comes of, a :class:`KeyboardInterrupt`.
 
     Parameters

@@ -17,12 +17,14 @@ import os
 import tempfile
 import threading
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING, Callable, Hashable
 
 import numpy as np
 
 from rockstudy._version import __version__
+from rockstudy.core import limits
 from rockstudy.core.constants import CF_CONVENTIONS, PAPER_REFERENCE
+from rockstudy.core.validation import InputError
 
 if TYPE_CHECKING:  # xarray is imported where a dataset is read (writers get one)
     import xarray as xr
@@ -67,9 +69,30 @@ def current_umask() -> int:
     return mask
 
 
+class OutputError(OSError):
+    """An output file could not be written; the one-line message names the file, the reason and where the
+    computed result was kept instead."""
+
+
+def kept_path(path) -> Path:
+    """Where :func:`atomic_write` keeps a result it could not write to ``path``: the temporary folder's
+    ``rockstudy-kept/`` with the file's name.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file that could not be written.
+    """
+    return Path(tempfile.gettempdir()) / "rockstudy-kept" / Path(path).name
+
+
 def atomic_write(path, write: Callable[[str], None]) -> Path:
     """Write ``path`` atomically: ``write(tmp)`` fills a temporary file in the same folder, which is
     fsynced, given mode ``0o666 & ~umask`` and renamed over ``path``. Folders are created as needed.
+
+    When the file cannot be written (the path is a folder, its folder cannot be made, the disk is full or
+    read-only ...), nothing is left at ``path``, the result is written to :func:`kept_path` instead, and
+    :class:`OutputError` says so in one line.
 
     Parameters
     ----------
@@ -82,8 +105,38 @@ def atomic_write(path, write: Callable[[str], None]) -> Path:
     -------
     Path
         ``path``.
+
+    Raises
+    ------
+    OutputError
+        If ``path`` cannot be written (an :class:`OSError`), naming where the result was kept.
     """
     path = Path(path)
+    try:
+        return _atomic_write(path, write)
+    except OSError as exc:
+        reason = exc.strerror or str(exc).splitlines()[0]
+        kept = kept_path(path)
+        try:
+            if kept.resolve() == path.resolve():
+                raise exc
+            _atomic_write(kept, write)
+            where = f"the result was written to {kept} instead"
+        except OSError as again:
+            where = f"nor to {kept} ({again.strerror or again}): nothing was written"
+        error = OutputError(f"{path}: cannot write it ({reason}); {where}")
+        error.errno = exc.errno
+        raise error from None
+
+
+def _atomic_write(path: Path, write: Callable[[str], None]) -> Path:
+    if path.is_dir():
+        raise IsADirectoryError(21, "it is a folder")
+    existing = path.parent.absolute()
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        raise NotADirectoryError(20, f"{existing} is a file, not a folder")
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
     os.close(fd)
@@ -183,7 +236,7 @@ def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
     ds.attrs = clean_attrs(cf_attributes(ds.attrs))
     for name in list(ds.variables):
         ds[name].attrs = clean_attrs(ds[name].attrs)
-    encoding = {name: {"_FillValue": None} for name in ds.coords}
+    encoding: dict[Hashable, dict[str, object]] = {name: {"_FillValue": None} for name in ds.coords}
     if compress:
         for name, var in ds.data_vars.items():
             if var.dtype.kind in "fiub" and var.ndim > 0:
@@ -191,22 +244,92 @@ def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
     return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
 
 
-def read_netcdf(path) -> xr.Dataset:
-    """Open a rockstudy netCDF file fully into memory (and close the file); a folder, a FIFO or a device
-    is refused at once (``ValueError`` naming the path), never opened.
+def declared_sizes(path) -> dict:
+    """The number of values each variable of a netCDF file declares, read from its header alone (nothing
+    is loaded: a file of a few kB may declare billions of unwritten values).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The netCDF file.
+
+    Returns
+    -------
+    dict
+        ``{variable: (values, bytes per value, dimensions)}``.
+    """
+    import netCDF4
+
+    try:
+        with netCDF4.Dataset(path) as nc:
+            return {name: (int(var.size), int(getattr(var.dtype, "itemsize", 8) or 8), tuple(var.dimensions))
+                    for name, var in nc.variables.items()}
+    except OSError as exc:
+        raise InputError(f"{path}: not a netCDF file ({exc.strerror or exc})") from None
+
+
+def check_declared_sizes(path, variables=None, max_values: int = limits.MAX_DATASET_VALUES,
+                         max_bytes: int = limits.MAX_DATASET_BYTES) -> None:
+    """Refuse, in one line naming the file and the variable, a netCDF file whose header declares a variable
+    of more than ``max_values`` values, or variables (``variables`` only, if given) of more than
+    ``max_bytes`` bytes together, before anything is loaded.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The netCDF file.
+    variables : iterable of str, optional
+        The variables that will be loaded (their dimensions' coordinates count too); None: all.
+    max_values : int, optional
+        Most values of one variable (default :data:`rockstudy.core.limits.MAX_DATASET_VALUES`).
+    max_bytes : int, optional
+        Most bytes of the variables loaded together (default :data:`rockstudy.core.limits.MAX_DATASET_BYTES`).
+    """
+    sizes = declared_sizes(path)
+    if variables is None:
+        wanted = sizes
+    else:  # the variables asked for, their dimensions' coordinates, and every dimension coordinate (xarray
+        # loads those when it opens the file)
+        names = set(variables)
+        names |= {dim for name in list(names) if name in sizes for dim in sizes[name][2]}
+        names |= {name for name, (_, _, dims) in sizes.items() if dims == (name,)}
+        wanted = {k: sizes[k] for k in sizes if k in names}
+    for name, (values, _, _) in wanted.items():
+        if values > max_values:
+            raise InputError(f"{path}: variable {name!r} declares {values:.3g} values, the limit is {max_values:.3g}; "
+                             "this is not a rockstudy dataset")
+    total = sum(values * width for values, width, _ in wanted.values())
+    if total > max_bytes:
+        raise InputError(f"{path}: the variables declare {total / 2**30:.3g} GiB, the limit is "
+                         f"{max_bytes / 2**30:.3g} GiB; this is not a rockstudy dataset")
+
+
+def read_netcdf(path, variables=None) -> xr.Dataset:
+    """Open a rockstudy netCDF file into memory (and close the file): the sizes its header declares are
+    checked first (:func:`check_declared_sizes`), and only ``variables`` (and their coordinates) are
+    loaded when given. A folder, a FIFO or a device is refused at once (``ValueError`` naming the path),
+    never opened.
 
     Parameters
     ----------
     path : str or pathlib.Path
         The netCDF file to read.
+    variables : iterable of str, optional
+        The data variables the caller uses; None: all of them.
     """
     import stat
     if not stat.S_ISREG(os.stat(path).st_mode):
         raise ValueError(f"{path}: not a regular file (a folder, a FIFO or a device); give a netCDF file")
     import xarray as xr
 
+    if variables is not None:
+        variables = list(variables)
+        missing = sorted(set(variables) - set(declared_sizes(path)))
+        if missing:
+            raise InputError(f"{path}: no variable {', '.join(map(repr, missing))}; is it the right dataset?")
+    check_declared_sizes(path, variables)  # from the header, before xarray opens (and indexes) anything
     with xr.open_dataset(path, engine="netcdf4") as ds:
-        return ds.load()
+        return (ds[variables] if variables is not None else ds).load()
 
 
 def write_text(text: str, path) -> Path:
@@ -326,8 +449,8 @@ def read_checked(path, expectations: dict | None) -> xr.Dataset:
     DatasetMismatch
         If the file is not the expected dataset.
     """
-    if str(path) not in expectations:
-        raise KeyError(f"{path}: no expectation for this input (known: {', '.join(sorted(expectations))})")
+    if expectations is None or str(path) not in expectations:
+        raise KeyError(f"{path}: no expectation for this input (known: {', '.join(sorted(expectations or {}))})")
     return check_dataset(read_netcdf(path), path, expectations[str(path)])
 
 

@@ -3,8 +3,9 @@
 A :class:`Quantity` declares one kind of input (a frequency ratio, a block dimension, a seed). Each way a
 value enters names the quantity it is, and takes its check from it:
 
-* the library's arguments -- :data:`ARGUMENTS` maps each public class and function to the quantity of each
-  of its numeric arguments, and :func:`check_arguments` is the check those classes and functions run first;
+* the library's arguments -- each public class and function declares the quantity of each of its numeric
+  arguments where it is defined (:func:`declares`, which fills :data:`ARGUMENTS`), and
+  :func:`check_arguments` is the check those classes and functions run first;
 * the study config -- :mod:`rockstudy.core.declarations` builds its pydantic fields from
   :meth:`Quantity.annotated`, so the JSON schema Snakemake validates against carries the same ranges;
 * the command line -- :data:`rockstudy.core.declarations.OPTIONS` gives each numeric option the quantity of
@@ -24,7 +25,25 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from rockstudy.core import limits as lim
 from rockstudy.core import validation as v
+from rockstudy.core.limits import (  # noqa: F401 -- aliased where the config's and the engines' readers look
+    ATOL_RANGE,
+    MAX_A_MAX0_G,
+    MAX_ALPHA,
+    MAX_BAND,
+    MAX_BLOCK_SIZE,
+    MAX_DENSITY,
+    MAX_PGA_G,
+    MAX_RECORD_SCALE,
+    MAX_ROTATION_RATIO,
+    MIN_ALPHA,
+    MIN_BLOCK_SIZE,
+    MIN_DESIGN_RESOLUTION,
+    MIN_DESIGN_STEP,
+    MIN_PGA_G,
+    RTOL_RANGE,
+)
 
 
 @dataclass(frozen=True)
@@ -70,8 +89,8 @@ class Quantity:
         if value is None and self.optional:
             return None
         if self.integer:
-            low = -v.MAX_INTEGER - 1 if self.low is None else int(math.ceil(self.low + (1 if self.low_open else 0)))
-            high = v.MAX_INTEGER if self.high is None else int(self.high)
+            low = -lim.MAX_INTEGER - 1 if self.low is None else int(math.ceil(self.low + (1 if self.low_open else 0)))
+            high = lim.MAX_INTEGER if self.high is None else int(self.high)
             return v.check_int_range(name, value, low, high)
         return v.check_range(name, value, self.low, self.high, "" if self.unit == "-" else self.unit,
                              low_open=self.low_open, high_open=self.high_open,
@@ -99,151 +118,138 @@ class Quantity:
 
 
 
-MAX_PGA_G = 100.0
-"""Largest peak ground acceleration of a design stripe or a synthetic suite. [g]"""
-MIN_PGA_G = 1e-4
-"""Smallest peak ground acceleration of a design stripe. [g]"""
-MAX_A_MAX0_G = 100.0
-"""Largest protection level a_max,0. [g]"""
-MAX_BLOCK_SIZE = 1000.0
-"""Largest block dimension. [m]"""
-MIN_BLOCK_SIZE = 1e-4
-"""Smallest block dimension. [m]"""
-MAX_DENSITY = 1e5
-"""Largest block density. [kg/m^3]"""
-MIN_DESIGN_STEP = 1e-3
-"""Smallest step of a design block's amplitude scan (it has no stop: it scans up to a_max,0). [-]"""
-MIN_DESIGN_RESOLUTION = 1e-6
-"""Smallest resolution of a design block's threshold. [-]"""
-MIN_ALPHA = 1e-3
-"""Smallest slenderness alpha of a design block. [rad]"""
-MAX_ALPHA = 0.6
-"""Largest slenderness alpha of a design block. [rad]"""
-MAX_ROTATION_RATIO = 10.0
-"""Largest ultimate rotation of a calibration device, as a multiple of alpha. [-]"""
-MAX_BAND = 1e6
-"""Largest filter cut-off of a noise reading or a sensor. [Hz]"""
-MAX_RECORD_SCALE = 1e6
-"""Largest factor a record is scaled by. [-]"""
-RTOL_RANGE = (1e-14, 1e-3)
-"""Allowed relative tolerances of the integrators [-]: tighter than 1e-14 is below round-off, looser than 1e-3
-is not a result."""
-ATOL_RANGE = (1e-16, 1e-3)
-"""Allowed absolute tolerances of the integrators (θ in rad, θ̇ in rad/s). [-]"""
-
 QUANTITIES = {
     # the excitation and its scan
-    "frequency_ratio": Quantity(0.0, v.MAX_FREQUENCY_RATIO, "-", "frequency ratio omega_p/p"),
-    "amplitude_ratio": Quantity(0.0, v.MAX_AMPLITUDE_RATIO, "-", "amplitude ratio a_p/(g tan alpha)"),
-    "amplitude_resolution": Quantity(0.0, v.MAX_AMPLITUDE_RATIO, "-", "width of a threshold's final bracket"),
+    "frequency_ratio": Quantity(0.0, lim.MAX_FREQUENCY_RATIO, "-", "frequency ratio omega_p/p"),
+    "amplitude_ratio": Quantity(0.0, lim.MAX_AMPLITUDE_RATIO, "-", "amplitude ratio a_p/(g tan alpha)"),
+    "amplitude_resolution": Quantity(0.0, lim.MAX_AMPLITUDE_RATIO, "-", "width of a threshold's final bracket"),
     "a_max0_g": Quantity(0.0, MAX_A_MAX0_G, "g", "protection level a_max,0"),
     "pga_g": Quantity(0.0, MAX_PGA_G, "g", "peak ground acceleration"),
     "design_pga_g": Quantity(MIN_PGA_G, MAX_PGA_G, "g", "peak ground acceleration of a design stripe", low_open=False),
-    "acceleration": Quantity(None, None, "m/s^2", "ground acceleration amplitude"),
+    "acceleration": Quantity(-lim.MAX_GROUND_ACCELERATION, lim.MAX_GROUND_ACCELERATION, "m/s^2",
+                             "ground acceleration amplitude", low_open=False),
+    "run_amplitude_ratio": Quantity(0.0, lim.MAX_AMPLITUDE_RATIO, "-", "amplitude ratio a_p/(g tan alpha) of a run",
+                                    low_open=False),
     "circular_frequency": Quantity(0.0, None, "rad/s", "circular frequency"),
-    "duration": Quantity(0.0, v.MAX_TIME_SPAN, "s", "duration"),
+    "duration": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "duration"),
     "angular_rate": Quantity(None, None, "rad/s", "circular frequency or rate (> 0 where it is a frequency)"),
-    "free_time": Quantity(0.0, v.MAX_FREE_TIME, "s", "free motion after the excitation", low_open=False),
-    "record_dt": Quantity(0.0, v.MAX_TIME_SPAN, "s", "sampling step of a record"),
-    "column_dt": Quantity(0.0, v.MAX_TIME_SPAN, "s", "sampling step of a one-column record (None: a time column)",
+    "free_time": Quantity(0.0, lim.MAX_FREE_TIME, "s", "free motion after the excitation", low_open=False),
+    "record_dt": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "sampling step of a record"),
+    "column_dt": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "sampling step of a one-column record (None: a time column)",
                     optional=True),
     "record_scale": Quantity(0.0, MAX_RECORD_SCALE, "-", "factor a record is scaled by"),
-    "signed_factor": Quantity(None, None, "-", "factor (negative: the record reversed)"),
-    "design_step": Quantity(MIN_DESIGN_STEP, v.MAX_AMPLITUDE_RATIO, "-", "step of a design block's amplitude scan",
+    "signed_factor": Quantity(-lim.MAX_RECORD_SCALE, lim.MAX_RECORD_SCALE, "-",
+                              "factor (negative: the record reversed)", low_open=False),
+    "design_step": Quantity(MIN_DESIGN_STEP, lim.MAX_AMPLITUDE_RATIO, "-", "step of a design block's amplitude scan",
                       low_open=False),
-    "design_resolution": Quantity(MIN_DESIGN_RESOLUTION, v.MAX_AMPLITUDE_RATIO, "-",
+    "design_resolution": Quantity(MIN_DESIGN_RESOLUTION, lim.MAX_AMPLITUDE_RATIO, "-",
                             "resolution of a design block's threshold", low_open=False),
     # the block and its restrainers
     "slenderness": Quantity(MIN_ALPHA, MAX_ALPHA, "rad", "slenderness alpha of a design block", low_open=False),
-    "half_diagonal": Quantity(MIN_BLOCK_SIZE, 50.0, "m", "half diagonal R of a design block", low_open=False),
+    "half_diagonal": Quantity(MIN_BLOCK_SIZE, lim.MAX_HALF_DIAGONAL, "m", "half diagonal R of a design block",
+                              low_open=False),
     "length": Quantity(MIN_BLOCK_SIZE, MAX_BLOCK_SIZE, "m", "block dimension", low_open=False),
     "density": Quantity(0.0, MAX_DENSITY, "kg/m^3", "mass density"),
-    "gravity": Quantity(0.0, 1000.0, "m/s^2", "acceleration of gravity"),
+    "gravity": Quantity(0.0, lim.MAX_GRAVITY, "m/s^2", "acceleration of gravity"),
     "restitution": Quantity(0.0, 1.0, "-", "coefficient of restitution (None: Housner's, Eq. 14)", low_open=False,
                       optional=True),
-    "kappa": Quantity(0.0, v.MAX_KAPPA, "-", "dimensionless stiffness 4 K b^2/(m g R)", low_open=False),
-    "damping_ratio": Quantity(0.0, v.MAX_DAMPING_RATIO, "-", "damping ratio xi", low_open=False),
-    "ultimate_rotation": Quantity(0.0, math.pi / 2, "rad", "rotation at which a restrainer breaks (None: alpha)",
+    "kappa": Quantity(0.0, lim.MAX_KAPPA, "-", "dimensionless stiffness 4 K b^2/(m g R)", low_open=False),
+    "damping_ratio": Quantity(0.0, lim.MAX_DAMPING_RATIO, "-", "damping ratio xi", low_open=False),
+    "ultimate_rotation": Quantity(0.0, lim.MAX_ROTATION, "rad", "rotation at which a restrainer breaks (None: alpha)",
                             optional=True),
     # control, sensing and noise
-    "sampling_time": Quantity(0.0, v.MAX_TIME_SPAN, "s", "controller sampling time T_s (0: continuous)",
+    "sampling_time": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "controller sampling time T_s (0: continuous)",
                               low_open=False),
-    "delay": Quantity(0.0, v.MAX_TIME_SPAN, "s", "actuation delay", low_open=False),
+    "delay": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "actuation delay", low_open=False),
     "band": Quantity(0.0, MAX_BAND, "Hz", "low-pass cut-off (None: no filter)", optional=True),
     "noise_level": Quantity(0.0, 1.0, "-", "noise level N", low_open=False, high_open=True),
-    "noise_step": Quantity(0.0, v.MAX_NOISE_STEP, "s", "sampling step of a noisy record"),
-    "noise_span": Quantity(0.0, v.MAX_TIME_SPAN, "s", "noise after the excitation", low_open=False),
-    "seed": Quantity(0.0, v.MAX_INTEGER, "", "seed of the random numbers", low_open=False, integer=True),
-    "realisation": Quantity(0.0, v.MAX_INTEGER, "", "index of a noise realisation", low_open=False, integer=True),
-    "sample_count": Quantity(0.0, v.MAX_RECORD_SAMPLES, "", "number of samples", low_open=False, integer=True),
+    "noise_step": Quantity(0.0, lim.MAX_NOISE_STEP, "s", "sampling step of a noisy record"),
+    "noise_span": Quantity(0.0, lim.MAX_TIME_SPAN, "s", "noise after the excitation", low_open=False),
+    "seed": Quantity(0.0, lim.MAX_INTEGER, "", "seed of the random numbers", low_open=False, integer=True),
+    "realisation": Quantity(0.0, lim.MAX_INTEGER, "", "index of a noise realisation", low_open=False, integer=True),
+    "sample_count": Quantity(0.0, lim.MAX_RECORD_SAMPLES, "", "number of samples", low_open=False, integer=True),
     # integration
-    "initial_rotation": Quantity(-math.pi / 2, math.pi / 2, "rad", "initial rotation theta_0", low_open=False),
+    "initial_rotation": Quantity(-lim.MAX_ROTATION, lim.MAX_ROTATION, "rad", "initial rotation theta_0",
+                                 low_open=False),
     "initial_velocity": Quantity(None, None, "rad/s", "initial rotational velocity"),
     "rest_velocity": Quantity(0.0, None, "rad/s", "|theta_dot+| below which an impact ends the motion",
                         low_open=False, optional=True),
     "rtol": Quantity(*RTOL_RANGE, "-", "relative integration tolerance", low_open=False, optional=True),
     "atol": Quantity(*ATOL_RANGE, "-", "absolute integration tolerance", low_open=False, optional=True),
     # fragility
-    "intensity_resolution": Quantity(0.0, v.MAX_AMPLITUDE_RATIO, "intensity measure",
+    "intensity_resolution": Quantity(0.0, lim.MAX_AMPLITUDE_RATIO, "intensity measure",
                                "width of a record threshold's final bracket"),
-    "suite_records": Quantity(1, v.MAX_SUITE_RECORDS, "", "number of records of a suite", low_open=False, integer=True),
-    "stripe_count": Quantity(2, v.MAX_LIST_ITEMS, "", "number of PGA levels (stripes)", low_open=False, integer=True),
-    "bootstrap": Quantity(0.0, v.MAX_BOOTSTRAP, "", "bootstrap draws", low_open=False, integer=True),
+    "suite_records": Quantity(1, lim.MAX_SUITE_RECORDS, "", "number of records of a suite", low_open=False,
+                              integer=True),
+    "stripe_count": Quantity(lim.MIN_STRIPES, lim.MAX_LIST_ITEMS, "", "number of PGA levels (stripes)",
+                             low_open=False, integer=True),
+    # the synthetic record suite (Kanai-Tajimi filtered noise under an envelope)
+    "ground_frequency_hz": Quantity(0.0, lim.MAX_GROUND_FREQUENCY_HZ, "Hz", "ground frequency of the filter"),
+    "ground_damping": Quantity(0.0, lim.MAX_GROUND_DAMPING, "-", "ground damping ratio of the filter"),
+    "envelope_shape": Quantity(0.0, lim.MAX_ENVELOPE_SHAPE, "-", "shape exponent of the envelope"),
+    "filter_ratio": Quantity(0.0, 1.0, "-", "frequency of the high-pass filter over the ground frequency",
+                             high_open=True),
+    "bootstrap": Quantity(0.0, lim.MAX_BOOTSTRAP, "", "bootstrap draws", low_open=False, integer=True),
 }
 """Every kind of numeric input, by name."""
 
-ARGUMENTS = {
-    "Block": {"width": "length", "height": "length", "depth": "length", "density": "density",
-              "gravity": "gravity", "restitution": "restitution"},
-    "Anchorage": {"kappa_max": "kappa", "kappa_min": "kappa", "damping_ratio": "damping_ratio",
-                  "spring_ultimate_rotation": "ultimate_rotation", "damper_ultimate_rotation": "ultimate_rotation"},
-    "Control": {"sampling_time": "sampling_time", "delay": "delay", "sensor_band": "band"},
-    "NoiseReading": {"step": "noise_step", "band": "band", "span": "noise_span"},
-    "GroundMotion": {"amplitude": "acceleration", "omega": "angular_rate", "duration": "duration",
-                     "record_dt": "record_dt", "vertical_dt": "record_dt"},
-    "Scenario": {"noise_level": "noise_level", "seed": "seed", "free_time": "free_time"},
-    "AmplitudeGrid": {"start": "amplitude_ratio", "stop": "amplitude_ratio", "step": "amplitude_ratio",
-                      "resolution": "amplitude_resolution"},
-    "frequency_grid": {"start": "frequency_ratio", "stop": "frequency_ratio", "step": "frequency_ratio"},
-    "simulate": {"free_time": "free_time", "initial_rotation": "initial_rotation",
-                 "initial_velocity": "initial_velocity", "rest_velocity": "rest_velocity", "rtol": "rtol",
-                 "atol": "atol"},
-    "threshold": {"frequency_ratio": "frequency_ratio", "realisation": "realisation"},
-    "spectrum": {"frequency_ratios": "frequency_ratio", "realisations": "realisation"},
-    "jos": {"a_max0_g": "a_max0_g"},
-    "Record": {"dt": "record_dt"},
-    "Record.motion": {"scale": "signed_factor"},
-    "read_record": {"dt": "column_dt"},
-    "read_one_column": {"dt": "record_dt"},
-    "noise_generator": {"seed": "seed", "level": "noise_level", "realisation": "realisation"},
-    "noisy_record": {"omega": "circular_frequency", "level": "noise_level", "realisation": "realisation",
-                     "seed": "seed"},
-    "record_threshold": {"resolution": "amplitude_resolution"},
-    "suite_fragility_dataset": {"resolution": "intensity_resolution", "n_boot": "bootstrap", "seed": "seed",
-                                "free_time": "free_time"},
-    "fragility_dataset": {"n_boot": "bootstrap", "seed": "seed", "free_time": "free_time"},
-    "fragility_from_stripes": {"n_boot": "bootstrap", "seed": "seed", "free_time": "free_time"},
-    "pga_levels": {"start": "design_pga_g", "stop": "design_pga_g", "count": "stripe_count"},
-    "block_point": {"R": "half_diagonal", "alpha": "slenderness", "amplitude_start": "amplitude_ratio",
-                    "amplitude_step": "design_step", "resolution": "design_resolution", "a_max0_g": "a_max0_g",
-                    "free_time": "free_time"},
-    "device_point": {"kappa_max": "kappa", "damping_ratio": "damping_ratio", "kappa_min": "kappa",
-                     "free_time": "free_time"},
-}
-"""The quantity of each numeric argument of the public classes and functions, by the name the library
-gives them (``"Block"`` is :class:`rockstudy.Block`, ``"simulate"`` :func:`rockstudy.simulate`). An argument
-that takes a sequence (``spectrum``'s ``frequency_ratios``) is checked item by item."""
+ARGUMENTS: dict[str, dict[str, str]] = {}
+"""The quantity of each numeric argument of the public classes and functions, by the name the library gives
+them (``"Block"`` is :class:`rockstudy.Block`, ``"simulate"`` :func:`rockstudy.simulate`, ``"Record.motion"``
+the method): filled by :func:`declares` where each class or function is defined, when its module is imported.
+An argument that takes a sequence (``spectrum``'s ``frequency_ratios``) is checked item by item."""
 
-
-SIZES = {
-    ("spectrum", "frequency_ratios"): v.MAX_GRID_POINTS,
-    ("spectrum", "realisations"): v.MAX_REALISATIONS,
-    ("GroundMotion", "record"): v.MAX_RECORD_SAMPLES,
-    ("GroundMotion", "vertical"): v.MAX_RECORD_SAMPLES,
-    ("Record", "acceleration"): v.MAX_RECORD_SAMPLES,
-}
+SIZES: dict[tuple[str, str], int] = {}
 """Most items of each sequence argument of the public classes and functions, by (owner, argument): what
-bounds the work and the memory a call may take (the engine steps to every record sample)."""
+bounds the work and the memory a call may take (the engine steps to every record sample); filled by
+:func:`declares`."""
+
+
+def declare(owner: str, sizes: dict | None = None, **arguments: str) -> None:
+    """Declare the numeric arguments of ``owner``: the quantity (a key of :data:`QUANTITIES`) of each, and
+    the most items of each sequence argument. Used through :func:`declares`.
+
+    Parameters
+    ----------
+    owner : str
+        The class's or function's qualified name (``"Block"``, ``"Record.motion"``).
+    sizes : dict, optional
+        The most items of each sequence argument, by argument name.
+    **arguments : str
+        The quantity of each argument, by argument name.
+
+    Raises
+    ------
+    KeyError
+        If a quantity is not one of :data:`QUANTITIES`, or ``owner`` is declared twice differently.
+    """
+    unknown = sorted(set(arguments.values()) - set(QUANTITIES))
+    if unknown:
+        raise KeyError(f"{owner}: {', '.join(unknown)} is not a declared quantity (core.quantities.QUANTITIES)")
+    if ARGUMENTS.get(owner, arguments) != arguments:
+        raise KeyError(f"{owner} is declared twice, differently")
+    ARGUMENTS[owner] = dict(arguments)
+    for arg, most in (sizes or {}).items():
+        SIZES[owner, arg] = int(most)
+
+
+def declares(sizes: dict | None = None, **arguments: str):
+    """Decorator declaring, where a class or function is defined, the quantity of each of its numeric
+    arguments (``@declares(width="length", height="length")``) and the most items of each sequence
+    argument (``sizes={"acceleration": MAX_RECORD_SAMPLES}``); :func:`check_arguments` then checks them by
+    the object's qualified name. The object is returned unchanged.
+
+    Parameters
+    ----------
+    sizes : dict, optional
+        The most items of each sequence argument, by argument name.
+    **arguments : str
+        The quantity (a key of :data:`QUANTITIES`) of each argument, by argument name.
+    """
+    def mark(obj):
+        declare(obj.__qualname__, sizes, **arguments)
+        return obj
+    return mark
 
 
 def check_arguments(owner: str, values: dict, names=None) -> dict:
@@ -256,7 +262,7 @@ def check_arguments(owner: str, values: dict, names=None) -> dict:
     Parameters
     ----------
     owner : str
-        A key of :data:`ARGUMENTS` (``"Block"``, ``"simulate"`` ...).
+        A declared class or function, by its qualified name (``"Block"``, ``"simulate"`` ...).
     values : dict
         The arguments by name; names the declaration does not list are passed over.
     names : dict, optional
@@ -266,7 +272,12 @@ def check_arguments(owner: str, values: dict, names=None) -> dict:
     ------
     rockstudy.core.validation.InputError
         For the first argument out of its declared type or range, naming it, the value and the range.
+    KeyError
+        If ``owner`` declares no arguments (its module is not imported, or it has no declaration).
     """
+    if owner not in ARGUMENTS:
+        raise KeyError(f"{owner} declares no arguments (core.quantities.declares, where it is defined); is its "
+                       "module imported?")
     names = names or {}
     # a class's field is Block.width; a function's or a method's argument (Record.motion's scale) is its name
     prefix = f"{owner}." if owner[:1].isupper() and "." not in owner else ""

@@ -1,401 +1,79 @@
-"""Input limits and the checks that enforce them: numbers, relations between inputs, work size, files.
+"""The checks of the files read and written, and the one name under which callers find every check.
 
-A numeric input's type, unit and range are declared once in :mod:`rockstudy.core.quantities`
-(:data:`~rockstudy.core.quantities.QUANTITIES`, :data:`~rockstudy.core.quantities.ARGUMENTS`,
-:func:`~rockstudy.core.quantities.check_arguments`). This module holds what those declarations build on:
-the limits (``MAX_*``), the low-level checks they call (:func:`check_number`, :func:`check_range`,
-:func:`check_int_range`), and the checks no single input's range covers: relations between inputs (a grid's
-start, stop and step, a_max,0 within the amplitude scan), the size of the work (:func:`check_workload`,
-:func:`check_sizes`) and the files read and written.
+The files: a file to read (:func:`check_input_file`: a regular, readable file of bounded size), a results
+folder (:func:`check_results_dir`: not a system folder) and an output file (:func:`check_output_path`:
+writable, checked before any work). Beside them this module gives, under its own name, the check
+primitives of :mod:`rockstudy.core.checks` (:func:`fail`, :func:`check_range`, :class:`InputError` ...),
+the relation and work checks of :mod:`rockstudy.core.relations` (:func:`check_grid`,
+:func:`check_workload` ...) and the limits of :mod:`rockstudy.core.limits` (``validation.MAX_TIME_SPAN``).
+A numeric input's type, unit and range are declared once in :mod:`rockstudy.core.quantities`.
 
 Every check takes the name the user typed (``--frequency-step``, ``frequency_grid.step``,
-``Block.width``), the value, and the unit the user gave it in, and raises :class:`InputError`
-(a :class:`ValueError`) whose message names the input, the value and what is allowed. The checks
-run before any work, so a bad input never costs a computation and never leaves a partial output.
-
-Limits
-------
-The limits below bound everything that becomes an array size, a loop count or a time span. They
-are derived from what one machine can do; with the default study a case (one realisation at one
-frequency) takes about 0.05 s on one core, about 50 simulations of ~1 ms, and needs one noise
-record of ``duration / 0.0025 s`` samples (8 bytes each).
-
-* :data:`MAX_INTEGER` -- seeds and realisation indices are stored as netCDF ``int64``
-  attributes and coordinates, so they must fit in a signed 64-bit integer.
-* :data:`MAX_GRID_POINTS` -- points of one frequency or amplitude grid (a grid of 10^5 points
-  already means 10^5 cases per realisation; the paper uses about 50).
-* :data:`MAX_SIMULATIONS` -- upper bound of the simulations one command or one workflow job
-  may need (cases x (coarse grid points + bisection steps)): 10^8 simulations is about
-  one day on one core at ~1 ms each.
-* :data:`MAX_JOBS_PER_SPECTRUM` -- realisation chunks of one spectrum in the workflow (the DAG of
-  all spectra must stay small enough for Snakemake to plan).
-* :func:`memory_budget` -- the noise records of one command or job must fit in a quarter of the
-  machine's physical memory (they are all held at once).
-* :data:`MAX_TIME_SPAN` -- excitation duration plus free time of one simulation. [s]
-* :data:`MAX_STEPS` -- integrator steps one simulation may need: its time span over the engine's
-  largest step (1/20 of the shorter of the free-rocking and excitation periods).
-* :data:`MAX_CONTROLLER_SAMPLES` -- controller samples of one simulation (time span / T_s), half
-  the fast engine's event cap of 2 000 000, so sampled control cannot exhaust it.
-* :data:`MAX_AMPLITUDE_RATIO`, :data:`MAX_FREQUENCY_RATIO`, :data:`MAX_KAPPA`,
-  :data:`MAX_DAMPING_RATIO` -- physical ranges far beyond the paper's (amplitude ratios up to 6,
-  frequency ratios up to 5, kappa up to 1), kept finite so the integrator's step stays resolvable.
-* :data:`MIN_RELATIVE_RESOLUTION` -- the bisection of a threshold stops when its bracket is
-  narrower than the resolution; below 1e-9 of the scan bound floating point cannot narrow it.
+``Block.width``), the value, and raises :class:`InputError` (a :class:`ValueError`) whose message names
+the input, the value and what is allowed, before any work, so a bad input never costs a computation and
+never leaves a partial output.
 """
 from __future__ import annotations
 
-import math
-import numbers
 import os
 import tempfile
 from pathlib import Path
 
-MAX_INTEGER = 2**63 - 1
-"""Largest seed or realisation index: netCDF ``int64`` attributes hold up to 2^63 - 1."""
-MAX_GRID_POINTS = 100_000
-"""Largest number of points of one frequency grid or one coarse amplitude grid."""
-MAX_REALISATIONS = 100_000
-"""Largest number of noise realisations of one spectrum (the paper uses 100)."""
-MAX_JOBS_PER_SPECTRUM = 10_000
-"""Largest number of realisation chunks (workflow jobs) of one spectrum."""
-MAX_SIMULATIONS = 10**8
-"""Largest number of simulations one command or workflow job may need (about a day on one core)."""
-MAX_TIME_SPAN = 3600.0
-"""Longest simulated time span, excitation plus free time. [s]"""
-MAX_FREE_TIME = 3600.0
-"""Longest free motion after the excitation. [s]"""
-MAX_STEPS = 10**7
-"""Largest number of integrator steps one simulation may need."""
-MAX_CONTROLLER_SAMPLES = 10**6
-"""Largest number of controller samples (time span / T_s) in one simulation (half the event cap)."""
-MAX_AMPLITUDE_RATIO = 1000.0
-"""Largest amplitude ratio a_p/(g tan alpha) (for BLC06 about 245 g). [-]"""
-MAX_FREQUENCY_RATIO = 1000.0
-"""Largest frequency ratio omega_p/p. [-]"""
-MAX_KAPPA = 1.0e4
-"""Largest dimensionless stiffness 4 K b^2/(m g R). [-]"""
-MAX_DAMPING_RATIO = 100.0
-"""Largest damping ratio xi. [-]"""
-MIN_RELATIVE_RESOLUTION = 1e-9
-"""Smallest amplitude resolution relative to the scan bound (floating point cannot bisect finer)."""
-RECORD_DT = 0.0025
-"""Sampling step of the noise records (``noise.NOISE_DT``). [s]"""
-RECORD_BYTES_PER_SAMPLE = 24
-"""Bytes held per record sample while a spectrum runs (the record, its baseline and a copy)."""
-MAX_NOISE_STEP = 0.1
-"""Largest sampling step of a noisy record (the study's records use 0.0025 s). [s]"""
-MAX_RECORD_SAMPLES = MAX_STEPS
-"""Largest number of samples of one ground-motion record: the engine ends a step at every sample, so a
-record of more samples than :data:`MAX_STEPS` cannot be simulated within that limit."""
-MAX_RECORD_BYTES = 256 * 2**20
-"""Largest record file read (a text record of :data:`MAX_RECORD_SAMPLES` samples takes about 150 MB). [B]"""
-MAX_DATASET_BYTES = 2**30
-"""Largest netCDF dataset read by ``rockstudy jos`` (a spectrum of the paper's study takes about 100 kB). [B]"""
-MAX_HISTORY_SAMPLES = 2 * MAX_STEPS
-"""Largest number of samples of a stored time history (integrator steps or uniform ground samples)."""
-MAX_LIST_ITEMS = 200
-"""Largest number of entries of one list or mapping of a study config (sampling times, delays, readings,
-strategies ...): each entry multiplies the workflow's jobs, and Snakemake plans them all before any runs."""
-MAX_BOOTSTRAP = 100_000
-"""Largest number of bootstrap draws (the study uses 200)."""
-MAX_SUITE_RECORDS = 10_000
-"""Largest number of records of one fragility suite (a P695 far-field set has 44)."""
-MAX_DEVICES = 1_000
-"""Largest number of devices one calibration screens (every combination of its lists; the study's 48)."""
-SYSTEM_FOLDERS = ("/bin", "/boot", "/etc", "/lib", "/lib32", "/lib64", "/libx32", "/sbin", "/usr", "/var")
-"""Folders of the operating system: a results folder may not be one of them or lie inside one (nor be /)."""
-PSEUDO_FILESYSTEMS = ("/proc", "/sys", "/dev")
-"""Folders no data product may be written to."""
-FIGURE_FORMATS = ("png", "pdf", "svg")
-"""Suffixes a figure may be written as."""
-
-
-class InputError(ValueError):
-    """A value the user gave is not allowed; the message names the input, the value and the rule."""
-
-
-def _fmt(value) -> str:
-    if isinstance(value, float):
-        return f"{value:.6g}"
-    return repr(value) if isinstance(value, str) else str(value)
-
-
-def _unit(unit: str) -> str:
-    return f" {unit}" if unit else ""
-
-
-def field_names(owner: str, names=None):
-    """The name of each field of ``owner`` in messages: ``names[field]`` (the caller's option or config key,
-    e.g. ``"--kappa-max"`` or ``"anchorage.kappa_max"``), else ``"<owner>.<field>"``.
-
-    Parameters
-    ----------
-    owner : str
-        The class whose fields are named (``"Anchorage"``).
-    names : dict, optional
-        The caller's name of a field in messages (``{"kappa_max": "--kappa-max"}``); None: every field is
-        named ``"<owner>.<field>"``.
-
-    Returns
-    -------
-    callable
-        A function of a field name that returns its name in messages.
-    """
-    names = names or {}
-    return lambda field: names.get(field, f"{owner}.{field}")
-
-
-def fail(name: str, value, allowed: str, unit: str = ""):
-    """Raise :class:`InputError` ``"<name> = <value> <unit> is not allowed: <allowed>"``.
-
-    Parameters
-    ----------
-    name : str
-        The input as the user knows it (``"--kappa-max"``, ``"frequency_grid.step"``).
-    value : object
-        The value given; a float is written with 6 significant digits, a str quoted.
-    allowed : str
-        What is allowed, or why the value is refused.
-    unit : str, optional
-        The unit written after the value ("" for none).
-
-    Raises
-    ------
-    InputError
-        Always.
-    """
-    raise InputError(f"{name} = {_fmt(value)}{_unit(unit)} is not allowed: {allowed}")
-
-
-def check_number(name: str, value, unit: str = "") -> float:
-    """A finite real number (not a bool, not NaN or inf), returned as a float.
-
-    Parameters
-    ----------
-    name : str
-        The input's name in the message.
-    value : object
-        The value given.
-    unit : str, optional
-        The value's unit in the message ("" for none).
-    """
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        fail(name, value, "it must be a number")
-    value = float(value)
-    if not math.isfinite(value):
-        fail(name, value, "it must be a finite number (not NaN or inf)", unit)
-    return value
-
-
-def check_range(name: str, value, low: float | None = None, high: float | None = None, unit: str = "", *,
-                low_open: bool = False, high_open: bool = False, why: str = "") -> float:
-    """A finite number in [low, high], returned as a float.
-
-    Parameters
-    ----------
-    name : str
-        The input's name in the message.
-    value : object
-        The value given.
-    low, high : float or None, optional
-        The range's ends; None: unbounded on that side. [unit]
-    unit : str, optional
-        The unit of the value and the ends, in the message ("" for none).
-    low_open, high_open : bool, optional
-        Whether the end itself is excluded (default: both included).
-    why : str, optional
-        Why the range is what it is, appended to the message in parentheses.
-    """
-    value = check_number(name, value, unit)
-    too_low = low is not None and (value <= low if low_open else value < low)
-    too_high = high is not None and (value >= high if high_open else value > high)
-    if too_low or too_high:
-        lo = "" if low is None else f"{_fmt(low)} {'<' if low_open else '<='} "
-        hi = "" if high is None else f" {'<' if high_open else '<='} {_fmt(high)}"
-        fail(name, value, f"allowed is {lo}{name}{hi}{_unit(unit)}" + (f" ({why})" if why else ""), unit)
-    return value
-
-
-def check_positive(name: str, value, unit: str = "", high: float | None = None, why: str = "") -> float:
-    """A finite number > 0 (and <= ``high``), returned as a float.
-
-    Parameters
-    ----------
-    name : str
-        The input's name in the message.
-    value : object
-        The value given.
-    unit : str, optional
-        The unit of the value and of ``high``, in the message ("" for none).
-    high : float, optional
-        The largest value allowed; None: no upper bound. [unit]
-    why : str, optional
-        Why the limit is what it is, appended to the message in parentheses.
-    """
-    return check_range(name, value, 0.0, high, unit, low_open=True, why=why)
-
-
-def check_nonnegative(name: str, value, unit: str = "", high: float | None = None, why: str = "") -> float:
-    """A finite number >= 0 (and <= ``high``), returned as a float.
-
-    Parameters
-    ----------
-    name : str
-        The input's name in the message.
-    value : object
-        The value given.
-    unit : str, optional
-        The unit of the value and of ``high``, in the message ("" for none).
-    high : float, optional
-        The largest value allowed; None: no upper bound. [unit]
-    why : str, optional
-        Why the limit is what it is, appended to the message in parentheses.
-    """
-    return check_range(name, value, 0.0, high, unit, why=why)
-
-
-def check_int_range(name: str, value, low: int = 0, high: int = MAX_INTEGER, why: str = "") -> int:
-    """An integer (an int, or a float with an integer value) in [low, high], returned as an int.
-
-    Parameters
-    ----------
-    name : str
-        The input's name in the message.
-    value : object
-        The value given; a bool is refused.
-    low, high : int, optional
-        The smallest and largest values allowed, both included (default 0 and :data:`MAX_INTEGER`).
-    why : str, optional
-        Why the range is what it is, appended to the message in parentheses.
-    """
-    if isinstance(value, bool):
-        fail(name, value, "it must be an integer")
-    if isinstance(value, numbers.Integral):
-        value = int(value)
-    elif isinstance(value, numbers.Real) and math.isfinite(value) and float(value).is_integer():
-        value = int(value)
-    else:
-        fail(name, value, f"it must be an integer in [{low}, {high}]")
-    if not (low <= value <= high):
-        fail(name, value, f"allowed is {low} <= {name} <= {high}" + (f" ({why})" if why else ""))
-    return value
-
-
-def grid_size(start: float, stop: float, step: float) -> int:
-    """Number of points of the grid ``start, start + step, ..., <= stop`` (computed without building it).
-
-    Parameters
-    ----------
-    start, stop : float
-        First point and upper bound of the grid, start <= stop.
-    step : float
-        Spacing of the points, > 0 (a point at most 1e-9 steps above ``stop``, round-off, counts).
-    """
-    return int(math.floor((stop - start) / step + 1e-9)) + 1
-
-
-def check_grid(prefix: str, start, stop, step, unit: str = "", *, high: float, max_points: int = MAX_GRID_POINTS,
-               strict: bool = False, names: tuple[str, str, str] | None = None) -> int:
-    """A grid start..stop by step: finite, 0 < start <= stop <= ``high`` (start < stop if ``strict``),
-    step > 0 and at most ``max_points`` points. Returns the number of points.
-
-    Parameters
-    ----------
-    prefix : str
-        The grid's config key (``"frequency_grid"``); its inputs are named ``prefix.start`` ... in messages.
-    start, stop, step : float
-        The grid's first point, upper bound and spacing. [unit]
-    unit : str, optional
-        The unit of the three values, in messages ("" for none).
-    high : float
-        The largest start and stop allowed (keyword only). [unit]
-    max_points : int, optional
-        The most points the grid may have (default :data:`MAX_GRID_POINTS`).
-    strict : bool, optional
-        Whether stop must exceed start (a grid of one point is refused).
-    names : tuple of str, optional
-        The three input names in messages, overriding ``prefix.start``, ``prefix.stop``, ``prefix.step``.
-    """
-    n_start, n_stop, n_step = names or (f"{prefix}.start", f"{prefix}.stop", f"{prefix}.step")
-    start = check_positive(n_start, start, unit, high)
-    stop = check_positive(n_stop, stop, unit, high)
-    step = check_positive(n_step, step, unit)
-    if stop < start or (strict and stop == start):
-        fail(n_stop, stop, f"it must be {'>' if strict else '>='} {n_start} = {_fmt(start)}", unit)
-    n = grid_size(start, stop, step)
-    if n > max_points:
-        fail(n_step, step, f"{n_start}..{n_stop} = {_fmt(start)}..{_fmt(stop)} in steps of {_fmt(step)} gives "
-                           f"{n if n < 10**15 else f'{float(n):.3g}'} points, the limit is {max_points} (use a step >= "
-                           f"{_fmt((stop - start) / (max_points - 1))})", unit)
-    return n
-
-
-def bisection_steps(step: float, resolution: float) -> int:
-    """Bisection steps that narrow a bracket of width ``step`` to at most ``resolution`` (0 if it already is).
-
-    Parameters
-    ----------
-    step : float
-        Width of the starting bracket (the coarse scan's step), > 0.
-    resolution : float
-        Width at which the bisection stops, > 0.
-    """
-    return max(0, math.ceil(math.log2(step / resolution))) if resolution < step else 0
-
-
-def check_amplitude_grid(start, stop, step, resolution, names=None) -> int:
-    """The upward amplitude scan (ratios a_p/(g tan alpha)); returns the simulations one threshold may need.
-
-    The scan is a grid as in :func:`check_grid` (start < stop <= :data:`MAX_AMPLITUDE_RATIO`), and the
-    resolution must not exceed the step nor fall below :data:`MIN_RELATIVE_RESOLUTION` times the stop.
-
-    Parameters
-    ----------
-    start, stop, step : float
-        The coarse scan's first amplitude ratio, upper bound and spacing. [-]
-    resolution : float
-        Width of a threshold's final bracket, found by bisection after the scan. [-]
-    names : tuple of str, optional
-        The four input names in messages (default ``amplitude_grid.start``, ``.stop``, ``.step``,
-        ``.resolution``).
-    """
-    names = names or ("amplitude_grid.start", "amplitude_grid.stop", "amplitude_grid.step",
-                      "amplitude_grid.resolution")
-    n = check_grid("amplitude_grid", start, stop, step, high=MAX_AMPLITUDE_RATIO, strict=True, names=names[:3])
-    resolution = check_positive(names[3], resolution)
-    if resolution > step:
-        fail(names[3], resolution, f"it must not exceed {names[2]} = {_fmt(float(step))}")
-    floor = MIN_RELATIVE_RESOLUTION * float(stop)
-    if resolution < floor:
-        fail(names[3], resolution, f"it must be >= {_fmt(floor)} ({MIN_RELATIVE_RESOLUTION:g} x {names[1]}): "
-                                   "floating point cannot bisect a threshold more finely")
-    return n + bisection_steps(float(step), resolution)
-
-
-def memory_budget() -> int:
-    """Bytes the noise records of one command or job may take: a quarter of the physical memory. [B]"""
-    try:
-        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    except (ValueError, OSError, AttributeError):  # pragma: no cover - non-POSIX
-        total = 8 * 2**30
-    return int(total // 4)
-
-
-def record_samples(durations_s, step: float = RECORD_DT, span: float = 0.0) -> int:
-    """Noise record samples of excitations lasting ``durations_s`` read at ``step``, with noise also
-    ``span`` after each (the noise reading's step and span). [-]
-
-    Parameters
-    ----------
-    durations_s : iterable of float
-        Duration of each excitation (one record each). [s]
-    step : float, optional
-        Sampling step of the records (default :data:`RECORD_DT`). [s]
-    span : float, optional
-        Noise after each excitation's end (default 0). [s]
-    """
-    extra = int(round(span / step))
-    return int(sum(math.ceil(d / step) + 1 + extra for d in durations_s))
+from rockstudy.core.checks import (  # noqa: F401 -- the primitives, under this module's name too
+    InputError,
+    _fmt,
+    check_int_range,
+    check_items,
+    check_nonnegative,
+    check_number,
+    check_positive,
+    check_range,
+    fail,
+    field_names,
+)
+from rockstudy.core.limits import (  # noqa: F401 -- the limits, aliased where the checks' callers look
+    FIGURE_FORMATS,
+    MAX_AMPLITUDE_RATIO,
+    MAX_BOOTSTRAP,
+    MAX_CONTROLLER_SAMPLES,
+    MAX_DAMPING_RATIO,
+    MAX_DATASET_BYTES,
+    MAX_DEVICES,
+    MAX_FREE_TIME,
+    MAX_FREQUENCY_RATIO,
+    MAX_GRID_POINTS,
+    MAX_HISTORY_SAMPLES,
+    MAX_INTEGER,
+    MAX_JOBS_PER_SPECTRUM,
+    MAX_KAPPA,
+    MAX_LIST_ITEMS,
+    MAX_NOISE_STEP,
+    MAX_REALISATIONS,
+    MAX_RECORD_BYTES,
+    MAX_RECORD_SAMPLES,
+    MAX_SIMULATIONS,
+    MAX_STEPS,
+    MAX_SUITE_RECORDS,
+    MAX_TIME_SPAN,
+    MIN_RELATIVE_RESOLUTION,
+    PSEUDO_FILESYSTEMS,
+    RECORD_BYTES_PER_SAMPLE,
+    RECORD_DT,
+    SYSTEM_FOLDERS,
+)
+from rockstudy.core.relations import (  # noqa: F401 -- the relation and work checks, under this name too
+    bisection_steps,
+    check_a_max0,
+    check_amplitude_grid,
+    check_block,
+    check_grid,
+    check_sizes,
+    check_workload,
+    grid_size,
+    memory_budget,
+    record_samples,
+    scan_top,
+)
 
 
 def check_input_file(name: str, path, max_bytes: int) -> Path:
@@ -437,53 +115,6 @@ def check_input_file(name: str, path, max_bytes: int) -> Path:
     return p
 
 
-def check_workload(name: str, value, n_cases: int, sims_per_case: int, record_bytes: int) -> None:
-    """Refuse a command or job whose simulations or noise records exceed :data:`MAX_SIMULATIONS` or
-    :func:`memory_budget`.
-
-    Parameters
-    ----------
-    name : str
-        The input that sets the size, named in the message (e.g. ``--realisations``).
-    value : object
-        That input's value, shown in the message.
-    n_cases : int
-        Cases of the command or job (realisations x frequencies).
-    sims_per_case : int
-        Largest number of simulations one case may need (coarse grid points + bisection steps).
-    record_bytes : int
-        Memory the noise records of the command or job hold at once (0: no records). [B]
-    """
-    sims = n_cases * sims_per_case
-    if sims > MAX_SIMULATIONS:
-        fail(name, value, f"{n_cases} cases x up to {sims_per_case} simulations = {sims:.3g} simulations, the "
-                          f"limit is {MAX_SIMULATIONS:.0e} (about a day on one core at ~1 ms each)")
-    budget = memory_budget()
-    if record_bytes > budget:
-        fail(name, value, f"the noise records need about {record_bytes / 2**30:.3g} GiB, the limit is "
-                          f"{budget / 2**30:.3g} GiB (a quarter of this machine's memory)")
-
-
-def check_block(block, name: str = "block") -> None:
-    """Physical meaning of a block: Housner's restitution e = 1 - 1.5 sin^2(alpha) (Eq. 14) must lie in
-    [0, 1], i.e. a slender block with H/B >= 1/sqrt(2); a squat block needs an explicit restitution.
-
-    Parameters
-    ----------
-    block : rockstudy.Block
-        The block, or any object with its ``width``, ``height``, ``alpha``, ``restitution`` and
-        ``housner_restitution``.
-    name : str, optional
-        The block's name in the message (default ``"block"``).
-    """
-    if block.restitution is None and block.housner_restitution < -1e-12:  # e = 0 at H/B = 1/sqrt(2)
-        raise InputError(
-            f"{name}: width {block.width:g} m and height {block.height:g} m give alpha = "
-            f"{math.degrees(block.alpha):.1f} deg and Housner's restitution e = 1 - 1.5 sin^2(alpha) = "
-            f"{block.housner_restitution:.3g} < 0 (Eq. 14); the model needs a slender block (height/width >= "
-            f"{1 / math.sqrt(2):.3f}) or an explicit {name}.restitution in [0, 1]")
-
-
 def check_results_dir(name: str, path) -> Path:
     """A folder for a study's results: a plain path (no ``{`` ``}``, which Snakemake would read as
     wildcards), not /, not a system folder (:data:`SYSTEM_FOLDERS`, :data:`PSEUDO_FILESYSTEMS`) nor inside
@@ -509,33 +140,6 @@ def check_results_dir(name: str, path) -> Path:
     if os.path.exists(real) and not os.path.isdir(real):
         fail(name, path, "it is an existing file, not a folder")
     return Path(path)
-
-
-def check_sizes(config, key: str = "", limit: int = MAX_LIST_ITEMS, limits: dict | None = None) -> None:
-    """No list or mapping anywhere in ``config`` has more than ``limit`` entries; the message names the key path.
-
-    Parameters
-    ----------
-    config : object
-        A parsed config or part of it; its lists, tuples and dicts are checked recursively.
-    key : str, optional
-        The key path of ``config`` in messages ("" for the whole config).
-    limit : int, optional
-        The most entries of a list or mapping (default :data:`MAX_LIST_ITEMS`).
-    limits : dict, optional
-        Other limits by key path, e.g. ``{"beyond.fragility.records": MAX_SUITE_RECORDS}``.
-    """
-    if isinstance(config, (list, tuple, dict)):
-        most = (limits or {}).get(key, limit)
-        if len(config) > most:
-            fail(key or "config", f"{len(config)} entries", f"at most {most} entries (each one multiplies the "
-                                                           "workflow's jobs, which Snakemake plans before any runs)")
-        if isinstance(config, dict):
-            for k, item in config.items():
-                check_sizes(item, f"{key}.{k}" if key else str(k), limit, limits)
-        else:
-            for i, item in enumerate(config):
-                check_sizes(item, f"{key}[{i}]", limit, limits)
 
 
 def check_output_path(name: str, path, *, formats: tuple[str, ...] | None = None) -> Path:
@@ -584,43 +188,3 @@ def check_output_path(name: str, path, *, formats: tuple[str, ...] | None = None
     if p.exists() and not os.access(p, os.W_OK):
         fail(name, str(path), "the existing file is not writable")
     return p
-
-
-def scan_top(start: float, stop: float, step: float) -> float:
-    """Highest amplitude ratio of the upward scan start, start + step, ... <= stop. [-]
-
-    Parameters
-    ----------
-    start, stop : float
-        First amplitude ratio and upper bound of the scan. [-]
-    step : float
-        Spacing of the scan, > 0. [-]
-    """
-    return round(start + step * (grid_size(start, stop, step) - 1), 10)
-
-
-def check_a_max0(name: str, a_max0_g, alpha: float, top: float, top_name: str = "amplitude_grid.stop") -> float:
-    """a_max,0 in units of g: positive, finite and, as an amplitude ratio a_max,0/(g tan alpha), not above
-    the amplitude scan's top ``top`` (a NaN threshold means "no overturning up to the scan's top"; it
-    only counts as >= a_max,0 when the scan reached a_max,0). Returns a_max,0 as an amplitude ratio. [-]
-
-    Parameters
-    ----------
-    name : str
-        The input's name in the message (``"a_max0"``, ``"--a-max0"``).
-    a_max0_g : float
-        The protection level a_max,0. [g]
-    alpha : float
-        The block's slenderness. [rad]
-    top : float
-        Highest amplitude ratio the scan reached (:func:`scan_top`). [-]
-    top_name : str, optional
-        The input that sets the scan's top, named in the message (default ``"amplitude_grid.stop"``).
-    """
-    a_max0_g = check_positive(name, a_max0_g, "g")
-    ratio = a_max0_g / math.tan(alpha)
-    if ratio > top + 1e-9:
-        fail(name, a_max0_g, f"it is {ratio:.4g} as an amplitude ratio a/(g tan alpha), above the amplitude scan's "
-                             f"top {top:g} ({top_name}); NaN thresholds would then not mean 'no overturning up to "
-                             f"a_max0'. Allowed is {name} <= {top * math.tan(alpha):.4g} g, or scan higher", "g")
-    return ratio

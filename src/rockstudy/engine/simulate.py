@@ -13,6 +13,7 @@ import numpy as np
 from rockstudy.core import validation
 from rockstudy.core.constants import FAST_ATOL, FAST_RTOL, FREE_TIME, MAX_STEP_FRACTION
 from rockstudy.core.constants import rest_velocity as default_rest_velocity
+from rockstudy.core.limits import OVERTURN_CRITERIA
 from rockstudy.core.quantities import ATOL_RANGE, RTOL_RANGE, check_arguments  # noqa: F401 -- named in docs
 from rockstudy.engine import _kernel
 from rockstudy.engine.simulation_result import (
@@ -31,7 +32,6 @@ from rockstudy.model.excitation import GroundMotion
 from rockstudy.model.sensor import sensed_samples, sensed_step
 
 ENGINES = ("fast", "reference")
-OVERTURN_CRITERIA = ("flat", "alpha")
 DEFAULT_FREE_TIME = FREE_TIME
 """Free rocking allowed after the excitation before a run stops as "time limit" (``constants.FREE_TIME``). [s]"""
 __all__ = ["simulate", "pack_parameters", "kernel_record", "overturn_rotation", "ENGINES", "OVERTURN_CRITERIA",

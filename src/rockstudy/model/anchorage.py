@@ -14,11 +14,13 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.core.validation import field_names
 from rockstudy.model.block import Block
 
 
+@declares(kappa_max="kappa", kappa_min="kappa", damping_ratio="damping_ratio",
+          spring_ultimate_rotation="ultimate_rotation", damper_ultimate_rotation="ultimate_rotation")
 @dataclass(frozen=True)
 class Anchorage:
     """Dimensionless description of the restrainers.

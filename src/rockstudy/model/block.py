@@ -11,13 +11,15 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.core.validation import check_block
 
 GRAVITY = 9.81
 """Acceleration of gravity used throughout. [m/s^2]"""
 
 
+@declares(width="length", height="length", depth="length", density="density", gravity="gravity",
+          restitution="restitution")
 @dataclass(frozen=True)
 class Block:
     """A rigid rectangular block standing on a rigid base.

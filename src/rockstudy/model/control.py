@@ -27,15 +27,16 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core.limits import STRATEGIES
+from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.core.validation import field_names
 
-STRATEGIES = ("FS", "PASSIVE", "CS01", "CS02")
 STRATEGY_CODE = {name: i for i, name in enumerate(STRATEGIES)}
 """Integer code of each strategy, the one the compiled engine reads."""
 FS, PASSIVE, CS01, CS02 = (STRATEGY_CODE[name] for name in STRATEGIES)
 
 
+@declares(sampling_time="sampling_time", delay="delay", sensor_band="band")
 @dataclass(frozen=True)
 class Control:
     """Control strategy and its timing.

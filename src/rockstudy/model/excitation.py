@@ -13,7 +13,8 @@ import numpy as np
 from numba import njit
 
 from rockstudy.core._inline import inline_into
-from rockstudy.core.quantities import SIZES, check_arguments
+from rockstudy.core.limits import EXCITATIONS, MAX_GROUND_ACCELERATION
+from rockstudy.core.quantities import SIZES, check_arguments, declares
 from rockstudy.core.validation import (
     MAX_CONTROLLER_SAMPLES,
     MAX_RECORD_SAMPLES,
@@ -22,7 +23,6 @@ from rockstudy.core.validation import (
     fail,
 )
 
-EXCITATIONS = ("one-sine", "modulated")
 KIND_CODE = {"one-sine": 0, "modulated": 1, "record": 2, "rectangular": 3}
 """Integer code of each kind of ground motion, the one the compiled engine reads."""
 ONE_SINE, MODULATED, RECORD, RECTANGULAR = (KIND_CODE[k] for k in ("one-sine", "modulated", "record", "rectangular"))
@@ -214,6 +214,8 @@ def analytic(kind: str, t, amplitude, omega):
     raise ValueError(f"excitation must be one of {', '.join(EXCITATIONS)}, got {kind!r}")
 
 
+@declares(sizes={"record": MAX_RECORD_SAMPLES, "vertical": MAX_RECORD_SAMPLES}, amplitude="acceleration",
+          omega="angular_rate", duration="duration", record_dt="record_dt", vertical_dt="record_dt")
 @dataclass(frozen=True)
 class GroundMotion:
     """A horizontal (and optional vertical) ground acceleration history.
@@ -273,9 +275,22 @@ class GroundMotion:
                 bad = int(np.flatnonzero(~np.isfinite(samples))[0])
                 fail(f"GroundMotion.{name}", f"sample {bad} = {samples[bad]}", "every sample must be finite")
             object.__setattr__(self, name, samples)
+        self._check_peak()
         if self.kind == "record":
             if len(self.record) < 2:
                 fail("GroundMotion.record", f"{len(self.record)} sample(s)", "a record needs at least 2 samples")
+
+    def _check_peak(self) -> None:
+        """The peak ground acceleration, horizontal (amplitude times the record's peak, for a record) and
+        vertical, within :data:`~rockstudy.core.limits.MAX_GROUND_ACCELERATION`."""
+        peaks = {"amplitude": abs(self.amplitude) * (float(np.max(np.abs(self.record))) if self.kind == "record"
+                                                     else 1.0),
+                 "vertical": float(np.max(np.abs(self.vertical))) if self.vertical.size else 0.0}
+        for name, peak in peaks.items():
+            if not peak <= MAX_GROUND_ACCELERATION:
+                what = "amplitude x the record's peak" if name == "amplitude" and self.kind == "record" else "its peak"
+                fail(f"GroundMotion.{name}", f"{what} {peak:.6g}", f"allowed is a peak ground acceleration <= "
+                     f"{MAX_GROUND_ACCELERATION:g} (2000 g)", "m/s^2")
 
     @property
     def code(self) -> int:

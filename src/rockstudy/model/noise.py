@@ -39,16 +39,13 @@ import numpy as np
 
 from rockstudy.core import validation
 from rockstudy.core.constants import NOISE_DT
+from rockstudy.core.limits import LEVEL_MEANINGS, RESCALES
 from rockstudy.core.quantities import QUANTITIES, check_arguments
 from rockstudy.model.excitation import GroundMotion, analytic, excitation_duration, sample_count
 
 NOISE_LEVELS = {"R000": 0.0, "R001": 0.01, "R005": 0.05, "R010": 0.10}
 """The paper's noise levels: noise energy over baseline energy (§5, Table 1). [-]"""
 
-RESCALES = ("energy", "pga", "both", "none")
-"""How the sum baseline + noise is rescaled (:attr:`NoiseReading.rescale`)."""
-LEVEL_MEANINGS = ("energy", "rms")
-"""What the noise level r measures (:attr:`NoiseReading.level_means`)."""
 
 _LEVEL_KEY_SCALE = 10000
 

@@ -40,8 +40,9 @@ from pathlib import Path
 
 import numpy as np
 
+from rockstudy.core import limits
 from rockstudy.core.io import write_text
-from rockstudy.core.quantities import SIZES, check_arguments
+from rockstudy.core.quantities import SIZES, check_arguments, declares
 from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, InputError, check_input_file
 from rockstudy.model.excitation import GroundMotion
 
@@ -113,6 +114,7 @@ def unit_factor(unit: str) -> float:
     return UNITS[key]
 
 
+@declares(sizes={"acceleration": MAX_RECORD_SAMPLES}, dt="record_dt")
 @dataclass(frozen=True)
 class Record:
     """A horizontal ground acceleration sampled at a uniform step.
@@ -166,6 +168,7 @@ class Record:
         """Peak ground acceleration max|Ẍ_g|. [m/s^2]"""
         return float(np.max(np.abs(self.acceleration)))
 
+    @declares(scale="signed_factor")
     def motion(self, scale: float = 1.0) -> GroundMotion:
         """The record as a ground motion ``scale``·Ẍ_g(t), linear between samples, zero after.
 
@@ -286,9 +289,8 @@ def read_at2(path) -> Record:
     return Record(name=name, dt=dt, acceleration=np.asarray(values) * STANDARD_GRAVITY, source=str(path), unit="g")
 
 
-MAX_LINE_CHARS = 2**16
-"""Longest line of a record file: a record is a few numbers per line (one line of a 255 MB file would be
-split into millions of fields, and quoted whole in an error)."""
+MAX_LINE_CHARS = limits.MAX_LINE_CHARS
+"""Longest line of a record file (:data:`rockstudy.core.limits.MAX_LINE_CHARS`)."""
 
 
 def _lines(path):
@@ -415,6 +417,7 @@ def read_two_column(path, unit: str | None = None) -> Record:
                   source=str(path), unit=unit)
 
 
+@declares(dt="record_dt")
 def read_one_column(path, dt: float, unit: str | None = None) -> Record:
     """Read a one-column record (OpenSees ``timeSeries Path -dt``): accelerations at i·dt.
 
@@ -521,6 +524,7 @@ def _header_unit(path, number: int, text: str, columns: int) -> str | None:
     return known[-1] if known else None
 
 
+@declares(dt="column_dt")
 def read_record(path, unit: str | None = None, dt: float | None = None) -> Record:
     """Read a record file: ``.AT2`` (PEER NGA, in g) by its suffix, one column when ``dt`` is
     given, any other as two columns.

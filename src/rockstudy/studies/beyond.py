@@ -11,10 +11,6 @@ from rockstudy.model import record_suites
 SELECTION = "selection"
 """Name of the record set made of the ``SUITE:ID`` names and files listed in ``beyond.fragility.records``."""
 
-SYNTHETIC_RANGES = {"envelope_shape": (0.0, 100.0), "filter_ratio": (0.0, 1.0),
-                    "pga_g": (0.0, 100.0)}
-"""Allowed (open low, closed high) ranges of the synthetic suite's dimensionless settings. [-]"""
-
 
 def check_config(section: dict, config: dict) -> None:
     """The ``beyond:`` section agrees with the rest of the study ``config`` and stays within the limits of
@@ -83,20 +79,25 @@ def _check_synthetic(syn: dict) -> int:
     n = QUANTITIES["suite_records"].check(f"{key}.n_records", syn["n_records"])
     QUANTITIES["seed"].check(f"{key}.seed", syn["seed"])
     duration = QUANTITIES["duration"].check(f"{key}.duration", syn["duration"])
-    dt = validation.check_positive(f"{key}.dt", syn["dt"], "s", duration / 2)  # a relation: two samples at least
+    dt = validation.check_positive(f"{key}.dt", syn["dt"], "s", duration / 2,
+                                   why=f"two samples at least within {key}.duration")
     samples = duration / dt + 1
     if samples > validation.MAX_RECORD_SAMPLES:
         validation.fail(f"{key}.dt", dt, f"{key}.duration = {duration:g} s sampled every {dt:g} s gives {samples:.3g} "
                                 f"samples per record, the limit is {validation.MAX_RECORD_SAMPLES:.0e}", "s")
     for name in ("ground_frequency_hz", "ground_damping", "peak_time"):
         lo, hi = syn[name]
-        high = {"ground_frequency_hz": 0.5 / dt, "ground_damping": 1.0, "peak_time": duration}[name]
         for i, value in enumerate((lo, hi)):
-            validation.check_positive(f"{key}.{name}[{i}]", value, high=high)
+            if name in QUANTITIES:
+                QUANTITIES[name].check(f"{key}.{name}[{i}]", value)
+            # relations: a ground frequency below the records' Nyquist frequency, a peak within the record
+            high, why = {"ground_frequency_hz": (0.5 / dt, f"below the Nyquist frequency 1/(2 {key}.dt)"),
+                         "ground_damping": (None, ""), "peak_time": (duration, f"within {key}.duration")}[name]
+            validation.check_positive(f"{key}.{name}[{i}]", value, high=high, why=why)
         if hi < lo:
             validation.fail(f"{key}.{name}", [lo, hi], "give [low, high] with low <= high")
-    for name, (low, high) in SYNTHETIC_RANGES.items():
-        validation.check_range(f"{key}.{name}", syn[name], low, high, low_open=True)
+    for name in ("envelope_shape", "filter_ratio", "pga_g"):
+        QUANTITIES[name].check(f"{key}.{name}", syn[name])
     return n
 
 

@@ -34,7 +34,8 @@ from rockstudy.analysis.risk_devices import device_verdicts
 from rockstudy.analysis.scenario import Scenario
 from rockstudy.analysis.spectra import AmplitudeGrid, spectrum
 from rockstudy.analysis.utility_index import utility_index
-from rockstudy.core.quantities import check_arguments
+from rockstudy.core import validation
+from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
@@ -55,6 +56,7 @@ def gravity_comment(block: Block) -> str:
             f"model uses g = {block.gravity:g} m s-2 (block_gravity)")
 
 
+@declares(start="design_pga_g", stop="design_pga_g", count="stripe_count")
 def pga_levels(start: float = 0.05, stop: float = 3.0, count: int = 30) -> np.ndarray:
     """Geometric PGA levels of the stripes, from ``start`` to ``stop`` in ``count`` points. [g]
 
@@ -103,6 +105,9 @@ def fragility_medians_g(block: Block, anchorage: Anchorage, controls, records, l
     intervals : ndarray, shape (control, 2)
         95 % Wald interval of each median [g] (NaN without a fit).
     """
+    validation.check_items("controls", controls, what="control")
+    validation.check_items("records", records, what="record")
+    validation.check_items("levels_g", levels_g, low=2, what="level")
     levels_g = np.asarray(levels_g, dtype=float)
     ratio = levels_g * STANDARD_GRAVITY / block.uplift_acceleration  # PGA/(g tan(alpha)) of each level
     counts = np.zeros((len(controls), levels_g.size))
@@ -117,6 +122,8 @@ def fragility_medians_g(block: Block, anchorage: Anchorage, controls, records, l
             [f.status for f in fits], intervals.reshape(len(fits), 2))
 
 
+@declares(R="half_diagonal", alpha="slenderness", amplitude_start="amplitude_ratio",
+          amplitude_step="design_step", resolution="design_resolution", a_max0_g="a_max0_g", free_time="free_time")
 def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, frequency_ratios, *,
                 amplitude_start: float, amplitude_step: float, resolution: float, a_max0_g: float, records,
                 levels_g, suite: str, excitation: str = "modulated", overturn_criterion: str = "flat",
@@ -196,6 +203,7 @@ def block_point(R: float, alpha: float, anchorage: Anchorage, strategies, freque
     return ds
 
 
+@declares(kappa_max="kappa", damping_ratio="damping_ratio", kappa_min="kappa", free_time="free_time")
 def device_point(block: Block, kappa_max: float, damping_ratio: float, strategies, records, levels_g, *,
                  suite: str, kappa_min: float = 0.0, overturn_criterion: str = "flat",
                  free_time: float = DEFAULT_FREE_TIME) -> xr.Dataset:
@@ -226,6 +234,7 @@ def device_point(block: Block, kappa_max: float, damping_ratio: float, strategie
     """
     check_arguments("device_point", {"kappa_max": kappa_max, "damping_ratio": damping_ratio, "kappa_min": kappa_min,
                                      "free_time": free_time})
+    strategies = validation.check_items("strategies", strategies, what="strategy")
     t0 = time.perf_counter()
     anchorage = Anchorage(kappa_max=kappa_max, kappa_min=kappa_min, damping_ratio=damping_ratio)
     medians, betas, _, status, interval = fragility_medians_g(block, anchorage, [Control(s) for s in strategies],
@@ -262,7 +271,7 @@ def gather_blocks(points) -> xr.Dataset:
         The datasets of :func:`block_point`, one per (R, alpha), sharing strategies and settings; the
         first one's attributes label the result.
     """
-    points = list(points)
+    points = list(validation.check_items("points", points, what="block point"))
     Rs = sorted({float(p.R) for p in points})
     alphas = sorted({float(p.alpha) for p in points})
     strategies = list(points[0].strategy.values)
@@ -293,7 +302,7 @@ def gather_devices(points) -> xr.Dataset:
         The datasets of :func:`device_point`, one per (kappa_max, damping_ratio), sharing strategies; the
         first one's block and suite label the result.
     """
-    points = list(points)
+    points = list(validation.check_items("points", points, what="device point"))
     kappas = sorted({float(p.kappa_max) for p in points})
     xis = sorted({float(p.damping_ratio) for p in points})
     strategies = list(points[0].strategy.values)

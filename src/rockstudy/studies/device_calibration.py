@@ -23,9 +23,9 @@ from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
 from rockstudy.studies.claims import PAPER, PAPER_LEVELS, PAPER_TABLE1
 from rockstudy.studies.parameters import noise_free_level, scenario_from_dict
+from rockstudy.studies.tables import REFERENCES
 
 STRATEGIES = ("CS01", "CS02")
-REFERENCES = ("no_noise", "fs_same_noise")
 
 
 @dataclass(frozen=True)
@@ -521,7 +521,8 @@ def check_config(section: dict, alpha: float, sims_per_case: int | None = None) 
         (:class:`rockstudy.core.validation.InputError`) naming ``calibration.<key>`` and what is wrong.
     """
     for key, high, why in (("kappa_max", validation.MAX_KAPPA, ""), ("damping_ratio", validation.MAX_DAMPING_RATIO, ""),
-                           ("ultimate_rotation_ratio", math.pi / 2 / alpha, "theta_u = ratio x alpha <= pi/2"),
+                           ("ultimate_rotation_ratio", math.pi / 2 / alpha,
+                            "theta_u = ratio x alpha <= pi/2, alpha of the block"),
                            ("kappa_min_ratio", 1.0, "kappa_min <= kappa_max")):
         for i, value in enumerate(section[key]):
             validation.check_nonnegative(f"calibration.{key}[{i}]", value, high=high, why=why)
@@ -532,7 +533,8 @@ def check_config(section: dict, alpha: float, sims_per_case: int | None = None) 
                         f"at most {validation.MAX_DEVICES} (every combination of kappa_max, damping_ratio, "
                         "ultimate_rotation_ratio, kappa_min_ratio)")
     validation.check_int_range("calibration.candidates", section["candidates"], 1, n_devices,
-                      why="the best of the devices screened")
+                               why="the best of the devices screened: every combination of calibration.kappa_max, "
+                                   ".damping_ratio, .ultimate_rotation_ratio, .kappa_min_ratio")
     n_real = validation.check_int_range("calibration.coarse_realisations", section["coarse_realisations"], 1,
                                validation.MAX_REALISATIONS)
     fg = section["coarse_frequency_grid"]

@@ -68,24 +68,13 @@ def check_study(config: dict) -> None:
     from rockstudy.model.sensor import SENSOR_STEP, check_band
     from rockstudy.studies import beyond, device_calibration, noise_readings
 
-    declarations.check_config(config)  # every key's type, unit, range and size, as declared
+    # the model: every key's type, unit, range and size, and the relations between keys that need no
+    # computation (its validators); then what needs the model's computations and bounds the work
+    declarations.check_config(config)
     validation.check_results_dir("results_dir", config["results_dir"])
     levels = config["noise_levels"]
     noise_free_level(levels)
-    for key in ("convergence", "sampling_sweep", "delay_sweep", "example_point"):
-        if config[key]["noise_level"] not in levels:
-            raise validation.InputError(f"{key}.noise_level: {config[key]['noise_level']!r} is not one of noise_levels "
-                                        f"({', '.join(levels)})")
-    for key in ("table1", "maps", "control_histories", "sampling_sweep", "delay_sweep"):
-        missing = set(config[key]["strategies"]) - set(config["strategies"])
-        if missing:
-            raise validation.InputError(f"{key}.strategies: {sorted(missing)} not in strategies {config['strategies']}")
-    if "FS" not in config["strategies"]:
-        raise validation.InputError("strategies: FS is needed as the reference of Table 1 and of the timing tables")
     n_real, per_job = config["realisations"], config["realisations_per_job"]
-    too_high = [k for k in config["example_point"]["realisations"] if k >= n_real]
-    if too_high:
-        raise validation.InputError(f"example_point.realisations: {too_high} >= realisations ({n_real})")
     block = block_from_dict(config["block"])
     free_time = config["free_time"]
     ag = config["amplitude_grid"]

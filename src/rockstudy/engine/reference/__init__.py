@@ -47,6 +47,7 @@ import math
 
 from rockstudy.core.constants import FREE_TIME, REFERENCE_ATOL, REFERENCE_RTOL
 from rockstudy.core.constants import rest_velocity as default_rest_velocity
+from rockstudy.core.limits import OVERTURN_CRITERIA
 from rockstudy.engine.reference.recorder import HISTORY_STEP
 from rockstudy.engine.reference.run import MAX_EVENTS, MAX_STALLED_EVENTS, METHOD, ReferenceRun
 from rockstudy.engine.simulation_result import SimulationResult
@@ -54,8 +55,6 @@ from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
 from rockstudy.model.control import Control
 from rockstudy.model.excitation import GroundMotion
-
-OVERTURN_CRITERIA = ("flat", "alpha")
 
 __all__ = ["simulate_reference", "OVERTURN_CRITERIA", "HISTORY_STEP", "METHOD", "MAX_EVENTS", "MAX_STALLED_EVENTS"]
 

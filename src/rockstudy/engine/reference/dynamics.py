@@ -12,12 +12,13 @@ import math
 import numpy as np
 
 from rockstudy.engine.reference.ground import Excitation
+from rockstudy.engine.simulation_result import FRACTURE_ELEMENTS
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import Block
 from rockstudy.model.equation_of_motion import angular_acceleration
 from rockstudy.model.excitation import GroundMotion
 
-ELEMENTS = ("spring_left", "spring_right", "damper_left", "damper_right")
+ELEMENTS = FRACTURE_ELEMENTS
 """Restrainer elements; the "left" ones work while the block rocks on θ > 0 (side +1)."""
 
 

@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 
+from rockstudy.core import limits
 from rockstudy.engine.reference.controller import Controller, filippov_stiffness
 from rockstudy.engine.reference.dynamics import Dynamics, Restrainers, RockingRHS
 from rockstudy.engine.reference.events import (
@@ -43,9 +44,9 @@ from rockstudy.model.excitation import GroundMotion
 
 METHOD = "DOP853"
 """Runge–Kutta method passed to ``solve_ivp`` for the rocking pieces."""
-MAX_EVENTS = 5_000_000
+MAX_EVENTS = limits.REFERENCE_MAX_EVENTS
 """Cap on the number of pieces of one run (guards against an endless event loop)."""
-MAX_STALLED_EVENTS = 10_000
+MAX_STALLED_EVENTS = limits.REFERENCE_MAX_STALLED_EVENTS
 """Cap on consecutive pieces that do not advance time (guards against Zeno loops)."""
 TINY_VELOCITY_FACTOR = 1e-12
 """|θ̇| below this times p counts as θ̇ = 0 at a stop. [-]"""
