@@ -102,7 +102,8 @@ def range_problems(used: dict, gmm: str) -> list[str]:
     for key, (low, high) in GMM_RANGES[gmm].items():
         if key in used and not low <= used[key] <= high:
             problems.append(f"{key} = {used[key]:g} lies outside {gmm}'s range {low:g} to {high:g}")
-    top = GMM_MAX_MAG_BY_MECHANISM.get(gmm, {}).get(used.get("mechanism"))
+    mechanism = used.get("mechanism")
+    top = GMM_MAX_MAG_BY_MECHANISM.get(gmm, {}).get(mechanism) if isinstance(mechanism, str) else None
     if top is not None and used["mag"] > top:
         problems.append(f"mag = {used['mag']:g} exceeds {gmm}'s {top:g} for mechanism {used['mechanism']}")
     return problems

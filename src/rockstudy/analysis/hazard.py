@@ -157,7 +157,8 @@ def parse_hazard_text(text: str, name: str = "hazard file") -> HazardCurve:
         Naming ``name`` and the line (1-based) that is not two positive numbers, or whose PGA does not
         rise or whose rate does not fall.
     """
-    pga, rate = [], []
+    pga: list[float] = []
+    rate: list[float] = []
     for number, line in enumerate(text.splitlines(), start=1):
         body = line.split("#", 1)[0].strip()
         if not body:

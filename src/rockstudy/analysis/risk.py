@@ -397,9 +397,9 @@ def target_median(hazard: HazardCurve, dispersion: float, *, target_rate: float 
     """
     if (target_rate is None) == (target_probability is None):
         raise validation.InputError("give one target: target_rate or target_probability (with years)")
-    if target_rate is None:
+    if target_probability is not None:
         target_rate = rate_for_probability(target_probability, years)
-    target_rate = RISK_INPUTS["target_rate"].check("target_rate", target_rate)
+    target: float = RISK_INPUTS["target_rate"].check("target_rate", target_rate)
     dispersion = RISK_INPUTS["dispersion"].check("dispersion", dispersion)
 
     def excess(log_median):  # ln λ(θ) − ln target: falls as θ rises
@@ -408,28 +408,30 @@ def target_median(hazard: HazardCurve, dispersion: float, *, target_rate: float 
             rate = annual_rate(fragility, hazard, extension=extension, warn=False).annual_rate
         except RiskRangeError:  # an infinite rate far below the curve: above any target
             return math.inf
-        return (math.log(rate) if rate > 0 else -math.inf) - math.log(target_rate)
+        return (math.log(rate) if rate > 0 else -math.inf) - math.log(target)
 
     span = MEDIAN_SEARCH_DECADES * math.log(10)
     low = max(math.log(hazard.pga_g[0]) - span, math.log(1e-12))
-    high = min(math.log(hazard.pga_g[-1]) + span, math.log(RISK_INPUTS["median_g"].high) - 1e-9)
+    top_median = RISK_INPUTS["median_g"].high  # declared: a finite upper bound [g]
+    assert top_median is not None
+    high = min(math.log(hazard.pga_g[-1]) + span, math.log(top_median) - 1e-9)
     if excess(low) < 0:
-        raise validation.InputError(f"no median meets an annual rate of {target_rate:.4g}: even a median of "
+        raise validation.InputError(f"no median meets an annual rate of {target:.4g}: even a median of "
                                     f"{math.exp(low):.3g} g overturns less often on this hazard curve")
     if excess(high) > 0:
         raise validation.InputError(f"no median up to {math.exp(high):.3g} g meets an annual rate of "
-                                    f"{target_rate:.4g} on this hazard curve")
+                                    f"{target:.4g} on this hazard curve")
     median = float(math.exp(optimize.brentq(excess, low, high, xtol=1e-12, rtol=1e-12)))
     first, last = float(hazard.pga_g[0]), float(hazard.pga_g[-1])
     decades = math.log10(median / last) if median > last else math.log10(first / median) if median < first else 0.0
     if decades > 0:
         side = f"beyond the curve's last point, {last:g} g" if median > last else f"below its first point, {first:g} g"
-        text = (f"the median meeting an annual rate of {target_rate:.4g}, {median:.4g} g, lies {decades:.2g} decades "
+        text = (f"the median meeting an annual rate of {target:.4g}, {median:.4g} g, lies {decades:.2g} decades "
                 f"{side}: it rests on the curve's {'extension' if extension == 'loglog' else 'absence'} there")
         if not allow_extrapolation:
             raise validation.InputError(f"{text}; give the curve over a wider range of PGA (or allow extrapolation)")
         warnings.warn(text, HazardExtrapolationWarning, stacklevel=2)
-    return TargetMedian(median, target_rate, decades > 0, decades)
+    return TargetMedian(median, target, decades > 0, decades)
 
 
 def median_for_target(hazard: HazardCurve, dispersion: float, *, target_rate: float | None = None,

@@ -194,7 +194,7 @@ def is_suite_record(text) -> bool:
         A record name or a file path.
     """
     match = _NAME.match(str(text))
-    return bool(match) and match.group(1) in SUITES
+    return match is not None and match.group(1) in SUITES
 
 
 def looks_like_suite_record(text) -> bool:
