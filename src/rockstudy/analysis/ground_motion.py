@@ -84,7 +84,7 @@ class GmmRangeWarning(UserWarning):
 
 def range_problems(used: dict, gmm: str) -> list[str]:
     """What of a scenario lies outside the published range of ``gmm``
-    (:data:`rockstudy.core.risk_inputs.GMM_RANGES`, :data:`~rockstudy.core.risk_inputs.GMM_MAX_MAG_BY_MECHANISM`).
+    (:data:`rockstudy.core.limits.GMM_RANGES`, :data:`~rockstudy.core.limits.GMM_MAX_MAG_BY_MECHANISM`).
 
     Parameters
     ----------

@@ -31,7 +31,7 @@ dropped, and said in the site's ``notes``; a 0 rate below a positive one, a risi
 [0, 1] is refused naming the file and line. The IM must be PGA where the file states it. Levels are in g
 unless the file or the caller states another unit (:data:`rockstudy.core.risk_inputs.HAZARD_UNITS`); a curve
 whose unit is not stated and that no PGA hazard curve in g could be
-(:data:`rockstudy.core.risk_inputs.PLAUSIBLE_PGA_HAZARD`) is refused, asking for the unit.
+(:data:`rockstudy.core.limits.PLAUSIBLE_PGA_HAZARD`) is refused, asking for the unit.
 
 References
 ----------
@@ -54,6 +54,8 @@ from rockstudy.core import validation
 from rockstudy.core.risk_inputs import (
     HAZARD_UNIT_ALIASES,
     HAZARD_UNITS,
+    MAX_HAZARD_BYTES,
+    MAX_HAZARD_POINTS,
     MAX_HAZARD_SITES,
     PLAUSIBLE_PGA_HAZARD,
 )
@@ -62,11 +64,6 @@ EXTENSIONS = ("loglog", "none")
 """How a hazard curve is read outside its points: ``loglog`` extends the first and last segments' power
 laws (below the first and beyond the last point); ``none`` counts nothing outside the curve (a rate of
 overturning is then a lower bound)."""
-
-MAX_HAZARD_POINTS = 100_000
-"""Most points a hazard curve may have."""
-MAX_HAZARD_BYTES = 16 * 2**20
-"""Largest hazard file read. [bytes]"""
 
 
 class HazardFileError(validation.InputError):

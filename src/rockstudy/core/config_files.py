@@ -15,7 +15,7 @@ from rockstudy.core import validation as v
 from rockstudy.core.validation import InputError
 
 REPLACED_BY_OVERLAY = ("block", "noise_levels", "reproduction.readings", "beyond.fragility.records", "risk.scenarios",
-                       "risk.hazard_curves")
+                       "risk.hazard_curves", "risk.hazard_units")
 """Config keys whose value an overlay replaces whole instead of merging into: sections with alternatives
 (a block by preset or by dimensions, a record set by suite or by list) and every mapping of names (noise
 levels, readings, earthquake scenarios, hazard curves), so a name the overlay leaves out does not stay

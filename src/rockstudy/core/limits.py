@@ -161,6 +161,45 @@ MAX_ROTATION_RATIO = 10.0
 MAX_BAND = 1e6
 """Largest filter cut-off of a noise reading or a sensor. [Hz]"""
 
+# ------------------------------------------------------------------------------------- risk at a site
+MAX_DISPERSION = 5.0
+"""Largest dispersion beta of a fragility (lognormal standard deviation of ln PGA). [-]"""
+MAX_EXPOSURE_YEARS = 10_000.0
+"""Longest exposure time of a probability of overturning. [yr]"""
+MAX_SCENARIOS = 100
+"""Most scenarios (and hazard curves) of a study."""
+MAX_HAZARD_SITES = 10_000
+"""Most sites a hazard file may hold."""
+MAX_HAZARD_POINTS = 100_000
+"""Most points a hazard curve may have."""
+MAX_HAZARD_BYTES = 16 * 2**20
+"""Largest hazard file read. [B]"""
+SCENARIO_RANGES = {
+    "mag": (3.0, 8.5), "dist_rup": (0.0, 300.0), "v_s30": (150.0, 1500.0), "dist_jb": (0.0, 300.0),
+    "dist_x": (-300.0, 300.0), "dip": (15.0, 90.0), "depth_tor": (0.0, 20.0),
+}
+"""Closed ranges of an earthquake scenario's numbers, the widest the four ground-motion models accept: moment
+magnitude, distances [km], V_s30 [m/s], dip [deg] and depth to the top of the rupture [km]."""
+GMM_RANGES = {
+    "ASK14": {"mag": (3.0, 8.5), "dist_rup": (0.0, 300.0), "v_s30": (180.0, 1000.0), "depth_tor": (0.0, 20.0)},
+    "BSSA14": {"mag": (3.0, 8.5), "dist_jb": (0.0, 300.0), "v_s30": (150.0, 1500.0)},
+    "CB14": {"mag": (3.3, 8.5), "dist_rup": (0.0, 300.0), "v_s30": (150.0, 1500.0), "depth_tor": (0.0, 20.0)},
+    "CY14": {"mag": (3.5, 8.5), "dist_rup": (0.0, 300.0), "v_s30": (180.0, 1500.0), "depth_tor": (0.0, 20.0)},
+}
+"""Each ground-motion model's published range of applicability (closed intervals): moment magnitude (strike
+slip; CB14 and CY14 state lower upper limits for other mechanisms, below), distance [km], V_s30 [m/s] and
+depth to the top of the rupture [km], as the NGA-West2 papers give them (Abrahamson et al. 2014, Boore et al.
+2014, Campbell & Bozorgnia 2014, Chiou & Youngs 2014; Earthquake Spectra 30(3)); BSSA14's distance is
+pygmm's ``LIMITS`` (300 km; the paper allows 400 km)."""
+GMM_MAX_MAG_BY_MECHANISM = {"BSSA14": {"SS": 8.5, "RS": 8.5, "NS": 7.0}, "CB14": {"SS": 8.5, "RS": 8.0, "NS": 7.5},
+                            "CY14": {"SS": 8.5, "RS": 8.0, "NS": 8.0}}
+"""Upper magnitude limits by fault mechanism where a model states them."""
+PLAUSIBLE_PGA_HAZARD = {"max_level_g": 10.0, "max_rate_above_1g": 5e-3, "max_rate_above_005g": 1.0}
+"""What no PGA hazard curve in g has, used to refuse a file whose unit is not stated and does not look like g:
+a level above ``max_level_g`` [g]; an annual rate of exceeding 1 g above ``max_rate_above_1g`` [1/yr] (a
+return period of 200 years for 1 g exceeds every published hazard model); an annual rate of exceeding 0.05 g
+above ``max_rate_above_005g`` [1/yr]. Stating the unit (g included) reads the file as stated."""
+
 # ------------------------------------------------------------------------------------- integration
 RTOL_RANGE = (1e-14, 1e-3)
 """Allowed relative tolerances of the integrators [-]: tighter than 1e-14 is below round-off, looser than 1e-3
