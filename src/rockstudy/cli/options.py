@@ -327,7 +327,15 @@ def record_args(p: argparse.ArgumentParser, scan: bool = False) -> None:
 
 
 def check_no_record_options(args, parser) -> None:
-    """Without ``--record``, none of the options that say how to read it (exit 2 naming them)."""
+    """Without ``--record``, none of the options that say how to read it (exit 2 naming them).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``simulate`` or ``threshold``.
+    parser : argparse.ArgumentParser
+        The command's parser, whose error names the command's ``--help``.
+    """
     given = [f"--{name.replace('_', '-')}" for name, unset in (("record_unit", None), ("record_dt", None),
                                                                 ("record_scale", 1.0))
              if hasattr(args, name) and getattr(args, name) != unset]

@@ -11,7 +11,13 @@ from contextlib import contextmanager
 
 
 def at_terminal(stream=None) -> bool:
-    """Whether ``stream`` (standard error by default) is a terminal that can draw a bar (not ``TERM=dumb``)."""
+    """Whether ``stream`` is a terminal that can draw a bar (not ``TERM=dumb``).
+
+    Parameters
+    ----------
+    stream : file-like, optional
+        The stream; standard error when None.
+    """
     stream = sys.stderr if stream is None else stream
     isatty = getattr(stream, "isatty", None)
     return bool(isatty and isatty()) and os.environ.get("TERM") != "dumb"

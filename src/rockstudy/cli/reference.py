@@ -54,7 +54,13 @@ def _help(parser: argparse.ArgumentParser, action: argparse.Action) -> str:
 
 
 def command_reference(parser: argparse.ArgumentParser) -> str:
-    """The Markdown reference of every subcommand of ``parser`` (:func:`rockstudy.cli.build_parser`)."""
+    """The Markdown reference of every subcommand of ``parser``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command line's parser (:func:`rockstudy.cli.build_parser`).
+    """
     sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
     helps = {choice.dest: choice.help for choice in sub._choices_actions}
     lines = [HEADER]

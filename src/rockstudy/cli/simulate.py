@@ -53,7 +53,13 @@ def register(sub) -> None:
 
 
 def noise_fields(scenario) -> dict:
-    """The noise reading of ``scenario`` as the result prints it (``noise_band_hz`` null for white noise)."""
+    """The noise reading of ``scenario`` as the result prints it (``noise_band_hz`` null for white noise).
+
+    Parameters
+    ----------
+    scenario : rockstudy.analysis.scenario.Scenario
+        The case run.
+    """
     return {**scenario.noise.to_attrs(), "noise_band_hz": scenario.noise.band}
 
 
