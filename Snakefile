@@ -10,15 +10,31 @@
 #      realisations: noise -> spectrum_chunk -> gather_{spectrum,sampling,delay} -> ...); overturning_map
 #      and time_history feed their figures directly.
 import sys
+from pathlib import Path
 
+from snakemake.settings.types import DeploymentMethod
 from snakemake.utils import min_version, validate
 
-from rockstudy.core import config_files
-from rockstudy.studies import device_calibration as calibration
-from rockstudy import report as report_pages
-from rockstudy.studies import parameters, study
-
 min_version("9.0")
+
+try:  # the config is read and checked by the library itself, in the Python that runs snakemake
+    from rockstudy.core import config_files
+    from rockstudy.studies import device_calibration as calibration
+    from rockstudy import report as report_pages
+    from rockstudy.studies import parameters, study
+except ImportError as exc:
+    sys.exit(f"setup error: the Snakefile reads the config with the rockstudy package, which this Python "
+             f"({sys.executable}) cannot import ({exc});\ninstall it beside snakemake, also for --sdm conda: "
+             "python -m pip install -c constraints.txt -e .")
+
+if DeploymentMethod.CONDA in workflow.deployment_settings.deployment_method:
+    # workflow/envs/rockstudy.yaml installs rockstudy by pip from "../..", which conda resolves from Snakemake's
+    # copy of the file in the conda prefix: that must be <this checkout>/.snakemake/conda
+    _prefix = Path(workflow.deployment_settings.conda_prefix or Path(".snakemake", "conda")).resolve()
+    if _prefix.parent.parent != Path(workflow.basedir).resolve():
+        sys.exit(f"setup error: --sdm conda builds workflow/envs/rockstudy.yaml from its copy in {_prefix}, where "
+                 f"its '-e ../..' is {_prefix.parent.parent}, not this checkout;\nrun snakemake in "
+                 f"{workflow.basedir} without --conda-prefix or --directory")
 
 try:  # the --configfile files as written (bounded, aliases expanded) and the --config KEY=VALUE words, typed as
     # in a file: each is an overlay that replaces the sections it gives, applied in Snakemake's order

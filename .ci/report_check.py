@@ -20,7 +20,15 @@ Fails (exit 1, naming what is missing) unless the rendered page shows, as visibl
   and as large as the window allows: as wide as the smallest of its natural width, the window's width
   less the sidebar's share (:data:`SIDEBAR_SHARE`) and the panel's padding, and the width at which it is
   as tall as the window less :data:`VERTICAL_MARGIN` (:data:`SLACK` px short at most); never wider than
-  its natural width, not cut off on either side, its bottom within the window and reachable from its top.
+  its natural width, not cut off on either side, its bottom within the window and reachable from its top;
+* no docutils system message (an undefined substitution, a malformed caption) in the overview or in any
+  item's caption;
+* no two items of one category with the same label (the lists would open the same item twice);
+* at both widths, every column of every table seen whole: a table that only fits by scrolling sideways
+  hides its last columns (the overview's Table 1 in its column, and every table page at the width the
+  report gives it);
+* at both widths, the smallest text of every figure drawn at least :data:`MIN_TEXT_PX` high: the size
+  the figure's PNG states (``rockstudy.plotting.save.SMALLEST_TEXT_KEY``) times the scale it is drawn at.
 
 Chromium is Debian's (/usr/bin/chromium) driven by Playwright; a fresh profile folder every run.
 """
@@ -54,6 +62,10 @@ VERTICAL_MARGIN = 48
 """Height [px] of the window a figure leaves free (3 rem: the panel's margins), so that it is seen whole."""
 SLACK = 4
 """How much narrower [px] than the width it could have a figure may be drawn (rounding, borders)."""
+MIN_TEXT_PX = 7.0
+"""Smallest legible height [CSS px] of a figure's text as drawn (the font size times the drawing scale)."""
+SMALLEST_TEXT_KEY = "rockstudy smallest text px"
+"""The PNG text chunk that states the figure's smallest text [px] (rockstudy.plotting.save)."""
 
 # Boxes of the page as (what, left, right, top, bottom) in CSS pixels; "cut" lists tables whose right
 # edge passes their column's (or the page's) with no box that scrolls sideways between them.
@@ -65,13 +77,14 @@ LAYOUT_JS = """() => {
   const graph = document.querySelector('.vega-embed');
   const column = doc.getBoundingClientRect();
   const edge = Math.min(column.right, document.documentElement.clientWidth);
-  const cut = [], under = [];
+  const cut = [], under = [], hidden = [];
   for (const t of doc.querySelectorAll('table')) {
     const r = t.getBoundingClientRect(), s = scrolls(t);
     const inner = s && s !== document.documentElement && s !== document.body;
     const right = inner ? s.getBoundingClientRect().right : r.right;
     const label = (t.caption ? t.caption.innerText : t.innerText).slice(0, 60);
     if (right > edge + 1) cut.push([label, Math.round(right), Math.round(edge)]);
+    else if (inner && r.right > right + 1) hidden.push([label, Math.round(r.width), Math.round(right - r.left)]);
   }
   if (graph) {
     const g = graph.getBoundingClientRect();
@@ -82,7 +95,7 @@ LAYOUT_JS = """() => {
         under.push([el.tagName + ': ' + el.innerText.slice(0, 50), Math.round(right - g.left)]);
     }
   }
-  return {cut: cut, under: under};
+  return {cut: cut, under: under, hidden: hidden};
 }"""
 
 
@@ -97,7 +110,8 @@ FIGURE_JS = """() => {
   panel.scrollTop = 0; panel.scrollLeft = 0;
   const r = img.getBoundingClientRect(), p = panel.getBoundingClientRect(), s = getComputedStyle(img.parentElement);
   const page = document.documentElement;
-  return {natural: img.naturalWidth, natural_height: img.naturalHeight, drawn: r.width, left: r.left,
+  return {head: img.src.slice(0, 4096), natural: img.naturalWidth, natural_height: img.naturalHeight,
+          drawn: r.width, left: r.left,
           right: r.right, top: r.top, bottom: r.bottom, window_height: window.innerHeight,
           panel_left: p.left, panel_right: Math.min(p.right, page.clientWidth), panel_top: p.top,
           sideways: Math.max(panel.scrollWidth - panel.clientWidth, page.scrollWidth - page.clientWidth),
@@ -153,6 +167,8 @@ def layout_problems(page, url: str, width: int, tables: list[tuple[str, str]]) -
     problems += [f"{width} px, overview: {what!r} runs {px} px under the rule graph" for what, px in found["under"]]
     problems += [f"{width} px, overview: table {what!r} is cut off at {right} px (its column ends at {edge} px)"
                  for what, right, edge in found["cut"]]
+    problems += [f"{width} px, overview: table {what!r} is {wide} px wide in a {seen} px column: its last columns "
+                 "are seen only by scrolling sideways" for what, wide, seen in found["hidden"]]
     above = page.evaluate(OVERVIEW_TOP_JS)
     if above is None:
         problems.append(f"{width} px, overview: no overview page (.document) shown")
@@ -169,6 +185,8 @@ def layout_problems(page, url: str, width: int, tables: list[tuple[str, str]]) -
         found = viewer.evaluate(LAYOUT_JS)
         problems += [f"{width} px, {label!r}: table {what!r} is cut off at {right} px (the page is {edge} px wide)"
                      for what, right, edge in found["cut"]]
+        problems += [f"{width} px, {label!r}: table {what!r} is {wide} px wide in a {seen} px page: its last "
+                     "columns are seen only by scrolling sideways" for what, wide, seen in found["hidden"]]
     viewer.close()
     print(f"report_check: layout at {width} px: the overview and {len(tables)} pages")
     return problems
@@ -218,6 +236,13 @@ def figure_problems(page, url: str, width: int, categories: dict[str, dict[str, 
                     could = min(f["natural"], width * (1 - SIDEBAR_SHARE[mode]) - f["padding"],
                                 (f["window_height"] - VERTICAL_MARGIN) * f["natural"] / f["natural_height"])
                     drawn[mode].append(round(f["drawn"]))
+                    text = smallest_text(f["head"])
+                    if text is None:
+                        problems.append(f"{where}: the PNG does not state its smallest text ({SMALLEST_TEXT_KEY!r})")
+                    elif text * f["drawn"] / f["natural"] < MIN_TEXT_PX:
+                        scale = f["drawn"] / f["natural"]
+                        problems.append(f"{where}: its smallest text is drawn {text * scale:.1f} px high "
+                                        f"({text:.1f} px at {scale:.0%}), below {MIN_TEXT_PX:g} px")
                     if f["drawn"] < could - SLACK:
                         problems.append(f"{where}: drawn {f['drawn']:.0f} px wide, could be {could:.0f} px "
                                         f"(natural {f['natural']} px)")
@@ -240,6 +265,50 @@ def figure_problems(page, url: str, width: int, categories: dict[str, dict[str, 
         return problems + [f"{width} px: no figure opens from the report's categories"]
     print(f"report_check: figures at {width} px: {n} drawn "
           + ", ".join(f"{min(v)}-{max(v)} px wide beside the {mode}" for mode, v in drawn.items()))
+    return problems
+
+
+def smallest_text(head: str) -> float | None:
+    """The smallest text [px] a PNG states (:data:`SMALLEST_TEXT_KEY`), from the start of its data URI."""
+    import base64
+    import struct
+    data = head.split(",", 1)[-1]
+    raw = base64.b64decode(data[:len(data) // 4 * 4])
+    i = 8
+    while i + 8 <= len(raw):
+        n, kind = struct.unpack(">I", raw[i:i + 4])[0], raw[i + 4:i + 8]
+        if kind == b"IDAT":
+            break
+        if kind == b"tEXt":
+            key, _, value = raw[i + 8:i + 8 + n].partition(b"\0")
+            if key.decode("latin-1") == SMALLEST_TEXT_KEY:
+                return float(value)
+        i += 12 + n
+    return None
+
+
+def caption_problems(page) -> list[str]:
+    """Docutils system messages in the overview or a caption, and two items of a category with one label."""
+    found = page.evaluate(r"""() => {
+      const bad = [], seen = {}, twice = [];
+      const overview = document.querySelector('.document');
+      if (overview && /System Message|system-message/.test(overview.innerHTML)) bad.push(['the overview', '']);
+      for (const [path, r] of Object.entries(results)) {
+        const caption = r.caption || '';
+        if (/System Message|system-message/.test(caption))
+          bad.push([path, caption.replace(/<[^>]*>/g, ' ').replace(/\s+/g, ' ').slice(0, 160)]);
+      }
+      for (const [category, subs] of Object.entries(categories)) for (const [sub, paths] of Object.entries(subs))
+        for (const path of paths) {
+          const r = results[path];
+          const label = r.labels ? Object.values(r.labels).join(' ') : r.name;
+          const key = [category, sub, label].join(' / ');
+          if (seen[key]) twice.push([key, seen[key], path]); else seen[key] = path;
+        }
+      return {bad: bad, twice: twice};
+    }""")
+    problems = [f"{where}: a docutils system message is shown ({text!r})" for where, text in found["bad"]]
+    problems += [f"two items listed as {key!r}: {a} and {b}" for key, a, b in found["twice"]]
     return problems
 
 
@@ -313,6 +382,7 @@ def main() -> int:
         counts = {w: sum(1 for _, o, _ in claims if o == w) for w in ("PASS", "FAIL")}
         if f"{counts['PASS']} PASS, {counts['FAIL']} FAIL" not in text:
             problems.append(f"claims: the count '{counts['PASS']} PASS, {counts['FAIL']} FAIL' is not visible")
+        problems += caption_problems(page)
         shown = page.evaluate("Object.values(results).map(r => [r.name, r.job_properties.params])")
         problems += [f"{name}: the parameters a reader sees show a source hash: {params[:120]!r}"
                      for name, params in shown if re.search(r"[0-9a-f]{40,}", params or "")]

@@ -26,6 +26,7 @@ extensions = [
     "sphinx.ext.autosummary",
     "numpydoc",               # ... written in the numpydoc format
     "sphinx.ext.mathjax",
+    "sphinx.ext.intersphinx",  # links into the Python, numpy, scipy and xarray docs (see below)
 ]
 source_suffix = {".md": "myst-nb"}
 nb_execution_mode = "force"         # the tutorial's cells run at every build: what it shows is today's output
@@ -48,6 +49,18 @@ numpydoc_xref_param_type = False
 # numpydoc renames a docstring's citations ([1] -> [R...-1]); a module docstring that cites its
 # References from a list item leaves the renamed target "not referenced": not a broken link.
 suppress_warnings = ["ref.citation"]
+
+# --- links into other projects' docs (intersphinx) -----------------------------------------------------
+# A build fetches each project's inventory of targets (objects.inv) from its site. Builds without the
+# network (the tests, CI: their machines reach only the package index) would fail under -W, and a copy of
+# the inventories shipped here would go stale, so the links are made only where the build is told it is
+# online: ROCKSTUDY_DOCS_ONLINE=1 python -m sphinx -W -b html docs docs/_build/html. Offline, a reference
+# such as :class:`xarray.Dataset` is shown as code, unlinked, and nothing is fetched.
+INTERSPHINX = {"python": ("https://docs.python.org/3", None), "numpy": ("https://numpy.org/doc/stable", None),
+               "scipy": ("https://docs.scipy.org/doc/scipy", None),
+               "xarray": ("https://docs.xarray.dev/en/stable", None)}
+intersphinx_mapping = INTERSPHINX if os.environ.get("ROCKSTUDY_DOCS_ONLINE") == "1" else {}
+intersphinx_timeout = 10
 
 html_theme = "pydata_sphinx_theme"  # the theme of pvlib, xarray, numpy and scipy's documentation
 html_title = f"rockstudy {release}"
@@ -88,7 +101,6 @@ def _plain_text_docstring(app, what, name, obj, options, lines):
 # --- one API page per module ----------------------------------------------------------------------
 # Written at every build from the package itself (api/modules/<module>.md), so that a new module gets
 # its page and a removed one loses it without editing the docs; each layer's page lists its modules.
-import importlib  # noqa: E402
 import pkgutil  # noqa: E402
 from pathlib import Path  # noqa: E402
 
@@ -105,8 +117,8 @@ def _write_module_pages(app):
     MODULE_PAGES.mkdir(exist_ok=True)
     wanted = {}
     for name in public_modules():
-        summary = (importlib.import_module(name).__doc__ or "").strip().split("\n", 1)[0]
-        wanted[f"{name}.md"] = (f"# `{name}`\n\n{summary}\n\n```{{eval-rst}}\n.. automodule:: {name}\n```\n")
+        # the module's docstring, its summary first, is printed once, by automodule
+        wanted[f"{name}.md"] = f"# `{name}`\n\n```{{eval-rst}}\n.. automodule:: {name}\n```\n"
     for page in MODULE_PAGES.glob("*.md"):
         if page.name not in wanted:
             page.unlink()
@@ -116,6 +128,20 @@ def _write_module_pages(app):
             path.write_text(text, encoding="utf-8")
 
 
+# --- the command-line reference ------------------------------------------------------------------
+# docs/cli.md, generated from the parser at every build (rockstudy.cli.reference); written only when it
+# changed, and committed, so that it reads on GitHub too.
+def _write_cli_reference(app):
+    from rockstudy.cli import build_parser
+    from rockstudy.cli.reference import command_reference
+
+    path = Path(__file__).parent / "cli.md"
+    text = command_reference(build_parser())
+    if not path.exists() or path.read_text(encoding="utf-8") != text:
+        path.write_text(text, encoding="utf-8")
+
+
 def setup(app):
     app.connect("autodoc-process-docstring", _plain_text_docstring, priority=100)
     app.connect("builder-inited", _write_module_pages)
+    app.connect("builder-inited", _write_cli_reference)

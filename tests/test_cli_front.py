@@ -150,3 +150,83 @@ def test_one_column_record_with_dt_gives_the_same_run_as_two_columns(tmp_path, c
     with pytest.raises(SystemExit):
         main(["simulate", "--record-dt", "0.01"])
     assert "--record-dt" in capsys.readouterr().err
+
+
+def test_threshold_reads_a_one_column_record_as_simulate_does(tmp_path, capsys):
+    t = np.arange(0, 4.0, 0.005)
+    a = 0.4 * np.sin(2 * np.pi * 1.2 * t) * np.exp(-((t - 1.5) / 0.8) ** 2)  # in g
+    one, two = tmp_path / "q.txt", tmp_path / "q.csv"
+    one.write_text("\n".join(f"{x:.12e}" for x in a) + "\n")
+    two.write_text("time [s], acceleration [g]\n" + "".join(f"{ti:.3f}, {x:.12e}\n" for ti, x in zip(t, a)))
+    scan = ["threshold", "--strategy", "FS", "--max-amplitude-ratio", "3", "--amplitude-step", "0.5",
+            "--resolution", "0.05"]
+    a1 = run(scan + ["--record", str(one), "--record-unit", "g", "--record-dt", "0.005"], capsys)
+    a2 = run(scan + ["--record", str(two)], capsys)
+    assert a1["amplitude_ratio"] == a2["amplitude_ratio"] and a1["record_npts"] == a2["record_npts"] == t.size
+    for argv in (["threshold", "--record-dt", "0.01"], ["threshold", "--record-unit", "g"]):
+        with pytest.raises(SystemExit):
+            main(argv)
+        err = capsys.readouterr().err
+        assert "needs --record" in err and "rockstudy threshold --help" in err
+
+
+def test_every_command_that_reads_a_record_has_the_same_record_options():
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices
+    options = {name: {o for a in sub[name]._actions for o in a.option_strings if o.startswith("--record")}
+               for name in ("simulate", "threshold")}
+    assert options["threshold"] == {"--record", "--record-unit", "--record-dt"}
+    assert options["simulate"] == options["threshold"] | {"--record-scale"}  # a scan finds the scale itself
+
+
+@pytest.mark.parametrize("argv", [["simulate", "--bogus", "1"], ["threshold", "--frequency", "2"],
+                                  ["spectrum", "--output", "x.nc", "--bogus"],
+                                  ["jos", "--reference", "a.nc", "--system", "b.nc", "--bogus"]])
+def test_an_unknown_option_points_at_the_commands_own_help(argv, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    err = capsys.readouterr().err
+    assert exc.value.code == 2 and len(err.strip().splitlines()) <= 3
+    assert f"(the options: rockstudy {argv[0]} --help)" in err and "unrecognized arguments" in err
+
+
+def test_simulate_and_threshold_print_one_json_style_with_null_for_none(capsys):
+    from rockstudy.cli.output import dumps
+    for argv in (["simulate"] + CASE, ["threshold", "--strategy", "FS", "--frequency-ratio", "2",
+                                       "--max-amplitude-ratio", "2"]):
+        main(argv)
+        text = capsys.readouterr().out
+        out = json.loads(text)
+        assert text == dumps(out) + "\n"  # the printer's style: two-space indentation, keys as built
+        assert out["noise_band_hz"] is None and out["sensor_band_hz"] is None
+        assert "none" not in {v for v in out.values() if isinstance(v, str)} - {out.get("noise_rescale")}
+
+
+def test_grid_values_are_printed_as_the_grid_has_them(capsys):
+    from rockstudy.cli.output import GRID_DECIMALS, grid_values
+    midpoint = (1.8 + 1.85) / 2
+    assert midpoint != 1.825 and grid_values({"a": midpoint, "b": midpoint}, ["a"]) == {"a": 1.825, "b": midpoint}
+    main(["threshold", "--strategy", "CS01", "--frequency-ratio", "2", "--amplitude-step", "0.05",
+          "--resolution", "0.005", "--max-amplitude-ratio", "3"])
+    text = capsys.readouterr().out
+    out = json.loads(text)
+    for key in ("amplitude_ratio", "last_safe_amplitude_ratio", "scan_start_amplitude_ratio"):
+        assert out[key] == round(out[key], GRID_DECIMALS)
+        assert len(repr(out[key]).split(".")[-1]) <= GRID_DECIMALS  # no 1.8250000000000002
+
+
+def test_simulate_plot_spans_the_whole_run(tmp_path):
+    import xarray as xr
+    from matplotlib import pyplot as plt
+
+    from rockstudy.plotting import figure_control_history
+    main(["simulate"] + CASE + ["--output", str(tmp_path / "h.nc")])
+    with xr.open_dataset(tmp_path / "h.nc") as ds:
+        ds.load()
+    end = float(ds.t[-1])
+    assert end > 1.3 * ds.attrs["excitation_end_s"]  # the paper's figures stop before the run ends
+    whole = figure_control_history(ds, "cli", whole_run=True)
+    paper = figure_control_history(ds, "2")
+    assert whole.axes[-1].get_xlim()[1] == pytest.approx(end)
+    assert paper.axes[-1].get_xlim()[1] == pytest.approx(1.3 * ds.attrs["excitation_end_s"])
+    plt.close("all")

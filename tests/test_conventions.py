@@ -153,6 +153,10 @@ def test_every_kind_of_file_passes_the_cf_checker(kind, tmp_path):
         for name, var in nc.variables.items():
             if name in nc.dimensions:  # a coordinate variable
                 assert "_FillValue" not in var.ncattrs(), name
+            if "flag_values" in var.ncattrs():  # CF 3.5: each flag value named, of the variable's own type
+                values = np.atleast_1d(var.getncattr("flag_values"))
+                assert len(var.getncattr("flag_meanings").split()) == values.size, name
+                assert values.dtype == var.dtype, name
     assert units_problems(path) == []
 
 

@@ -131,3 +131,21 @@ def test_the_version_is_written_once():
     assert "version" not in project["project"] and "version" in project["project"]["dynamic"]
     assert project["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "rockstudy._version.__version__"}
     assert f'__version__ = "{rockstudy.__version__}"' in (ROOT / "src/rockstudy/_version.py").read_text()
+
+
+def test_readme_is_a_guide_of_at_most_250_lines():
+    assert len((ROOT / "README.md").read_text(encoding="utf-8").splitlines()) <= 250
+
+
+def test_readme_records_exist_on_a_fresh_clone():
+    """Every ``--record`` of the README's command lines is a record of a shipped suite or a file of the
+    repository: nothing the reader has to find elsewhere."""
+    from rockstudy.model import record_suites
+    records = [args[args.index("--record") + 1] for args in commands(ROOT / "README.md") if "--record" in args]
+    assert records
+    for record in records:
+        if record_suites.looks_like_suite_record(record):
+            info, rec = record_suites.load_record(record, "--record")
+            assert rec.acceleration.size > 100 and info.id
+        else:
+            assert (ROOT / record).is_file(), record

@@ -188,3 +188,47 @@ def test_design_charts_build_and_draw_a_dollar_in_the_suite_name_as_text(tmp_pat
     for i, fig in enumerate(figures):
         plotting.save_figure(fig, tmp_path / f"d{i}.png")
         assert (tmp_path / f"d{i}.png").stat().st_size > 1000
+
+
+def test_a_long_record_set_is_drawn_in_two_columns_that_keep_every_record():
+    events = [f"Quake {i}" for i in range(44)]
+    fig = plotting.figure_record_thresholds(_record_thresholds(events))
+    assert len(fig.axes) == 2 and fig.get_size_inches()[1] < 9  # not 44 rows in one tall column
+    labels = [t.get_text() for ax in fig.axes for t in ax.get_yticklabels()]
+    assert sorted(labels) == sorted(f"{i}a Quake {i}" for i in range(44))
+    plt.close(fig)
+    assert len(plotting.figure_record_thresholds(_record_thresholds(events[:3])).axes) == 1
+    plt.close("all")
+
+
+def test_a_saved_png_states_its_smallest_text(tmp_path):
+    from PIL import Image
+
+    from rockstudy.plotting.save import SMALLEST_TEXT_KEY
+    fig, ax = plt.subplots()
+    ax.plot([0, 1])
+    ax.set_title("small", fontsize=6)
+    plotting.save_figure(fig, tmp_path / "f.png")
+    assert float(Image.open(tmp_path / "f.png").text[SMALLEST_TEXT_KEY]) == pytest.approx(6 * 150 / 72, abs=0.01)
+
+
+def test_the_risk_figure_with_a_hazard_curve_is_as_wide_as_without():
+    """Three panels on two rows: a page that fits the figure to its width draws it at the two-panel scale."""
+    pytest.importorskip("pygmm")
+    from rockstudy.analysis.hazard import HazardCurve
+    from rockstudy.analysis.risk import risk_dataset
+    from rockstudy.plotting.risk import figure_risk
+    fragility = xr.Dataset({"fragility_median_physical": ("strategy", [0.5, 0.8], {"units": "g"}),
+                            "median_low_physical": ("strategy", [0.4, 0.7], {"units": "g"}),
+                            "median_high_physical": ("strategy", [0.6, 0.9], {"units": "g"}),
+                            "fragility_median": ("strategy", [2.0, 3.2], {"units": "1"}),
+                            "fragility_dispersion": ("strategy", [0.4, 0.4])},
+                           coords={"strategy": ["FS", "CS01"]}, attrs={"record_suite": "test"})
+    x = np.geomspace(0.001, 20.0, 100)
+    scenario = {"M7": {"mag": 7, "dist_rup": 10, "v_s30": 400}}
+    with_hazard = figure_risk(risk_dataset(fragility, scenarios=scenario,
+                                           hazard_curves={"site": HazardCurve(x, 1e-4 * x ** -2.5, source="law")}))
+    without = figure_risk(risk_dataset(fragility, scenarios=scenario))
+    assert len(with_hazard.axes) == 3 and len(without.axes) == 2
+    assert with_hazard.get_size_inches()[0] == without.get_size_inches()[0]
+    plt.close("all")

@@ -126,3 +126,21 @@ def test_overview_page_renders_without_warnings(tmp_path, config):
     assert f"seed {cfg['seed']}" in body and "+40.83 (+30.51)" in body
     assert f"for each of {cfg['realisations']} noise realisations" in body
     assert "R005: 5 %" in body and " % of the baseline's energy" in body
+
+
+def test_one_sign_for_a_change_over_fs():
+    """A drop of the probability is negative on every page (overview and risk table alike); FS is the reference."""
+    from rockstudy.report import change_over_fs
+    assert change_over_fs(51.2) == "−51 %" and change_over_fs(-3.0) == "+3 %" and change_over_fs(0.2) == "0 %"
+    assert change_over_fs(40.0, reference=True) == "—" and change_over_fs(float("nan")) == "—"
+
+
+def test_a_wide_table_is_shown_transposed_on_its_page():
+    from rockstudy.report import markdown_page, transposed_wide_tables
+    head = "| strategy | " + " | ".join(f"ref: {t}" for t in range(12)) + " |"
+    text = "Title\n\n" + head + "\n" + "|---" * 13 + "|\n| CS01 | " + " | ".join(f"{v}%" for v in range(12)) + " |\n"
+    out = transposed_wide_tables(text).splitlines()
+    assert out[2] == "| strategy → | CS01 |" and out[4] == "| ref: 0 | 0% |" and len(out) == 2 + 2 + 12
+    narrow = "| a | b |\n|---|---|\n| 1 | 2 |\n"
+    assert transposed_wide_tables(narrow) == narrow
+    assert markdown_page(text).count("<tr>") == 13

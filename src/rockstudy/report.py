@@ -102,8 +102,51 @@ def markdown_html(text: str) -> str:
     return out
 
 
+WIDE_TABLE_COLUMNS = 8
+"""A Markdown table with more columns than this is shown transposed on its HTML page (its columns as rows):
+a report page beside the sidebar shows about 900 px, too few for a dozen labelled columns side by side."""
+
+
+def transposed_wide_tables(text: str, max_columns: int = WIDE_TABLE_COLUMNS) -> str:
+    """``text`` with every pipe table of more than ``max_columns`` columns transposed (its first header cell
+    stays in the corner, marked "→": its values now run across); other lines as they are.
+
+    Parameters
+    ----------
+    text : str
+        Markdown.
+    max_columns : int, default :data:`WIDE_TABLE_COLUMNS`
+        The widest table kept as it is.
+    """
+    def cells(line):
+        return [c.strip() for c in line.strip().strip("|").split("|")]
+
+    lines, out, i = text.splitlines(), [], 0
+    while i < len(lines):
+        is_table = (lines[i].lstrip().startswith("|") and i + 1 < len(lines)
+                    and re.fullmatch(r"\s*\|?(\s*:?-+:?\s*\|)+\s*:?-*:?\s*\|?\s*", lines[i + 1]))
+        if not is_table:
+            out.append(lines[i])
+            i += 1
+            continue
+        j = i + 2
+        while j < len(lines) and lines[j].lstrip().startswith("|"):
+            j += 1
+        rows = [cells(lines[i])] + [cells(line) for line in lines[i + 2:j]]
+        if len(rows[0]) > max_columns and all(len(r) == len(rows[0]) for r in rows):
+            columns = list(zip(*rows))
+            out.append("| " + " | ".join((f"{columns[0][0]} →",) + columns[0][1:]) + " |")
+            out.append("|---" * len(columns[0]) + "|")
+            out += ["| " + " | ".join(column) + " |" for column in columns[1:]]
+        else:
+            out += lines[i:j]
+        i = j
+    return "\n".join(out) + ("\n" if text.endswith("\n") else "")
+
+
 def markdown_page(text: str, title: str | None = None) -> str:
-    """A Markdown table file (``tables/*.md``, ``claims.md``, ...) as a complete HTML page.
+    """A Markdown table file (``tables/*.md``, ``claims.md``, ...) as a complete HTML page; a table of more
+    than :data:`WIDE_TABLE_COLUMNS` columns is shown transposed (:func:`transposed_wide_tables`).
 
     Parameters
     ----------
@@ -113,7 +156,7 @@ def markdown_page(text: str, title: str | None = None) -> str:
         Page title; default: the first line of ``text`` without its ``#`` marks.
     """
     first = next((line for line in text.splitlines() if line.strip()), "rockstudy table")
-    return document(title or first.lstrip("# ").strip(), markdown_html(in_paper_words(text)))
+    return document(title or first.lstrip("# ").strip(), markdown_html(in_paper_words(transposed_wide_tables(text))))
 
 
 def _number(value: float, signed: bool = True) -> str:
@@ -307,9 +350,26 @@ def beyond_overview_html(fragility: list, risk: list = ()) -> str:
     return scrolling(_styled(table), style=INLINE["scroll"]) + "".join(_risk_overview(ds) for ds in risk)
 
 
+def change_over_fs(reduction_percent: float, reference: bool = False) -> str:
+    """The change of a probability (or rate) over FS's, as every page of the report writes it: signed, a drop
+    negative ("−51 %", a typographic minus), a rise positive ("+3 %"); "—" on FS's own row.
+
+    Parameters
+    ----------
+    reduction_percent : float
+        100 (1 − p / p_FS): the risk's ``reduction_percent`` and ``scenario_reduction_percent``. [%]
+    reference : bool, default False
+        The row is FS itself.
+    """
+    if reference or not math.isfinite(reduction_percent):
+        return "—"
+    change = -reduction_percent
+    return "0 %" if round(change) == 0 else f"{'+' if change > 0 else '−'}{abs(change):.0f} %"
+
+
 def _risk_overview(ds) -> str:
     """One record set's risk for the overview: per site (scenario or hazard curve) and strategy, the
-    probability of overturning, and in brackets its reduction over FS."""
+    probability of overturning, and in brackets its change over FS (:func:`change_over_fs`)."""
     strategies = [str(s) for s in ds["strategy"].values]
     rows = []
     sites = [("scenario", "scenario_probability", "scenario_reduction_percent", "P(overturn | {})"),
@@ -319,8 +379,7 @@ def _risk_overview(ds) -> str:
             cells = []
             for i, s in enumerate(strategies):
                 p, r = float(ds[prob].values[i, j]), float(ds[reduction].values[i, j])
-                text = f"{p:.2%}" + ("" if s == "FS" or not math.isfinite(r) else f" (−{r:.0f} %)" if r >= 0
-                                     else f" (+{-r:.0f} %)")
+                text = f"{p:.2%}" + ("" if s == "FS" or not math.isfinite(r) else f" ({change_over_fs(r)})")
                 cells.append(f'<td class="num">{html.escape(text)}</td>')
             title = label.format(name, years=float(ds.attrs.get("years", 50.0)))
             rows.append(f"<tr><th>{html.escape(title)}</th>{''.join(cells)}</tr>")
@@ -600,8 +659,8 @@ def _percent(p: float) -> str:
 def risk_markdown(ds: xr.Dataset) -> str:
     """Markdown table of a record set's risk (:func:`rockstudy.analysis.risk.risk_dataset`): per strategy the
     fragility used, P(overturn | scenario) for each scenario, and the annual rate and T-year probability
-    for each hazard curve, each with its reduction over FS and the range that the median's 95 % interval
-    gives.
+    for each hazard curve, each with its change over FS (:func:`change_over_fs`) and the range that the
+    median's 95 % interval gives.
 
     Parameters
     ----------
@@ -624,23 +683,23 @@ def risk_markdown(ds: xr.Dataset) -> str:
                             f"{float(ds.threshold_fit_dispersion.values[i]):.2f}")
     notes = []
     for j, name in enumerate(ds["scenario"].values if "scenario" in ds.coords else []):
-        head += [f"P(overturn) in {name}", f"reduction over FS ({name})"]
+        head += [f"P(overturn) in {name}", f"change over FS ({name})"]
         for i in range(len(strategies)):
             p = float(ds.scenario_probability.values[i, j])
             rng = (_percent(float(ds.scenario_probability_low.values[i, j])),
                    _percent(float(ds.scenario_probability_high.values[i, j])))
             rows[i] += [f"{_percent(p)} ({rng[0]}–{rng[1]})",
-                        f"{float(ds.scenario_reduction_percent.values[i, j]):+.0f} %"]
+                        change_over_fs(float(ds.scenario_reduction_percent.values[i, j]), strategies[i] == "FS")]
         notes.append(f"{name}: {ds.attrs['gmm']} median PGA {float(ds.median_pga.values[j]):.3f} g, σ_ln "
                      f"{float(ds.ln_std_pga.values[j]):.2f}; scenario {ds.scenario_values.values[j]}.")
     years = ds.attrs["years"]
     for j, name in enumerate(ds["hazard"].values if "hazard" in ds.coords else []):
-        head += [f"λ [1/yr] ({name})", f"P in {years:g} yr ({name})", f"reduction over FS ({name})"]
+        head += [f"λ [1/yr] ({name})", f"P in {years:g} yr ({name})", f"change over FS ({name})"]
         for i in range(len(strategies)):
             rng = (_percent(float(ds.probability_low.values[i, j])), _percent(float(ds.probability_high.values[i, j])))
             rows[i] += [f"{float(ds.annual_rate.values[i, j]):.3g}",
                         f"{_percent(float(ds.probability.values[i, j]))} ({rng[0]}–{rng[1]})",
-                        f"{float(ds.reduction_percent.values[i, j]):+.0f} %"]
+                        change_over_fs(float(ds.reduction_percent.values[i, j]), strategies[i] == "FS")]
         share = float(np.nanmax(ds.tail_share.values[:, j]))
         notes.append(f"{name}: hazard curve {ds.hazard_source.values[j]}; at most {100 * share:.2g} % of a rate "
                      "comes from outside the curve's points (its end segments extended log-log)"

@@ -188,7 +188,7 @@ if BEYOND:
         output:
             png=report(f"{OUT}/figures/fragility_{{recordset}}.png", caption="../report/fragility.rst",
                        category="Figures", subcategory="Records (beyond the paper)",
-                       labels=report_pages.labels("Fragility curves over a record set; median shift over FS")),
+                       labels=report_pages.labels("Fragility curves over {recordset}; median shift over FS")),
             pdf=f"{OUT}/figures/fragility_{{recordset}}.pdf",
         log:
             f"{OUT}/logs/figures/fragility_{{recordset}}.log",
@@ -208,7 +208,7 @@ if BEYOND:
             png=report(f"{OUT}/figures/record_thresholds_{{recordset}}.png",
                        caption="../report/record_thresholds.rst", category="Figures",
                        subcategory="Records (beyond the paper)",
-                       labels=report_pages.labels("Smallest overturning scale of each record, per strategy")),
+                       labels=report_pages.labels("Smallest overturning scale of each record of {recordset}, per strategy")),
             pdf=f"{OUT}/figures/record_thresholds_{{recordset}}.pdf",
         log:
             f"{OUT}/logs/figures/record_thresholds_{{recordset}}.log",

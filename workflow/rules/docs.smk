@@ -2,8 +2,11 @@
 # `snakemake -j2 docs` (not in `all`) copies them into docs/figures/, where tests/test_docs_numbers.py
 # compares every fragility median the docs quote with docs/figures/run_numbers.csv.
 
-DOCS_FIGURES = ["fig6_noise_sensitivity.png"]
-"""Figures of the run shown in the README and docs (docs/figures/<name>)."""
+DOCS_FIGURES = ["fig3_history_CS02.png", "fig4_excitation.png", "fig6_noise_sensitivity.png", "maps_overturning.png"]
+if BEYOND:
+    DOCS_FIGURES += ["record_thresholds_p695-far-field.png"] if "p695-far-field" in RECORD_SETS else []
+    DOCS_FIGURES += ["risk_p695-far-field.png"] if "p695-far-field" in RECORD_SETS and config.get("risk") else []
+"""Figures of the run shown in the README and docs (docs/figures/<name>; docs/gallery.md shows them all)."""
 
 
 rule docs:

@@ -60,7 +60,7 @@ if RISK and BEYOND:
         output:
             png=report(f"{OUT}/figures/risk_{{recordset}}.png", caption="../report/risk.rst",
                        category="Figures", subcategory="Records (beyond the paper)",
-                       labels=report_pages.labels("Risk of overturning at a site: hazard, fragilities, "
+                       labels=report_pages.labels("Risk of overturning at a site on {recordset}: hazard, fragilities, "
                                                   "disaggregation or scenario probabilities")),
             pdf=f"{OUT}/figures/risk_{{recordset}}.pdf",
         log:

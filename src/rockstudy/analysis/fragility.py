@@ -245,7 +245,9 @@ def fragility_from_stripes(block: Block, anchorage: Anchorage, controls, records
     ds = xr.Dataset(
         {
             "overturned": (dims3, overturned.astype(np.int8), {"long_name": "the record scaled to the IM level "
-                                                               "overturns the block", "flag_values": [0, 1]}),
+                                                               "overturns the block",
+                                                               "flag_values": np.array([0, 1], dtype=np.int8),
+                                                               "flag_meanings": "not_overturned overturned"}),
             "scale": (("record", "intensity"), scale, {"units": "1", "long_name": "factor applied to the record"}),
             "fraction": (("strategy", "intensity"), counts / n_records,
                          {"units": "1", "long_name": "fraction of the records that overturn the block"}),

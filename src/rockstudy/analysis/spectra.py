@@ -283,8 +283,18 @@ def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: boo
     return (np.array(rows), flat, offsets, lengths, np.array(peaks), np.array(e_ratio), np.array(p_ratio))
 
 
-def _run_chunked(fn, n_cases: int, label: str, n_chunks: int):
-    """Run ``fn(sl)`` over slices of the cases, logging progress and the time left."""
+PROGRESS_BATCHES = 100
+"""Batches of a run that reports to a progress bar (``progress=``): the bar moves in steps of about 1 %."""
+
+
+def _run_chunked(fn, n_cases: int, label: str, n_chunks: int, progress=None):
+    """Run ``fn(sl)`` over slices of the cases, logging progress and the time left after each of ``n_chunks``
+    batches, or, with ``progress``, calling ``progress(done, n_cases, label)`` after each of about
+    :data:`PROGRESS_BATCHES` batches instead. The cases are independent, so the batches do not change the
+    results."""
+    if progress is not None:
+        n_chunks = max(n_chunks, PROGRESS_BATCHES)
+        progress(0, n_cases, label)
     t0 = time.perf_counter()
     bounds = np.linspace(0, n_cases, min(n_chunks, n_cases) + 1).astype(int)
     parts = []
@@ -292,6 +302,9 @@ def _run_chunked(fn, n_cases: int, label: str, n_chunks: int):
         with interruptible():  # Ctrl-C in the compiled cases: a KeyboardInterrupt, not a SystemError
             parts.append(fn(slice(bounds[i], bounds[i + 1])))
         done = bounds[i + 1]
+        if progress is not None:
+            progress(int(done), n_cases, label)
+            continue
         elapsed = time.perf_counter() - t0
         eta = elapsed / done * (n_cases - done)
         log.info("%s: %d/%d cases (%.0f%%), %.1f s elapsed, about %.1f s left",
@@ -302,7 +315,8 @@ def _run_chunked(fn, n_cases: int, label: str, n_chunks: int):
 @declares(sizes={"frequency_ratios": MAX_GRID_POINTS, "realisations": MAX_REALISATIONS},
           frequency_ratios="frequency_ratio", realisations="realisation")
 def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: AmplitudeGrid = AmplitudeGrid(),
-             with_map: bool = False, progress_chunks: int = 10, energy_bound: bool = True) -> xr.Dataset:
+             with_map: bool = False, progress_chunks: int = 10, energy_bound: bool = True,
+             progress=None) -> xr.Dataset:
     """Overturning spectrum: the threshold at each frequency for each noise realisation.
 
     Parameters
@@ -321,6 +335,9 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
         Number of batches the runs are split into, each logging its progress and the time left.
     energy_bound : bool
         End runs that provably cannot overturn any more (see :func:`threshold`).
+    progress : callable, optional
+        ``progress(done, total, label)``, called as the cases are done (the command line's progress bar at a
+        terminal), instead of the log lines; None: the log lines (a workflow job's log).
 
     Returns
     -------
@@ -362,7 +379,7 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     def run(sl):
         return thresholds(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, grid.resolution, peaks[sl])
 
-    parts = _run_chunked(run, n, label, progress_chunks)
+    parts = _run_chunked(run, n, label, progress_chunks, progress)
     thr = np.concatenate([p[0] for p in parts])
     low = np.concatenate([p[1] for p in parts])
     nsim = np.concatenate([p[2] for p in parts])
@@ -377,7 +394,7 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     if with_map:
         def run_map(sl):
             return outcomes(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, peaks[sl])
-        out = np.concatenate(_run_chunked(run_map, n, label + " map", progress_chunks))
+        out = np.concatenate(_run_chunked(run_map, n, label + " map", progress_chunks, progress))
         ds["outcome"] = (("realisation", "frequency_ratio", "amplitude_ratio"), out.reshape(shape + (len(values),)),
                          {"long_name": "outcome of the simulation at each grid point",
                           "flag_values": np.arange(len(OUTCOME_MEANINGS), dtype=np.int8),

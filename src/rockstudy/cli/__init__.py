@@ -135,8 +135,10 @@ def main(argv=None):
     given = [word for word in argv if word in COMMANDS][:1]
     parser = build_parser(given)
     try:
-        args = parser.parse_args(argv)
+        args, unknown = parser.parse_known_args(argv)
         parser = _subparser(parser, args.command)  # its errors name the command: "rockstudy spectrum --help"
+        if unknown:  # refused by the command's parser, so that the hint names the command's own --help
+            parser.error(f"unrecognized arguments: {' '.join(unknown)}")
         if hasattr(args, "config"):
             from rockstudy.cli.options import _apply_config
             _apply_config(args, argv, parser)

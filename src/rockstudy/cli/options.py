@@ -296,6 +296,53 @@ def _grid_args(p):
     _numeric(p, "--resolution", GRID.resolution, "refinement resolution [-]")
 
 
+def record_args(p: argparse.ArgumentParser, scan: bool = False) -> None:
+    """The options of every command that reads a record (``simulate``, ``threshold``): ``--record`` and how its
+    file is read (``--record-unit``, ``--record-dt``), and for one run its scale (``--record-scale``; a scan
+    finds the scale itself).
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser.
+    scan : bool, default False
+        The command scans the record's scale (``threshold``): no ``--record-scale``.
+    """
+    g = p.add_argument_group("ground motion from a record (instead of --excitation)")
+    what = ("scan the scale of this record: the amplitude ratios are then PGA/(g tan alpha) of the scaled record"
+            if scan else "run under this record (--excitation, --frequency-ratio and --amplitude-ratio are then "
+                         "not used)")
+    g.add_argument("--record", metavar="SUITE:ID|FILE",
+                   help=f"{what}; a record of a suite, SUITE:ID (e.g. p695-far-field:1a; see 'rockstudy records'), "
+                        "or a file: PEER NGA .AT2 (in g), two columns time [s] and acceleration, or one column "
+                        "with --record-dt")
+    g.add_argument("--record-unit", help="acceleration unit of a record file's columns: g, m/s^2, cm/s^2 (gal) or "
+                                         "mm/s^2 (default: the unit named in its header line)")
+    g.add_argument("--record-dt", type=_number("--record-dt"), default=None, metavar="SECONDS",
+                   help="the record file is one column of accelerations at this step [s] (as OpenSees' "
+                        "timeSeries Path -dt reads it); without it a text record has two columns")
+    if not scan:
+        g.add_argument("--record-scale", type=_number("--record-scale"), default=1.0,
+                       help="factor multiplying the record (default 1) [-]")
+
+
+def check_no_record_options(args, parser) -> None:
+    """Without ``--record``, none of the options that say how to read it (exit 2 naming them).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options of ``simulate`` or ``threshold``.
+    parser : argparse.ArgumentParser
+        The command's parser, whose error names the command's ``--help``.
+    """
+    given = [f"--{name.replace('_', '-')}" for name, unset in (("record_unit", None), ("record_dt", None),
+                                                                ("record_scale", 1.0))
+             if hasattr(args, name) and getattr(args, name) != unset]
+    if given:
+        parser.error(f"{', '.join(given)} need{'s' if len(given) == 1 else ''} --record (SUITE:ID or a file)")
+
+
 def _check_record_options(args, parser) -> None:
     """The options every ``--record`` command shares: no noise level, a known ``--record-unit``."""
     from rockstudy.model.records import unit_factor

@@ -17,6 +17,27 @@ JSON_INDENT = 2
 """Indentation of every command's JSON output (spaces)."""
 
 
+GRID_DECIMALS = 10
+"""Decimals of the amplitude and frequency grids (:mod:`rockstudy.analysis.spectra` builds them rounded so): a
+value found on a grid or by bisection between two of its levels is printed to these decimals, e.g. the midpoint
+of 1.8 and 1.85 as 1.825, not as its binary neighbour 1.8250000000000002."""
+
+
+def grid_values(result: dict, keys) -> dict:
+    """``result`` with the entries ``keys`` (those present and not None) rounded to :data:`GRID_DECIMALS`, as
+    the grid holds them; only what is printed changes, not what was computed.
+
+    Parameters
+    ----------
+    result : dict
+        A command's result.
+    keys : iterable of str
+        The entries that are levels of an amplitude or frequency grid (or bisection points between them).
+    """
+    return {key: round(value, GRID_DECIMALS) if key in keys and isinstance(value, float) else value
+            for key, value in result.items()}
+
+
 class NonFiniteOutputError(ValueError):
     """A result holds NaN or an infinity, which strict JSON cannot carry."""
 

@@ -2,7 +2,6 @@
 frequency), under the paper's excitations or a record."""
 from __future__ import annotations
 
-import json
 import math
 
 from rockstudy.cli import COMMANDS
@@ -18,9 +17,16 @@ from rockstudy.cli.options import (
     _read_record,
     _record_description,
     _scenario,
+    check_no_record_options,
+    record_args,
     write_output,
 )
+from rockstudy.cli.output import grid_values, print_json
 from rockstudy.core import declarations, validation
+
+GRID_KEYS = ("amplitude_ratio", "last_safe_amplitude_ratio", "max_amplitude_ratio", "scan_start_amplitude_ratio",
+             "frequency_ratio")
+"""Entries of ``threshold``'s result that are levels of its grids or bisection points between them."""
 
 
 def register(sub) -> None:
@@ -36,34 +42,31 @@ def register(sub) -> None:
     ps.add_argument("--amplitude-ratio", type=_number("--amplitude-ratio"), default=2.0, help="a_p/(g tan alpha) [-]")
     ps.add_argument("--output", help="write the time history and every event (impacts, uplifts, returns to rest) "
                     "to this netCDF file; the printed summary has their counts")
-    ps.add_argument("--plot", help="draw theta, theta_dot, K and the ground motion to this PNG")
-    ps.add_argument("--record", help="ground motion from a record instead of --excitation: a record of a suite, "
-                    "SUITE:ID (e.g. p695-near-field-pulse:1a; see 'rockstudy records'), or a file: PEER NGA .AT2 "
-                    "(in g), two columns time [s], acceleration, or one column with --record-dt (--excitation, "
-                    "--frequency-ratio and "
-                    "--amplitude-ratio are then not used)")
-    ps.add_argument("--record-unit", help="acceleration unit of a two-column record: "
-                    "g, m/s^2, cm/s^2 (gal) or mm/s^2 (default: the unit named in its header line)")
-    ps.add_argument("--record-scale", type=_number("--record-scale"), default=1.0,
-                    help="factor multiplying the record (default 1) [-]")
-    ps.add_argument("--record-dt", type=_number("--record-dt"), default=None, metavar="SECONDS",
-                    help="the record is one column of accelerations at this step [s] (as OpenSees' "
-                         "timeSeries Path -dt reads it); without it a text record has two columns")
+    ps.add_argument("--plot", help="draw theta, theta_dot, K and the ground motion over the whole run to this PNG")
+    record_args(ps)
     pt = sub.add_parser("threshold", help=COMMANDS["threshold"].help)
     _common(pt)
     _grid_args(pt)
-    pt.add_argument("--record", help="scan the scale of a record instead of --excitation (SUITE:ID or a file, as "
-                    "for simulate): the amplitude ratios are then PGA/(g tan alpha) of the scaled record")
-    pt.add_argument("--record-unit", help="acceleration unit of a two-column record file (as for simulate)")
+    record_args(pt, scan=True)
     ps.set_defaults(run=_cmd_simulate)
     pt.set_defaults(run=_cmd_threshold)
+
+
+def noise_fields(scenario) -> dict:
+    """The noise reading of ``scenario`` as the result prints it (``noise_band_hz`` null for white noise).
+
+    Parameters
+    ----------
+    scenario : rockstudy.analysis.scenario.Scenario
+        The case run.
+    """
+    return {**scenario.noise.to_attrs(), "noise_band_hz": scenario.noise.band}
 
 
 def _cmd_simulate(args, parser):
     if args.record is not None:
         return _cmd_simulate_record(args, parser)
-    if args.record_unit is not None or args.record_scale != 1.0 or args.record_dt is not None:
-        parser.error("--record-unit, --record-scale and --record-dt need --record FILE")
+    check_no_record_options(args, parser)
     _check_common(args)
     declarations.check_option("--amplitude-ratio", args.amplitude_ratio)
     scenario = _scenario(args, parser)
@@ -85,7 +88,7 @@ def _cmd_simulate(args, parser):
                realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
                energy_ratio=1.0 if rec is None else rec.energy_ratio,
                pga_ratio=1.0 if rec is None else rec.pga_ratio, sensor_band_hz=args.sensor_band,
-               **scenario.noise.to_attrs())
+               **noise_fields(scenario))
     if res is not None and (args.output or args.plot):
         from rockstudy.studies.datasets import history_dataset
         ds = history_dataset(res, scenario, motion, args.frequency_ratio, args.amplitude_ratio, args.realisation)
@@ -94,9 +97,9 @@ def _cmd_simulate(args, parser):
             out["output"] = args.output
         if args.plot:
             from rockstudy.plotting import figure_control_history, save_figure
-            save_figure(figure_control_history(ds, "2-3 style"), args.plot)
+            save_figure(figure_control_history(ds, "2-3 style", whole_run=True), args.plot)
             out["plot"] = args.plot
-    print(json.dumps(out, indent=2))
+    print_json(out)
 
 
 def _cmd_simulate_record(args, parser):
@@ -132,8 +135,8 @@ def _cmd_simulate_record(args, parser):
     else:
         message = res.message
     if res is None or res.status == "undetermined":  # the fast engine's event cap: no outcome, no file
-        print(json.dumps({"status": "undetermined", "overturned": None, "message": message,
-                          "strategy": args.strategy, "record": args.record}, indent=2))
+        print_json({"status": "undetermined", "overturned": None, "message": message,
+                    "strategy": args.strategy, "record": args.record})
         return
     out = res.compact_summary()
     out.update(strategy=args.strategy, excitation="record", record=args.record, record_name=record.name,
@@ -154,12 +157,12 @@ def _cmd_simulate_record(args, parser):
             out["output"] = args.output
         if args.plot:
             from rockstudy.plotting import figure_control_history, plain_text, save_figure
-            fig = figure_control_history(ds, "record")
+            fig = figure_control_history(ds, "record", whole_run=True)
             fig.axes[0].set_title(f"{args.strategy}, record {plain_text(record.name)} x {args.record_scale:g}, "
                                   f"PGA/(g tan(alpha)) = {pga_ratio:.3g} ({res.status})", fontsize=10)
             save_figure(fig, args.plot)
             out["plot"] = args.plot
-    print(json.dumps(out, indent=2))
+    print_json(out)
 
 
 def _cmd_threshold_record(args, parser):
@@ -190,14 +193,13 @@ def _cmd_threshold_record(args, parser):
            "record_pga_g": record.pga / STANDARD_GRAVITY, "record_dt_s": record.dt,
            "record_npts": int(record.acceleration.size), "sampling_time_s": args.sampling_time,
            "delay_s": args.delay, "sensor_band_hz": args.sensor_band, **_record_description(info)}
-    print(json.dumps(out, indent=2))
+    print_json(grid_values(out, GRID_KEYS))
 
 
 def _cmd_threshold(args, parser):
     if args.record is not None:
         return _cmd_threshold_record(args, parser)
-    if args.record_unit is not None:
-        parser.error("--record-unit needs --record FILE")
+    check_no_record_options(args, parser)
     from rockstudy.analysis.spectra import threshold
     _check_common(args)
     scenario = _scenario(args, parser)
@@ -221,7 +223,7 @@ def _cmd_threshold(args, parser):
                                     "counted as not overturned; check with --engine reference")
     res.update(strategy=args.strategy, excitation=args.excitation, noise_level=args.noise_level,
                realisation=args.realisation, sampling_time_s=args.sampling_time, delay_s=args.delay,
-               sensor_band_hz=args.sensor_band, **scenario.noise.to_attrs())
-    print(json.dumps(res, indent=2))
+               sensor_band_hz=args.sensor_band, **noise_fields(scenario))
+    print_json(grid_values(res, GRID_KEYS))
 
 

@@ -2,7 +2,6 @@
 two spectrum files)."""
 from __future__ import annotations
 
-import json
 import logging
 import math
 import sys
@@ -22,6 +21,8 @@ from rockstudy.cli.options import (
     _scenario,
     write_output,
 )
+from rockstudy.cli.output import print_json
+from rockstudy.cli.progress import progress_bar
 from rockstudy.core import declarations, validation
 
 SECONDS_PER_SIMULATION = 1e-3
@@ -92,15 +93,17 @@ def _cmd_spectrum(args, parser):
     n_cases, n_sims = n_real * n_freq, n_real * n_freq * sims_per_case
     logging.getLogger("rockstudy").info(
         "spectrum: %d realisation(s) x %d frequencies = %d cases, at most %d simulations "
-        "(at most about %.0f s on %d thread(s) at ~%g s each); progress follows", n_real, n_freq, n_cases,
+        "(at most about %.0f s on %d thread(s) at ~%g s each)", n_real, n_freq, n_cases,
         n_sims, n_sims * SECONDS_PER_SIMULATION / args.threads, args.threads, SECONDS_PER_SIMULATION)
-    ds = document_missing(spectrum(scenario, freqs, realisations=range(n_real), grid=grid, with_map=args.map))
+    with progress_bar() as progress:  # a bar at a terminal; elsewhere the log lines
+        ds = document_missing(spectrum(scenario, freqs, realisations=range(n_real), grid=grid, with_map=args.map,
+                                       progress=progress))
     if args.plot:
         from rockstudy.plotting import figure_spectrum, save_figure
         save_figure(figure_spectrum(ds, label=args.strategy), args.plot)
     write_output(ds, args.output, "spectrum")
-    print(json.dumps({"output": args.output, "frequencies": len(freqs), "realisations": int(ds.sizes["realisation"]),
-                      "simulations": int(ds.n_simulations.sum()), "compute_time_s": ds.attrs["compute_time_s"]}))
+    print_json({"output": args.output, "frequencies": len(freqs), "realisations": int(ds.sizes["realisation"]),
+                "simulations": int(ds.n_simulations.sum()), "compute_time_s": ds.attrs["compute_time_s"]})
 
 
 def _cmd_jos(args, parser):
@@ -138,6 +141,6 @@ def _cmd_jos(args, parser):
     if n == 0:
         out["note"] = ("N* = 0: no frequency has a threshold below a_max,0 in either file, so J_OS (Eq. 21) is "
                        "undefined")
-    print(json.dumps(out))
+    print_json(out)
 
 

@@ -166,7 +166,7 @@ def mark_switch_burst(ax, axk, hist, end: float):
 
 
 @styled
-def figure_control_history(hist, paper_figure: str):
+def figure_control_history(hist, paper_figure: str, whole_run: bool = False):
     """Figs. 2–3: normalised time history of a controlled block and its stiffness K.
 
     Parameters
@@ -179,6 +179,9 @@ def figure_control_history(hist, paper_figure: str):
     paper_figure : str
         The paper's figure reproduced (``"2"``, ``"3"``); not drawn: the caller's file name carries it, and
         the title says what is shown.
+    whole_run : bool, default False
+        Draw the whole run (the time axis ends at its last sample); otherwise, as the paper's Figs. 2–3, up to
+        1.3 times the end of the excitation.
     """
     fig, (ax, axk) = plt.subplots(2, 1, sharex=True, figsize=(7, 4.6), height_ratios=(3, 1))
     plot_history(ax, hist)
@@ -187,7 +190,9 @@ def figure_control_history(hist, paper_figure: str):
     ax.legend(loc="upper right", ncol=3)
     plot_stiffness(axk, hist)
     axk.set_xlabel("time $t$ [s]")
-    end = min(float(hist["t"][-1]), 1.3 * hist.attrs["excitation_end_s"])
+    end = float(hist["t"][-1])
+    if not whole_run:
+        end = min(end, 1.3 * hist.attrs["excitation_end_s"])
     axk.set_xlim(0, end)
     a = hist.attrs
     ax.set_title(f"Response of the block under {plain_text(a['control_strategy'])} control and the anchorage "

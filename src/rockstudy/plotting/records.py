@@ -146,7 +146,7 @@ def record_row_offsets(n: int) -> np.ndarray:
     return np.linspace(-0.5, 0.5, n) * RECORD_ROW_SPREAD if n > 1 else np.zeros(1)
 
 
-def plot_record_thresholds(ax, ds):
+def plot_record_thresholds(ax, ds, rows: slice = slice(None)):
     """Threshold PGA [g] of every record (rows, sorted by FS's threshold) for each strategy (markers,
     each strategy at its own height within the row: :func:`record_row_offsets`), and the record's own
     PGA (grey bar): a marker left of the bar's end means the record as recorded overturns the block
@@ -160,9 +160,12 @@ def plot_record_thresholds(ax, ds):
         A record set's fragility (:func:`rockstudy.analysis.fragility.suite_fragility_dataset`):
         ``threshold_pga`` [g] over (strategy, record), ``record_pga`` [g], ``record_id`` and
         ``record_event``.
+    rows : slice, optional
+        The rows drawn, of the records sorted by FS's threshold (a figure in two columns draws each half).
     """
     fs = ds["threshold_pga"].sel(strategy="FS").values if "FS" in ds.strategy.values else None
     order = np.argsort(np.where(np.isfinite(fs), fs, np.inf)) if fs is not None else np.arange(ds.sizes["record"])
+    order = order[rows]
     y = np.arange(order.size)
     ax.barh(y, ds["record_pga"].values[order], color=RECORD_BAR_COLOUR, height=0.8, label="PGA as recorded")
     artists = []
@@ -181,10 +184,15 @@ def plot_record_thresholds(ax, ds):
     return artists
 
 
+RECORDS_PER_COLUMN = 24
+"""Most records of one column of :func:`figure_record_thresholds`."""
+
+
 @styled
 def figure_record_thresholds(ds):
     """Every record's threshold per strategy over one record set (see :func:`plot_record_thresholds`),
-    :data:`RECORD_ROW_HEIGHT` per record.
+    :data:`RECORD_ROW_HEIGHT` per record; more than :data:`RECORDS_PER_COLUMN` records in two columns, so that
+    a page that fits the figure to its window keeps its text legible.
 
     Parameters
     ----------
@@ -194,11 +202,27 @@ def figure_record_thresholds(ds):
         ``record_id`` and ``record_event``.
     """
     n = ds.sizes["record"]
-    fig, ax = plt.subplots(figsize=(7.5, 1.4 + RECORD_ROW_HEIGHT * n))
-    plot_record_thresholds(ax, ds)
+    columns = 1 if n <= RECORDS_PER_COLUMN else 2
+    per_column = -(-n // columns)
+    fig, axes = plt.subplots(1, columns, figsize=(7.5 if columns == 1 else 11.0, 1.4 + RECORD_ROW_HEIGHT * per_column),
+                             sharex=True, squeeze=False)
+    for k, ax in enumerate(axes[0]):
+        plot_record_thresholds(ax, ds, slice(k * per_column, (k + 1) * per_column))
     beaten = {str(s): int(np.sum(ds["threshold_scale"].sel(strategy=s).values <= 1.0)) for s in ds.strategy.values}
-    ax.set_title(f"{plain_text(ds.attrs.get('record_suite', ''))}: records that overturn the block as recorded\n"
-                 + ", ".join(f"{s} {k}/{n}" for s, k in beaten.items()), fontsize=PANEL_TITLE_FONT, pad=22)
-    ax.legend(fontsize=SMALL_FONT, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=len(beaten) + 1, frameon=False)
-    fig.tight_layout()
+    ax = axes[0][0]
+    title = (f"{plain_text(ds.attrs.get('record_suite', ''))}: records that overturn the block as recorded\n"
+             + ", ".join(f"{s} {k}/{n}" for s, k in beaten.items()))
+    handles, labels = ax.get_legend_handles_labels()
+    if columns == 1:
+        ax.set_title(title, fontsize=PANEL_TITLE_FONT, pad=22)
+        ax.legend(fontsize=SMALL_FONT, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=len(beaten) + 1,
+                  frameon=False)
+        fig.tight_layout()
+    else:  # the title and one legend above both columns (the records sorted down the left, then the right)
+        fig.tight_layout()
+        top = 1 - 0.75 / fig.get_size_inches()[1]  # 0.75 in above the axes for the title and the legend
+        fig.subplots_adjust(top=top)
+        fig.suptitle(title, fontsize=PANEL_TITLE_FONT, y=1 - 0.05 / fig.get_size_inches()[1], va="top")
+        fig.legend(handles, labels, fontsize=SMALL_FONT, loc="lower center", bbox_to_anchor=(0.5, top),
+                   ncol=len(beaten) + 1, frameon=False)
     return fig

@@ -138,21 +138,21 @@ def figure_risk(risk):
     Parameters
     ----------
     risk : xarray.Dataset
-        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`); with a ``hazard`` coordinate, the panels of
-        :func:`plot_hazard_curves` and :func:`plot_disaggregation` (first hazard curve), else those of
-        :func:`plot_scenario_probabilities`.
+        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`); with a ``hazard`` coordinate, three panels
+        on two rows: :func:`plot_hazard_curves` and the fragilities above, :func:`plot_disaggregation` (first
+        hazard curve) below; else two side by side: the fragilities and :func:`plot_scenario_probabilities`.
     """
     has_hazard = "hazard" in risk.coords
-    panels = 3 if has_hazard else 2
-    fig, axes = plt.subplots(1, panels, figsize=(4.4 * panels, 4.0))
-    ax = list(axes)
-    if has_hazard:
-        plot_hazard_curves(ax.pop(0), risk)
-    plot_risk_fragilities(ax[0], risk)
-    if has_hazard:
-        plot_disaggregation(ax[1], risk)
+    if has_hazard:  # two rows as wide as the two-panel figure, so that a page draws them at the same scale
+        fig = plt.figure(figsize=(8.8, 7.6))
+        grid = fig.add_gridspec(2, 2)
+        plot_hazard_curves(fig.add_subplot(grid[0, 0]), risk)
+        plot_risk_fragilities(fig.add_subplot(grid[0, 1]), risk)
+        plot_disaggregation(fig.add_subplot(grid[1, :]), risk)
     else:
-        plot_scenario_probabilities(ax[1], risk)
+        fig, (left, right) = plt.subplots(1, 2, figsize=(8.8, 4.0))
+        plot_risk_fragilities(left, risk)
+        plot_scenario_probabilities(right, risk)
     suite = plain_text(risk.attrs.get("record_suite", ""))
     fig.suptitle(f"Risk of overturning on {suite} (fragility: the stripes' lognormal "
                  "fit)", fontsize=9)
