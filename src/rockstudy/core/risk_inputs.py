@@ -23,7 +23,8 @@ from rockstudy.core.quantities import Quantity
 
 RISK_INPUTS = {
     "median_g": Quantity(0.0, MAX_PGA_G, "g", "fragility median PGA theta"),
-    "dispersion": Quantity(0.0, MAX_DISPERSION, "", "fragility dispersion beta (0: a step at the median)", low_open=False),
+    "dispersion": Quantity(0.0, MAX_DISPERSION, "", "fragility dispersion beta (0: a step at the median)",
+                           low_open=False),
     "years": Quantity(0.0, MAX_EXPOSURE_YEARS, "yr", "exposure time T of the probability 1 - exp(-lambda T)"),
     "target_rate": Quantity(0.0, 1.0, "1/yr", "target annual rate of overturning"),
     "target_probability": Quantity(0.0, 1.0, "", "target probability of overturning in T years", high_open=True),
@@ -33,7 +34,8 @@ RISK_INPUTS = {
 SCENARIO_INPUTS = {
     "mag": Quantity(*SCENARIO_RANGES["mag"], "", "moment magnitude", low_open=False),
     "dist_rup": Quantity(*SCENARIO_RANGES["dist_rup"], "km", "closest distance to the rupture plane", low_open=False),
-    "v_s30": Quantity(*SCENARIO_RANGES["v_s30"], "m/s", "time-averaged shear-wave velocity of the top 30 m", low_open=False),
+    "v_s30": Quantity(*SCENARIO_RANGES["v_s30"], "m/s", "time-averaged shear-wave velocity of the top 30 m",
+                      low_open=False),
     "dist_jb": Quantity(*SCENARIO_RANGES["dist_jb"], "km", "Joyner-Boore distance (default: dist_rup)", low_open=False),
     "dist_x": Quantity(*SCENARIO_RANGES["dist_x"], "km", "site coordinate normal to the strike, R_X (default: dist_jb)",
                     low_open=False),
