@@ -47,9 +47,13 @@ from rockstudy.engine._kernel.events import (
 )
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from rockstudy.engine._kernel.layout import (
+    B_LEVEL,
+    B_SCALE,
+    B_TAIL,
     C_BOUND,
     C_BOUND_SWITCHING,
     C_CD,
+    C_DRIVEN,
     C_EXC_END,
     C_FRACTURE,
     C_HISTORY,
@@ -63,6 +67,7 @@ from rockstudy.engine._kernel.layout import (
     C_TAYLOR,
     C_V_END,
     I_ALPHA,
+    I_AMP,
     I_ATOL,
     I_BOUND,
     I_CD,
@@ -79,7 +84,9 @@ from rockstudy.engine._kernel.layout import (
     I_P,
     I_RDT,
     I_RTOL,
+    I_SENSE,
     I_SINA,
+    I_SOFF,
     I_STRAT,
     I_TAYLOR,
     I_TDU,
@@ -137,7 +144,7 @@ from rockstudy.engine._kernel.layout import (
 )
 from rockstudy.engine._kernel.maps import sign
 from rockstudy.model.control import CS01, CS02, FS, PASSIVE, stiffness_on
-from rockstudy.model.excitation import RECORD
+from rockstudy.model.excitation import MODULATED, RECORD
 
 GROWTH_CAP_ERROR = 5.8e-6
 """Below this scaled error a step's successor grows by the cap, 10x (0.9·err^-0.2 > 10.03)."""
@@ -293,7 +300,44 @@ def setup(P, vert, want_history, want_log):
     C[C_TAYLOR] = _flag(takes_taylor_steps(P, nvert))
     C[C_HISTORY] = _flag(want_history)
     C[C_LOG] = _flag(want_log)
+    # the early stop during the excitation (no vertical record: its Ÿg would change the potential)
+    if C[C_BOUND] != 0.0 and nvert == 0:
+        pumps = kmax != kmin and (sampled or strategy == CS02)
+        C[C_DRIVEN] = maps.DRIVEN_SWITCHING if pumps else maps.DRIVEN_STEADY
     return C
+
+
+@njit(cache=True)
+def driven_bound_data(P, rec, vert):
+    """The data of the early stop during the excitation (``B_*`` slots), the same for every amplitude of
+    a case: the level its bound must stay below, the impulse per unit of ∫|Ẍg| dt and, for a record, the
+    integral of |record| from each knot to the end of the excitation (linear pieces bounded by the mean
+    of their ends' magnitudes). Two slots (and no stop) when the run cannot stop early."""
+    C = setup(P, vert, False, False)
+    kind = int(C[C_DRIVEN])
+    n = 0
+    if kind != maps.DRIVEN_NONE and int(P[I_KIND]) == RECORD:
+        n = int(P[I_SOFF]) if P[I_SENSE] != 0.0 else rec.shape[0]
+    B = np.zeros(B_TAIL + n)
+    if kind == maps.DRIVEN_NONE:
+        return B
+    alpha = P[I_ALPHA]
+    if kind == maps.DRIVEN_STEADY:
+        B[B_LEVEL] = (1.0 - math.cos(alpha)) * (1.0 - maps.DRIVEN_MARGIN)
+    else:
+        B[B_LEVEL] = maps.switching_level(alpha, P[I_E], C[C_KMAX], C[C_KMIN], C[C_SAMPLED] != 0.0)
+    B[B_SCALE] = P[I_P] / (math.sqrt(2.0) * P[I_G])
+    if n > 0:
+        dt = P[I_RDT]
+        dur = P[I_DUR]
+        last = (n - 1) * dt
+        acc = (dur - last) * abs(rec[n - 1]) if dur > last else 0.0
+        B[B_TAIL + n - 1] = acc
+        for k in range(n - 2, -1, -1):
+            if k * dt < dur:
+                acc += 0.5 * dt * (abs(rec[k]) + abs(rec[k + 1]))
+            B[B_TAIL + k] = acc
+    return B
 
 
 @njit(cache=True)
@@ -458,6 +502,34 @@ def below_overturning_energy(S, C, P):
     if C[C_BOUND_SWITCHING] != 0.0:
         return maps.cannot_overturn_switching(S[R_TH], S[R_THD], S[R_SIDE], P[I_P], P[I_ALPHA], P[I_E], C[C_KMAX])
     return maps.cannot_overturn(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], C[C_KMIN] * S[R_SPRING + _working(S)])
+
+
+@njit(cache=True, inline="always")
+def remaining_input(t, P, B):
+    """An upper bound of ∫ from t to the end of the excitation of |Ẍg|/a_p. [s]"""
+    dur = P[I_DUR]
+    if t >= dur:
+        return 0.0
+    kind = int(P[I_KIND])
+    if kind == RECORD:  # from the knot before t (one earlier, against the rounding of t/dt)
+        k = min(max(int(t / P[I_RDT]) - 1, 0), B.shape[0] - B_TAIL - 1)
+        return B[B_TAIL + k]
+    if kind == MODULATED:  # |Eq. 23| <= its envelope 90 s²(1 − s)⁶, integrated in closed form
+        y = min(max(1.0 - t / dur, 0.0), 1.0)
+        y7 = y ** 7
+        return dur * 90.0 * y7 * (1.0 / 7.0 - 0.25 * y + y * y / 9.0)
+    return dur - t  # one-sine pulse and rectangular pulse: |Ẍg| <= a_p
+
+
+@njit(cache=True, inline=inline_into("drive"))
+def below_driven_bound(S, C, P, B):
+    """True when the block, still under excitation, provably cannot overturn whatever the rest of
+    the excitation does within its impulse (docs/engine.md, "Early stops")."""
+    t = S[R_T]
+    impulse = B[B_SCALE] * abs(P[I_AMP]) * remaining_input(t, P, B)
+    return maps.cannot_overturn_driven(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], impulse, int(C[C_DRIVEN]),
+                                       C[C_KMIN] * S[R_SPRING + _working(S)], C[C_KMAX], B[B_LEVEL],
+                                       C[C_EXC_END] - t)
 
 
 @njit(cache=True, inline=inline_into("drive"))
@@ -925,7 +997,7 @@ def _history_row(S, C, P, rec, H, N):
 
 
 @njit(cache=True, **NO_REFCOUNT)
-def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplifts, rests, N):
+def drive(S, C, P, rec, vert, B, K, Q, queue_times, queue_values, H, impacts, uplifts, rests, N):
     """The driver's loop: the parts of a run in turn until it ends. Returns an ``ST_*`` code, or GROW
     when the history or an event log is full; ``N`` (``N_*``) holds how far each is written.
 
@@ -951,6 +1023,9 @@ def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplif
             if mode == MODE_REST and S[R_T] >= C[C_EXC_END]:
                 status = ST_REST
                 break
+            if C[C_DRIVEN] != 0.0 and S[R_T] < C[C_EXC_END] and below_driven_bound(S, C, P, B):
+                status = ST_BOUND
+                break
             if mode == MODE_REST and C[C_QUIET_KNOTS] != 0.0 and S[R_H_ON] != 0.0:
                 t_next = pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next)
             left = ground_phase(S, C, P, rec, vert, t_next)
@@ -966,6 +1041,9 @@ def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplif
             known_time_events(S, C, P, rec, queue_times, queue_values)
             continue
         if C[C_BOUND] != 0.0 and S[R_T] >= C[C_EXC_END] and below_overturning_energy(S, C, P):
+            status = ST_BOUND
+            break
+        if C[C_DRIVEN] != 0.0 and S[R_T] < C[C_EXC_END] and below_driven_bound(S, C, P, B):
             status = ST_BOUND
             break
         if S[R_APEX] != 0.0 and apex(S, C, P, rec, vert) == HELD:
@@ -994,6 +1072,13 @@ def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplif
 @njit(cache=True)
 def simulate_kernel(P, rec, vert, want_history, want_log):
     """Simulate one run; returns a :class:`~rockstudy.engine._kernel.layout.KernelResult`."""
+    return run_kernel(P, rec, vert, driven_bound_data(P, rec, vert), want_history, want_log)
+
+
+@njit(cache=True)
+def run_kernel(P, rec, vert, B, want_history, want_log):
+    """:func:`simulate_kernel` with the early stop's data ``B`` (:func:`driven_bound_data`) given, so
+    that the runs of a threshold scan share it."""
     C = setup(P, vert, want_history, want_log)
     S = initial_state(P, C, rec)
     queue_times, queue_values = maps.queue_new(P[I_DELAY], P[I_TS])
@@ -1005,7 +1090,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     H = np.empty((256 if want_history else 0, 5))
     N = np.zeros(NFILL, dtype=np.int64)
     while True:
-        status = drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplifts, rests, N)
+        status = drive(S, C, P, rec, vert, B, K, Q, queue_times, queue_values, H, impacts, uplifts, rests, N)
         if status != GROW:
             break
         if want_history and _hist_full(H, N[N_HISTORY]):

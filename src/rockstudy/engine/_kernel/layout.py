@@ -61,7 +61,13 @@ C_QUIET_KNOTS = 11  # 1: at rest, record knots pass in one tight loop (no sample
 C_TAYLOR = 12    # 1: while the record lasts the steps are Taylor steps (I_TAYLOR, a record, no vertical record)
 C_HISTORY = 13   # 1: the run writes its history (rows t, θ, θ̇, κ, Ẍg)
 C_LOG = 14       # 1: the run logs its impact, uplift and rest times
-NCONST = 15
+C_DRIVEN = 15    # early stop during the excitation: maps.DRIVEN_NONE, DRIVEN_STEADY or DRIVEN_SWITCHING
+NCONST = 16
+
+# ---- the early stop's data during the excitation (engine.driven_bound_data), fixed for all amplitudes ----
+B_LEVEL = 0      # the level the bound must stay below (maps.cannot_overturn_driven) [-]
+B_SCALE = 1      # p/(√2·g): the impulse J per unit of ∫|Ẍg| dt [s/m]
+B_TAIL = 2       # records: from here, ∫ from knot k to the end of the excitation of |record| (upper bound) [s]
 
 # ---- the run's state record: every quantity the driving loop changes (engine.py) ------------
 R_T = 0          # time t [s]
