@@ -9,7 +9,7 @@ from scipy.integrate import quad
 from rockstudy import Anchorage, Control
 from rockstudy.engine import _kernel as kn
 from rockstudy.engine._kernel import maps
-from rockstudy.engine._kernel.engine import driven_bound_data, remaining_input, run_kernel
+from rockstudy.engine._kernel.engine import cannot_uplift_any_more, driven_bound_data, remaining_input, run_kernel
 from rockstudy.engine._kernel.layout import B_LEVEL
 from rockstudy.engine._kernel.scan import case_outcome, is_overturned, scan_amplitude, scan_start, scan_update
 from rockstudy.engine.simulate import kernel_record, pack_parameters
@@ -75,6 +75,31 @@ def test_remaining_input_bounds_the_input_still_to_come(blc06, records):
         exact = quad(lambda s: abs(modulated_acceleration(s, 1.0, om, motion.duration)), t, motion.duration,
                      limit=400)[0]
         assert remaining_input(t, P, B) >= exact * (1 - 1e-9)
+
+
+def test_no_uplift_any_more_means_no_uplift_ahead(blc06, records):
+    """Where the engine says a resting block can no longer uplift, |Ẍg| stays at or below g·tanα on a fine
+    grid to the end of the excitation; where it says it can, a knot ahead exceeds it."""
+    vert = np.zeros(0)
+    rec, om = records[1]
+    motion = record_motion(rec, 1.0, om)
+    samples = kn.writable(motion.record)
+    uplift = blc06.gravity * math.tan(blc06.alpha)
+    for ratio in (1.2, 2.0, 4.0):
+        P = pack_parameters(blc06, Anchorage(), Control("CS01"), motion, energy_bound=True)
+        P[kn.I_AMP] = ratio * uplift / float(np.max(np.abs(samples)))
+        B = driven_bound_data(P, samples, vert)
+        dt, dur = P[kn.I_RDT], P[kn.I_DUR]
+        fine = np.linspace(0.0, dur, 100001)
+        mag = P[kn.I_AMP] * np.abs([interpolate_record(t, dt, samples) for t in fine])
+        ahead = np.maximum.accumulate(mag[::-1])[::-1]
+        said = [cannot_uplift_any_more(t, P, B) for t in fine[::211]]
+        assert any(said) and not all(said)
+        for t, quiet, peak in zip(fine[::211], said, ahead[::211]):
+            if quiet:
+                assert peak <= uplift
+            else:
+                assert np.max(np.abs(samples[max(int(t / dt) - 1, 0):])) * P[kn.I_AMP] > uplift * (1 - 1e-8)
 
 
 def test_switching_level_is_safe_after_the_excitation():

@@ -312,13 +312,14 @@ def driven_bound_data(P, rec, vert):
     """The data of the early stop during the excitation (``B_*`` slots), the same for every amplitude of
     a case: the level its bound must stay below, the impulse per unit of ∫|Ẍg| dt and, for a record, the
     integral of |record| from each knot to the end of the excitation (linear pieces bounded by the mean
-    of their ends' magnitudes). Two slots (and no stop) when the run cannot stop early."""
+    of their ends' magnitudes) and the largest |record| from each knot on. Two slots (and no stop) when the
+    run cannot stop early."""
     C = setup(P, vert, False, False)
     kind = int(C[C_DRIVEN])
     n = 0
     if kind != maps.DRIVEN_NONE and int(P[I_KIND]) == RECORD:
         n = int(P[I_SOFF]) if P[I_SENSE] != 0.0 else rec.shape[0]
-    B = np.zeros(B_TAIL + n)
+    B = np.zeros(B_TAIL + 2 * n)
     if kind == maps.DRIVEN_NONE:
         return B
     alpha = P[I_ALPHA]
@@ -333,10 +334,14 @@ def driven_bound_data(P, rec, vert):
         last = (n - 1) * dt
         acc = (dur - last) * abs(rec[n - 1]) if dur > last else 0.0
         B[B_TAIL + n - 1] = acc
+        peak = abs(rec[n - 1])
+        B[B_TAIL + 2 * n - 1] = peak
         for k in range(n - 2, -1, -1):
             if k * dt < dur:
                 acc += 0.5 * dt * (abs(rec[k]) + abs(rec[k + 1]))
             B[B_TAIL + k] = acc
+            peak = max(peak, abs(rec[k]))
+            B[B_TAIL + n + k] = peak
     return B
 
 
@@ -505,6 +510,28 @@ def below_overturning_energy(S, C, P):
 
 
 @njit(cache=True, inline="always")
+def _knot_before(t, P, B):
+    """Index of the record knot one before the one at or before t, within the record of ``B``."""
+    return min(max(int(t / P[I_RDT]) - 1, 0), (B.shape[0] - B_TAIL) // 2 - 1)
+
+
+UPLIFT_MARGIN = 1e-9
+"""Relative margin of the test that a resting block can no longer uplift: over the rounding of the
+interpolated record and of the products. [-]"""
+
+
+@njit(cache=True, inline="always")
+def cannot_uplift_any_more(t, P, B):
+    """True when, under a record, |Ẍg| stays at or below g·tanα from t to the end of the excitation, so a
+    block at rest there stays at rest (no vertical record here; Ẍg between knots lies between theirs)."""
+    if int(P[I_KIND]) != RECORD:
+        return False
+    n = (B.shape[0] - B_TAIL) // 2
+    peak = B[B_TAIL + n + _knot_before(t, P, B)]
+    return abs(P[I_AMP]) * peak * (1.0 + UPLIFT_MARGIN) <= P[I_G] * math.tan(P[I_ALPHA]) * (1.0 - UPLIFT_MARGIN)
+
+
+@njit(cache=True, inline="always")
 def remaining_input(t, P, B):
     """An upper bound of ∫ from t to the end of the excitation of |Ẍg|/a_p. [s]"""
     dur = P[I_DUR]
@@ -512,8 +539,7 @@ def remaining_input(t, P, B):
         return 0.0
     kind = int(P[I_KIND])
     if kind == RECORD:  # from the knot before t (one earlier, against the rounding of t/dt)
-        k = min(max(int(t / P[I_RDT]) - 1, 0), B.shape[0] - B_TAIL - 1)
-        return B[B_TAIL + k]
+        return B[B_TAIL + _knot_before(t, P, B)]
     if kind == MODULATED:  # |Eq. 23| <= its envelope 90 s²(1 − s)⁶, integrated in closed form
         y = min(max(1.0 - t / dur, 0.0), 1.0)
         y7 = y ** 7
@@ -526,6 +552,10 @@ def below_driven_bound(S, C, P, B):
     """True when the block, still under excitation, provably cannot overturn whatever the rest of
     the excitation does within its impulse (docs/engine.md, "Early stops")."""
     t = S[R_T]
+    if not B[B_LEVEL] > 0.0:
+        return False
+    if S[R_MODE] == MODE_REST and cannot_uplift_any_more(t, P, B):
+        return True
     impulse = B[B_SCALE] * abs(P[I_AMP]) * remaining_input(t, P, B)
     return maps.cannot_overturn_driven(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], impulse, int(C[C_DRIVEN]),
                                        C[C_KMIN] * S[R_SPRING + _working(S)], C[C_KMAX], B[B_LEVEL],

@@ -67,7 +67,8 @@ NCONST = 16
 # ---- the early stop's data during the excitation (engine.driven_bound_data), fixed for all amplitudes ----
 B_LEVEL = 0      # the level the bound must stay below (maps.cannot_overturn_driven) [-]
 B_SCALE = 1      # p/(√2·g): the impulse J per unit of ∫|Ẍg| dt [s/m]
-B_TAIL = 2       # records: from here, ∫ from knot k to the end of the excitation of |record| (upper bound) [s]
+B_TAIL = 2       # records: from here n slots, ∫ from knot k to the end of the excitation of |record| (upper bound)
+                 # [s]; then n slots, the largest |record| from knot k on [-]
 
 # ---- the run's state record: every quantity the driving loop changes (engine.py) ------------
 R_T = 0          # time t [s]
