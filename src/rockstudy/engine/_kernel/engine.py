@@ -48,8 +48,10 @@ from rockstudy.engine._kernel.events import (
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from rockstudy.engine._kernel.layout import (
     B_LEVEL,
+    B_PUMP,
     B_SCALE,
     B_TAIL,
+    B_UPLIFT,
     C_BOUND,
     C_BOUND_SWITCHING,
     C_CD,
@@ -109,6 +111,7 @@ from rockstudy.engine._kernel.layout import (
     NFILL,
     NSTATE,
     R_APEX,
+    R_CHECK,
     R_DAMPER,
     R_F0,
     R_F0_OK,
@@ -328,6 +331,9 @@ def driven_bound_data(P, rec, vert):
     else:
         B[B_LEVEL] = maps.switching_level(alpha, P[I_E], C[C_KMAX], C[C_KMIN], C[C_SAMPLED] != 0.0)
     B[B_SCALE] = P[I_P] / (math.sqrt(2.0) * P[I_G])
+    if kind == maps.DRIVEN_SWITCHING:
+        B[B_PUMP] = P[I_P] / math.sqrt(2.0) * C[C_KMAX] * math.sin(maps.peak_rotation(B[B_LEVEL], alpha))
+    B[B_UPLIFT] = P[I_G] * math.tan(alpha)
     if n > 0:
         dt = P[I_RDT]
         dur = P[I_DUR]
@@ -374,6 +380,7 @@ def initial_state(P, C, rec):
     S[R_APEX] = _flag(C[C_SWITCHING] != 0.0 and S[R_MODE] == MODE_ROCK and thd == 0.0 and th != 0.0
                       and strategy == CS01)
     S[R_H] = min(FIRST_STEP, P[I_HMAX])
+    S[R_CHECK] = 1.0
     return S
 
 
@@ -528,7 +535,7 @@ def cannot_uplift_any_more(t, P, B):
         return False
     n = (B.shape[0] - B_TAIL) // 2
     peak = B[B_TAIL + n + _knot_before(t, P, B)]
-    return abs(P[I_AMP]) * peak * (1.0 + UPLIFT_MARGIN) <= P[I_G] * math.tan(P[I_ALPHA]) * (1.0 - UPLIFT_MARGIN)
+    return abs(P[I_AMP]) * peak * (1.0 + UPLIFT_MARGIN) <= B[B_UPLIFT] * (1.0 - UPLIFT_MARGIN)
 
 
 @njit(cache=True, inline="always")
@@ -550,16 +557,21 @@ def remaining_input(t, P, B):
 @njit(cache=True, inline=inline_into("drive"))
 def below_driven_bound(S, C, P, B):
     """True when the block, still under excitation, provably cannot overturn whatever the rest of
-    the excitation does within its impulse (docs/engine.md, "Early stops")."""
+    the excitation does within its impulse (docs/engine.md, "Early stops"). The impulse bound is tested
+    at the start and after each state event (``R_CHECK``), not at every known-time event in between (a
+    sampled run passes the driver at every controller sample); a resting block's uplift at every pass."""
     t = S[R_T]
     if not B[B_LEVEL] > 0.0:
         return False
     if S[R_MODE] == MODE_REST and cannot_uplift_any_more(t, P, B):
         return True
+    if S[R_CHECK] == 0.0:  # nothing new since the last test: at the next state event
+        return False
+    S[R_CHECK] = 0.0
     impulse = B[B_SCALE] * abs(P[I_AMP]) * remaining_input(t, P, B)
     return maps.cannot_overturn_driven(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], impulse, int(C[C_DRIVEN]),
-                                       C[C_KMIN] * S[R_SPRING + _working(S)], C[C_KMAX], B[B_LEVEL],
-                                       C[C_EXC_END] - t)
+                                       C[C_KMIN] * S[R_SPRING + _working(S)], B[B_LEVEL],
+                                       B[B_PUMP] * (C[C_EXC_END] - t))
 
 
 @njit(cache=True, inline=inline_into("drive"))
@@ -1089,6 +1101,7 @@ def drive(S, C, P, rec, vert, B, K, Q, queue_times, queue_values, H, impacts, up
         if want_history:
             _history_row(S, C, P, rec, H, N)
         what = state_event(S, C, P, rec, vert)
+        S[R_CHECK] = 1.0
         if what == OVERTURNED:
             status = ST_OVER
             break

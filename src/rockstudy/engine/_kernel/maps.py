@@ -206,7 +206,7 @@ def switching_level(alpha, e, kappa_high, kappa_low, sampled):
 
 
 @njit(cache=True)
-def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, kappa_high, level, pump_time):
+def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, pump):
     """True when a block still under excitation provably never reaches |θ| = α, whatever the
     excitation still to come does within its impulse (docs/engine.md, "Early stops").
 
@@ -225,14 +225,14 @@ def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, kappa_hi
     kind : int
         DRIVEN_STEADY: V = V₀ + κ_lo·f·S(θ) (``kappa_low`` = κ_lo·f), which the device never raises,
         must stay below (1 − cos α)(1 − margin), ``level``; DRIVEN_SWITCHING: V₀ grows also by the
-        device's pumping, at most p/√2·κ_hi·sin θ_a(level) per second for ``pump_time`` more seconds,
-        and must stay below ``level`` (:func:`switching_level`).
-    kappa_low, kappa_high : float
-        κ_lo·f of the working spring, and κ_hi = κ_max. [-]
+        device's pumping, ``pump``, and must stay below ``level`` (:func:`switching_level`).
+    kappa_low : float
+        κ_lo·f of the working spring. [-]
     level : float
         The level √V must stay below, squared. [-]
-    pump_time : float
-        Time left in the excitation. [s]
+    pump : float
+        DRIVEN_SWITCHING: the growth of √V₀ the device can cause over the rest of the excitation,
+        p/√2·κ_max·sin θ_a(level) times the time left. [-]
     """
     if abs(th) > alpha:
         return False
@@ -241,7 +241,6 @@ def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, kappa_hi
         v += 2.0 * kappa_low * math.sin(0.5 * th) ** 2
         x = math.sqrt(max(v, 0.0)) + impulse
     else:
-        pump = p / math.sqrt(2.0) * kappa_high * math.sin(peak_rotation(level, alpha)) * pump_time
         x = math.sqrt(max(v, 0.0)) + impulse + pump
     return x * x < level
 
