@@ -16,6 +16,12 @@ how many runs are bitwise equal, equal within the tolerance, and which differ in
 
     python benchmarks/kernel_fingerprint.py compare before.npz after.npz --tolerance 1e-4
 
+A change to the early stops (runs that may end sooner as safe, status ``ST_BOUND``) is checked with
+``compare --early-stop``: every run bitwise equal, or ended as safe by the stop in B no later than in A,
+where A did not overturn either; it prints which fields the earlier stops change:
+
+    python benchmarks/kernel_fingerprint.py compare before.npz after.npz --early-stop
+
 The cases cover every strategy, sampling time, delay, anchorage and overturn criterion, on noisy
 records, the analytic excitations and (``--vertical``) vertical records, with histories and logs
 switched on and off, and (``--sensor``) the controller's sensor. The same seed gives the same
@@ -99,7 +105,39 @@ def _within(u, v, rtol: float) -> bool:
     return bool(np.all(both_nan | (np.abs(u - v) <= rtol * scale)))
 
 
-def compare(a: str, b: str, tolerance: float | None = None) -> int:
+def _early_stop_fields(x, y, r: str):
+    """The fields of run ``r`` that differ between A (``x``) and B (``y``) when B ended it as safe by an
+    early stop no later than A and A did not overturn it; None when the run differs otherwise."""
+    sx, sy = int(x[f"{r}/status"]), int(y[f"{r}/status"])
+    if sx == kn.ST_OVER or sy != kn.ST_BOUND or not float(y[f"{r}/end_time"]) <= float(x[f"{r}/end_time"]):
+        return None
+    if not (np.isnan(x[f"{r}/overturn_time"]) and np.isnan(y[f"{r}/overturn_time"])):
+        return None
+    return [f for f in kn.KernelResult._fields if not np.array_equal(x[f"{r}/{f}"], y[f"{r}/{f}"], equal_nan=True)]
+
+
+def compare_early_stop(x, y, runs, bad) -> int:
+    """``compare --early-stop``: every run that differs is one that B ended earlier as safe and A did not
+    overturn. Returns 0 when that holds, 1 otherwise."""
+    counts, wrong = {}, []
+    for r in bad:
+        fields = _early_stop_fields(x, y, r)
+        if fields is None:
+            wrong.append(r)
+            continue
+        for f in fields:
+            counts[f] = counts.get(f, 0) + 1
+    for r in wrong[:20]:
+        print(f"run {r}: status {int(x[f'{r}/status'])} -> {int(y[f'{r}/status'])}, not an earlier safe stop")
+    overturned = sum(int(x[f"{r}/status"]) == kn.ST_OVER for r in runs)
+    print(f"{len(runs)} runs compared ({overturned} overturned in A): {len(runs) - len(bad)} bitwise equal, "
+          f"{len(bad) - len(wrong)} ended earlier as safe by the stop in B, {len(wrong)} otherwise different"
+          + (f"; fields changed by the earlier stops: {', '.join(f'{k} {v}' for k, v in counts.items())}"
+             if counts else ""))
+    return 1 if wrong else 0
+
+
+def compare(a: str, b: str, tolerance: float | None = None, early_stop: bool = False) -> int:
     """Compare two fingerprints: bit for bit, or (``tolerance``) each run's ending and its
     :data:`TOLERANCE_FIELDS` to a relative tolerance. Returns 0 when they agree, 1 otherwise."""
     x, y = np.load(a), np.load(b)
@@ -112,6 +150,8 @@ def compare(a: str, b: str, tolerance: float | None = None) -> int:
     runs = sorted(fields_of, key=int)
     bad = [r for r in runs if any(not np.array_equal(x[k], y[k], equal_nan=True) or x[k].dtype != y[k].dtype
                                   for k in fields_of[r])]
+    if early_stop:
+        return compare_early_stop(x, y, runs, bad)
     if tolerance is None:
         for r in bad[:20]:
             print(f"run {r} differs")
@@ -150,11 +190,13 @@ def main(argv=None) -> int:
     c.add_argument("b")
     c.add_argument("--tolerance", type=float, default=None,
                    help="compare each run's ending and times to this relative tolerance instead of bit for bit")
+    c.add_argument("--early-stop", action="store_true",
+                   help="allow runs that B ends earlier as safe (ST_BOUND) where A did not overturn; else bit for bit")
     args = ap.parse_args(argv)
     if args.command == "save":
         save(args.path, args.n, args.seed, args.sensor, args.vertical, args.stepper)
         return 0
-    return compare(args.a, args.b, args.tolerance)
+    return compare(args.a, args.b, args.tolerance, args.early_stop)
 
 
 if __name__ == "__main__":

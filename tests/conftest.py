@@ -1,3 +1,5 @@
+import os
+
 import pytest
 
 from rockstudy import BLOCK_PRESETS, Anchorage
@@ -13,8 +15,36 @@ def anchorage():
     return Anchorage()
 
 
+SLOW = (
+    "tests/test_tiny_study.py",
+    "tests/test_workflow.py",
+    "tests/test_doc_blocks.py",
+    "tests/test_risk_workflow.py",
+    "tests/test_beyond_workflow.py",
+    "tests/test_overlays.py",
+    "tests/test_docs.py::test_docs_build_without_warnings",
+    "tests/test_docs.py::test_guide_examples_run",
+    "tests/engine/test_termination.py::test_compiled_scans_and_the_suite_fragility_end_below_the_float_spacing",
+)
+"""Modules and tests marked ``slow`` here, besides those their own modules mark: the ones that run Snakemake
+(each dry run builds the study's DAG; the tiny study runs it end to end), the documentation's Sphinx build
+and examples, and a scan to the float spacing in a fresh process. pyproject's addopts leave the slow tests
+out of a plain ``python -m pytest``; CI (``CI=true``) and ``-m slow`` or ``-m ""`` run them."""
+
+
+def pytest_configure(config):
+    """Under CI (``CI=true``, as ``.ci/run`` is run there) every test runs, the slow ones included."""
+    if os.environ.get("CI") == "true":
+        config.option.markexpr = ""
+
+
+@pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(items):
-    """The modules marked ``long_chain`` first, in their order: with several workers (pyproject's addopts,
-    a module to a worker) such a chain (the tiny study, run once for the module's tests) starts at once
-    while the other workers share the rest, instead of starting last and running alone."""
+    """Mark the :data:`SLOW` tests (before ``-m`` deselects by mark), then the modules marked ``long_chain``
+    first, in their order: with several workers (pyproject's addopts, a module to a worker) such a chain
+    (the tiny study, run once for the module's tests) starts at once while the other workers share the rest,
+    instead of starting last and running alone."""
+    for item in items:
+        if item.nodeid.startswith(SLOW):
+            item.add_marker(pytest.mark.slow)
     items.sort(key=lambda item: item.get_closest_marker("long_chain") is None)

@@ -32,6 +32,7 @@ job computes it and in whatever order; every reading of a level uses the same dr
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -262,10 +263,19 @@ def baseline_samples(kind: str, omega: float, dt: float = NOISE_DT) -> tuple[np.
     """
     omega = validation.check_positive("omega", omega, "rad/s")
     dt = validation.check_positive("dt", dt, "s")
+    return _baseline(kind, float(omega), float(dt)).copy(), dt
+
+
+@functools.lru_cache(maxsize=256)
+def _baseline(kind: str, omega: float, dt: float) -> np.ndarray:
+    """:func:`baseline_samples`' values, made once per (kind, ω_p, dt) in a process and kept read-only:
+    every realisation of a frequency shares its baseline (Eq. 23's envelope is most of a record's cost)."""
     duration = excitation_duration(kind, omega)
     n = sample_count(duration, dt)
     t = np.arange(n + 1) * dt
-    return np.asarray(analytic(kind, t, 1.0, omega), dtype=float), dt
+    values = np.asarray(analytic(kind, t, 1.0, omega), dtype=float)
+    values.setflags(write=False)
+    return values
 
 
 def energy(values, dt: float) -> float:

@@ -47,9 +47,15 @@ from rockstudy.engine._kernel.events import (
 )
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration
 from rockstudy.engine._kernel.layout import (
+    B_LEVEL,
+    B_PUMP,
+    B_SCALE,
+    B_TAIL,
+    B_UPLIFT,
     C_BOUND,
     C_BOUND_SWITCHING,
     C_CD,
+    C_DRIVEN,
     C_EXC_END,
     C_FRACTURE,
     C_HISTORY,
@@ -63,6 +69,7 @@ from rockstudy.engine._kernel.layout import (
     C_TAYLOR,
     C_V_END,
     I_ALPHA,
+    I_AMP,
     I_ATOL,
     I_BOUND,
     I_CD,
@@ -79,7 +86,9 @@ from rockstudy.engine._kernel.layout import (
     I_P,
     I_RDT,
     I_RTOL,
+    I_SENSE,
     I_SINA,
+    I_SOFF,
     I_STRAT,
     I_TAYLOR,
     I_TDU,
@@ -102,6 +111,7 @@ from rockstudy.engine._kernel.layout import (
     NFILL,
     NSTATE,
     R_APEX,
+    R_CHECK,
     R_DAMPER,
     R_F0,
     R_F0_OK,
@@ -137,7 +147,7 @@ from rockstudy.engine._kernel.layout import (
 )
 from rockstudy.engine._kernel.maps import sign
 from rockstudy.model.control import CS01, CS02, FS, PASSIVE, stiffness_on
-from rockstudy.model.excitation import RECORD
+from rockstudy.model.excitation import MODULATED, RECORD
 
 GROWTH_CAP_ERROR = 5.8e-6
 """Below this scaled error a step's successor grows by the cap, 10x (0.9·err^-0.2 > 10.03)."""
@@ -293,7 +303,52 @@ def setup(P, vert, want_history, want_log):
     C[C_TAYLOR] = _flag(takes_taylor_steps(P, nvert))
     C[C_HISTORY] = _flag(want_history)
     C[C_LOG] = _flag(want_log)
+    # the early stop during the excitation (no vertical record: its Ÿg would change the potential)
+    if C[C_BOUND] != 0.0 and nvert == 0:
+        pumps = kmax != kmin and (sampled or strategy == CS02)
+        C[C_DRIVEN] = maps.DRIVEN_SWITCHING if pumps else maps.DRIVEN_STEADY
     return C
+
+
+@njit(cache=True)
+def driven_bound_data(P, rec, vert):
+    """The data of the early stop during the excitation (``B_*`` slots), the same for every amplitude of
+    a case: the level its bound must stay below, the impulse per unit of ∫|Ẍg| dt and, for a record, the
+    integral of |record| from each knot to the end of the excitation (linear pieces bounded by the mean
+    of their ends' magnitudes) and the largest |record| from each knot on. Two slots (and no stop) when the
+    run cannot stop early."""
+    C = setup(P, vert, False, False)
+    kind = int(C[C_DRIVEN])
+    n = 0
+    if kind != maps.DRIVEN_NONE and int(P[I_KIND]) == RECORD:
+        n = int(P[I_SOFF]) if P[I_SENSE] != 0.0 else rec.shape[0]
+    B = np.zeros(B_TAIL + 2 * n)
+    if kind == maps.DRIVEN_NONE:
+        return B
+    alpha = P[I_ALPHA]
+    if kind == maps.DRIVEN_STEADY:
+        B[B_LEVEL] = (1.0 - math.cos(alpha)) * (1.0 - maps.DRIVEN_MARGIN)
+    else:
+        B[B_LEVEL] = maps.switching_level(alpha, P[I_E], C[C_KMAX], C[C_KMIN], C[C_SAMPLED] != 0.0)
+    B[B_SCALE] = P[I_P] / (math.sqrt(2.0) * P[I_G])
+    if kind == maps.DRIVEN_SWITCHING:
+        B[B_PUMP] = P[I_P] / math.sqrt(2.0) * C[C_KMAX] * math.sin(maps.peak_rotation(B[B_LEVEL], alpha))
+    B[B_UPLIFT] = P[I_G] * math.tan(alpha)
+    if n > 0:
+        dt = P[I_RDT]
+        dur = P[I_DUR]
+        last = (n - 1) * dt
+        acc = (dur - last) * abs(rec[n - 1]) if dur > last else 0.0
+        B[B_TAIL + n - 1] = acc
+        peak = abs(rec[n - 1])
+        B[B_TAIL + 2 * n - 1] = peak
+        for k in range(n - 2, -1, -1):
+            if k * dt < dur:
+                acc += 0.5 * dt * (abs(rec[k]) + abs(rec[k + 1]))
+            B[B_TAIL + k] = acc
+            peak = max(peak, abs(rec[k]))
+            B[B_TAIL + n + k] = peak
+    return B
 
 
 @njit(cache=True)
@@ -325,6 +380,7 @@ def initial_state(P, C, rec):
     S[R_APEX] = _flag(C[C_SWITCHING] != 0.0 and S[R_MODE] == MODE_ROCK and thd == 0.0 and th != 0.0
                       and strategy == CS01)
     S[R_H] = min(FIRST_STEP, P[I_HMAX])
+    S[R_CHECK] = 1.0
     return S
 
 
@@ -458,6 +514,64 @@ def below_overturning_energy(S, C, P):
     if C[C_BOUND_SWITCHING] != 0.0:
         return maps.cannot_overturn_switching(S[R_TH], S[R_THD], S[R_SIDE], P[I_P], P[I_ALPHA], P[I_E], C[C_KMAX])
     return maps.cannot_overturn(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], C[C_KMIN] * S[R_SPRING + _working(S)])
+
+
+@njit(cache=True, inline="always")
+def _knot_before(t, P, B):
+    """Index of the record knot one before the one at or before t, within the record of ``B``."""
+    return min(max(int(t / P[I_RDT]) - 1, 0), (B.shape[0] - B_TAIL) // 2 - 1)
+
+
+UPLIFT_MARGIN = 1e-9
+"""Relative margin of the test that a resting block can no longer uplift: over the rounding of the
+interpolated record and of the products. [-]"""
+
+
+@njit(cache=True, inline="always")
+def cannot_uplift_any_more(t, P, B):
+    """True when, under a record, |Ẍg| stays at or below g·tanα from t to the end of the excitation, so a
+    block at rest there stays at rest (no vertical record here; Ẍg between knots lies between theirs)."""
+    if int(P[I_KIND]) != RECORD:
+        return False
+    n = (B.shape[0] - B_TAIL) // 2
+    peak = B[B_TAIL + n + _knot_before(t, P, B)]
+    return abs(P[I_AMP]) * peak * (1.0 + UPLIFT_MARGIN) <= B[B_UPLIFT] * (1.0 - UPLIFT_MARGIN)
+
+
+@njit(cache=True, inline="always")
+def remaining_input(t, P, B):
+    """An upper bound of ∫ from t to the end of the excitation of |Ẍg|/a_p. [s]"""
+    dur = P[I_DUR]
+    if t >= dur:
+        return 0.0
+    kind = int(P[I_KIND])
+    if kind == RECORD:  # from the knot before t (one earlier, against the rounding of t/dt)
+        return B[B_TAIL + _knot_before(t, P, B)]
+    if kind == MODULATED:  # |Eq. 23| <= its envelope 90 s²(1 − s)⁶, integrated in closed form
+        y = min(max(1.0 - t / dur, 0.0), 1.0)
+        y7 = y ** 7
+        return dur * 90.0 * y7 * (1.0 / 7.0 - 0.25 * y + y * y / 9.0)
+    return dur - t  # one-sine pulse and rectangular pulse: |Ẍg| <= a_p
+
+
+@njit(cache=True, inline=inline_into("drive"))
+def below_driven_bound(S, C, P, B):
+    """True when the block, still under excitation, provably cannot overturn whatever the rest of
+    the excitation does within its impulse (docs/engine.md, "Early stops"). The impulse bound is tested
+    at the start and after each state event (``R_CHECK``), not at every known-time event in between (a
+    sampled run passes the driver at every controller sample); a resting block's uplift at every pass."""
+    t = S[R_T]
+    if not B[B_LEVEL] > 0.0:
+        return False
+    if S[R_MODE] == MODE_REST and cannot_uplift_any_more(t, P, B):
+        return True
+    if S[R_CHECK] == 0.0:  # nothing new since the last test: at the next state event
+        return False
+    S[R_CHECK] = 0.0
+    impulse = B[B_SCALE] * abs(P[I_AMP]) * remaining_input(t, P, B)
+    return maps.cannot_overturn_driven(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], impulse, int(C[C_DRIVEN]),
+                                       C[C_KMIN] * S[R_SPRING + _working(S)], B[B_LEVEL],
+                                       B[B_PUMP] * (C[C_EXC_END] - t))
 
 
 @njit(cache=True, inline=inline_into("drive"))
@@ -925,7 +1039,7 @@ def _history_row(S, C, P, rec, H, N):
 
 
 @njit(cache=True, **NO_REFCOUNT)
-def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplifts, rests, N):
+def drive(S, C, P, rec, vert, B, K, Q, queue_times, queue_values, H, impacts, uplifts, rests, N):
     """The driver's loop: the parts of a run in turn until it ends. Returns an ``ST_*`` code, or GROW
     when the history or an event log is full; ``N`` (``N_*``) holds how far each is written.
 
@@ -951,6 +1065,9 @@ def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplif
             if mode == MODE_REST and S[R_T] >= C[C_EXC_END]:
                 status = ST_REST
                 break
+            if C[C_DRIVEN] != 0.0 and S[R_T] < C[C_EXC_END] and below_driven_bound(S, C, P, B):
+                status = ST_BOUND
+                break
             if mode == MODE_REST and C[C_QUIET_KNOTS] != 0.0 and S[R_H_ON] != 0.0:
                 t_next = pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next)
             left = ground_phase(S, C, P, rec, vert, t_next)
@@ -968,6 +1085,9 @@ def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplif
         if C[C_BOUND] != 0.0 and S[R_T] >= C[C_EXC_END] and below_overturning_energy(S, C, P):
             status = ST_BOUND
             break
+        if C[C_DRIVEN] != 0.0 and S[R_T] < C[C_EXC_END] and below_driven_bound(S, C, P, B):
+            status = ST_BOUND
+            break
         if S[R_APEX] != 0.0 and apex(S, C, P, rec, vert) == HELD:
             continue
         result = integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N)
@@ -981,6 +1101,7 @@ def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplif
         if want_history:
             _history_row(S, C, P, rec, H, N)
         what = state_event(S, C, P, rec, vert)
+        S[R_CHECK] = 1.0
         if what == OVERTURNED:
             status = ST_OVER
             break
@@ -994,6 +1115,13 @@ def drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplif
 @njit(cache=True)
 def simulate_kernel(P, rec, vert, want_history, want_log):
     """Simulate one run; returns a :class:`~rockstudy.engine._kernel.layout.KernelResult`."""
+    return run_kernel(P, rec, vert, driven_bound_data(P, rec, vert), want_history, want_log)
+
+
+@njit(cache=True)
+def run_kernel(P, rec, vert, B, want_history, want_log):
+    """:func:`simulate_kernel` with the early stop's data ``B`` (:func:`driven_bound_data`) given, so
+    that the runs of a threshold scan share it."""
     C = setup(P, vert, want_history, want_log)
     S = initial_state(P, C, rec)
     queue_times, queue_values = maps.queue_new(P[I_DELAY], P[I_TS])
@@ -1005,7 +1133,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     H = np.empty((256 if want_history else 0, 5))
     N = np.zeros(NFILL, dtype=np.int64)
     while True:
-        status = drive(S, C, P, rec, vert, K, Q, queue_times, queue_values, H, impacts, uplifts, rests, N)
+        status = drive(S, C, P, rec, vert, B, K, Q, queue_times, queue_values, H, impacts, uplifts, rests, N)
         if status != GROW:
             break
         if want_history and _hist_full(H, N[N_HISTORY]):

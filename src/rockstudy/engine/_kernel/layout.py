@@ -61,7 +61,16 @@ C_QUIET_KNOTS = 11  # 1: at rest, record knots pass in one tight loop (no sample
 C_TAYLOR = 12    # 1: while the record lasts the steps are Taylor steps (I_TAYLOR, a record, no vertical record)
 C_HISTORY = 13   # 1: the run writes its history (rows t, θ, θ̇, κ, Ẍg)
 C_LOG = 14       # 1: the run logs its impact, uplift and rest times
-NCONST = 15
+C_DRIVEN = 15    # early stop during the excitation: maps.DRIVEN_NONE, DRIVEN_STEADY or DRIVEN_SWITCHING
+NCONST = 16
+
+# ---- the early stop's data during the excitation (engine.driven_bound_data), fixed for all amplitudes ----
+B_LEVEL = 0      # the level the bound must stay below (maps.cannot_overturn_driven) [-]
+B_SCALE = 1      # p/(√2·g): the impulse J per unit of ∫|Ẍg| dt [s/m]
+B_PUMP = 2       # p/√2·κ_max·sin θ_a(level): the device's largest pumping of √V₀ per second (switching control) [1/s]
+B_UPLIFT = 3     # g·tanα: the |Ẍg| above which a resting block uplifts [m/s^2]
+B_TAIL = 4       # records: from here n slots, ∫ from knot k to the end of the excitation of |record| (upper bound)
+                 # [s]; then n slots, the largest |record| from knot k on [-]
 
 # ---- the run's state record: every quantity the driving loop changes (engine.py) ------------
 R_T = 0          # time t [s]
@@ -90,7 +99,8 @@ R_FRAC = 24      # fracture times: spring L, R, damper L, R (NaN: intact): 4 slo
 R_RESUME = 28    # 1: integrate stopped mid-segment for a larger history array; it goes on from here
 R_T_NEXT = 29    # ... towards this known-time event [s]
 R_N_STEPS = 30   # steps and passes of the driver's loop so far (capped by MAX_STEPS)
-NSTATE = 31
+R_CHECK = 31     # 1: the early stop's bound during the excitation is tested at the driver's next pass
+NSTATE = 32
 
 # ---- fill levels of the growable arrays (engine.drive's ``N``, int64) -------------------------
 N_HISTORY = 0    # rows of the history written

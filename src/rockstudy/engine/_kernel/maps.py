@@ -152,6 +152,99 @@ def cannot_overturn_switching(th, thd, side, p, alpha, e, kappa_high):
     return e * e * (u_star + 2.0 * kappa_high * math.sin(0.5 * peak_star) ** 2) <= u_star - ENERGY_MARGIN
 
 
+# ---- the early stop during the excitation: a bound on the input still to come ---------------
+DRIVEN_MARGIN = 1e-2
+"""Relative margin of the early stop during the excitation: the bound must clear its level by 1 %,
+far above the integrator's energy error over the rest of a run. [-]"""
+
+DRIVEN_NONE, DRIVEN_STEADY, DRIVEN_SWITCHING = 0, 1, 2
+"""How a run may stop during the excitation: not at all; with V = V₀ + κ_lo·f·S(θ), which the
+device never raises (FS, PASSIVE, continuous CS01, and any strategy whose stiffness does not switch);
+with V₀ and the device's largest pumping (CS02 and sampled or delayed switching control)."""
+
+
+@njit(cache=True)
+def peak_rotation(v, alpha):
+    """θ_a(v): the rotation at which g(θ) = cos(α − θ) − cos α reaches ``v`` (0 <= v <= 1 − cos α). [rad]"""
+    return alpha - math.acos(min(1.0, math.cos(alpha) + v))
+
+
+@njit(cache=True)
+def _free_level_holds(v, alpha, e, kappa_high, kappa_low, sampled):
+    """True when a block free of excitation with V₀ <= ``v`` (|θ| <= θ_a(v)) provably never reaches
+    |θ| = α again: under any stiffness history in [0, κ_hi] (``sampled``, the half-cycle bound of
+    :func:`cannot_overturn_switching` at u = e²·(v + κ_hi·S(θ_a(v)))), else under continuous control
+    (the bound of :func:`cannot_overturn`: v + κ_lo·S(θ_a(v)) below 1 − cos α). Both with margin."""
+    gap = (1.0 - math.cos(alpha)) * (1.0 - DRIVEN_MARGIN)
+    if not v <= gap:
+        return False
+    if not sampled:
+        return v + 2.0 * kappa_low * math.sin(0.5 * peak_rotation(v, alpha)) ** 2 <= gap
+    u = e * e * (v + 2.0 * kappa_high * math.sin(0.5 * peak_rotation(v, alpha)) ** 2)
+    if not u <= gap:
+        return False
+    return e * e * (u + 2.0 * kappa_high * math.sin(0.5 * peak_rotation(u, alpha)) ** 2) <= u * (1.0 - DRIVEN_MARGIN)
+
+
+@njit(cache=True)
+def switching_level(alpha, e, kappa_high, kappa_low, sampled):
+    """Largest level v̄ of V₀ = θ̇²/(2p²) + cos(α − |θ|) − cos α at the end of the excitation from
+    which the block provably never overturns afterwards (:func:`_free_level_holds`, true on [0, v̄]:
+    its left sides increase with v), by bisection to a relative 1e-12. [-]"""
+    lo, hi = 0.0, 1.0 - math.cos(alpha)
+    if _free_level_holds(hi, alpha, e, kappa_high, kappa_low, sampled):
+        return hi
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if _free_level_holds(mid, alpha, e, kappa_high, kappa_low, sampled):
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-12 * hi:
+            break
+    return lo
+
+
+@njit(cache=True)
+def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, pump):
+    """True when a block still under excitation provably never reaches |θ| = α, whatever the
+    excitation still to come does within its impulse (docs/engine.md, "Early stops").
+
+    With V₀ = θ̇²/(2p²) + g(θ), g(θ) = cos(α − |θ|) − cos α and S(θ) = 2·sin²(θ/2), the input
+    changes V₀ at most by |Ẍg/g|·|θ̇| <= |Ẍg/g|·p·√(2V₀), so √V grows at most by
+    J = p/√2·∫|Ẍg/g| dt over the rest of the excitation (``impulse``).
+
+    Parameters
+    ----------
+    th, thd : float
+        θ [rad] and θ̇ [rad/s].
+    p, alpha : float
+        Frequency parameter [rad/s] and slenderness [rad].
+    impulse : float
+        J, the bound on the input still to come in units of √V. [-]
+    kind : int
+        DRIVEN_STEADY: V = V₀ + κ_lo·f·S(θ) (``kappa_low`` = κ_lo·f), which the device never raises,
+        must stay below (1 − cos α)(1 − margin), ``level``; DRIVEN_SWITCHING: V₀ grows also by the
+        device's pumping, ``pump``, and must stay below ``level`` (:func:`switching_level`).
+    kappa_low : float
+        κ_lo·f of the working spring. [-]
+    level : float
+        The level √V must stay below, squared. [-]
+    pump : float
+        DRIVEN_SWITCHING: the growth of √V₀ the device can cause over the rest of the excitation,
+        p/√2·κ_max·sin θ_a(level) times the time left. [-]
+    """
+    if abs(th) > alpha:
+        return False
+    v = thd * thd / (2.0 * p * p) + (math.cos(alpha - abs(th)) - math.cos(alpha))
+    if kind == DRIVEN_STEADY:
+        v += 2.0 * kappa_low * math.sin(0.5 * th) ** 2
+        x = math.sqrt(max(v, 0.0)) + impulse
+    else:
+        x = math.sqrt(max(v, 0.0)) + impulse + pump
+    return x * x < level
+
+
 # ---- the sampled controller: decisions wait in a ring buffer until they act -------------------
 @njit(cache=True)
 def queue_new(delay, sampling_time):

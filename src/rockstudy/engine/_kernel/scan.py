@@ -16,7 +16,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from rockstudy.engine._kernel.engine import simulate_kernel
+from rockstudy.engine._kernel.engine import driven_bound_data, run_kernel
 from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, ST_ELIMIT, ST_OVER
 from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, SAFE, UNDETERMINED
 
@@ -116,11 +116,18 @@ from Python, so the engine is compiled once, not once more for Literal[False].""
 @njit(cache=True)
 def outcome_kernel(P, rec, vert, amplitude_ratio, unit_peak):
     """:class:`~rockstudy.engine.outcome.Outcome` code of one run at one amplitude ratio."""
+    return case_outcome(P, rec, vert, driven_bound_data(P, rec, vert), amplitude_ratio, unit_peak)
+
+
+@njit(cache=True)
+def case_outcome(P, rec, vert, B, amplitude_ratio, unit_peak):
+    """:func:`outcome_kernel` with the early stop's data ``B`` of the case
+    (:func:`rockstudy.engine._kernel.engine.driven_bound_data`), shared by its amplitudes."""
     if vert.shape[0] == 0 and amplitude_ratio * unit_peak <= 1.0:
         return NO_UPLIFT
     Q = P.copy()
     Q[I_AMP] = amplitude_ratio * P[I_G] * math.tan(P[I_ALPHA])
-    res = simulate_kernel(Q, rec, vert, _NO[0], _NO[1])
+    res = run_kernel(Q, rec, vert, B, _NO[0], _NO[1])
     if res.status == ST_ELIMIT:
         return UNDETERMINED
     if res.status == ST_OVER:
@@ -134,8 +141,9 @@ def run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, counts):
     (simulations, undetermined runs). With ``resolution`` = inf the scan stops at the first grid
     point that overturns (or the last), ``state[S_J]``, without bisecting."""
     done = state[S_PHASE] == DONE
+    B = driven_bound_data(P, rec, vert)
     while not done:
-        o = outcome_kernel(P, rec, vert, scan_amplitude(state, grid), unit_peak)
+        o = case_outcome(P, rec, vert, B, scan_amplitude(state, grid), unit_peak)
         if o != NO_UPLIFT:
             counts[0] += 1
         if o == UNDETERMINED:
@@ -166,8 +174,9 @@ def _threshold_case(i, Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks
 @njit(cache=True, inline="always")
 def _outcome_case(i, Pm, recs, rec_off, rec_len, vert, grid, peaks, out):
     rec = recs[rec_off[i]:rec_off[i] + rec_len[i]]
+    B = driven_bound_data(Pm[i], rec, vert)
     for j in range(grid.shape[0]):
-        out[i, j] = outcome_kernel(Pm[i], rec, vert, grid[j], peaks[i])
+        out[i, j] = case_outcome(Pm[i], rec, vert, B, grid[j], peaks[i])
 
 
 @njit(cache=True, parallel=True)
