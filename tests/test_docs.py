@@ -99,7 +99,8 @@ def test_readme_python_example_runs(tmp_path, monkeypatch, capsys):
 def test_readme_commands_are_what_ci_runs():
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
-    install, lint_and_test = 'python -m pip install -c constraints.txt -e ".[all]"', "ruff check . && python -m pytest"
+    install = 'python -m pip install -c constraints.txt -e ".[all]"'
+    lint_and_test = "ruff check . && python -m mypy && python -m pytest"
     assert f"{install} && snakemake -j2" in readme and lint_and_test in readme
     assert install in ci and lint_and_test in ci
 
