@@ -8,7 +8,7 @@ import pytest
 import yaml
 
 from rockstudy import __version__
-from rockstudy.cli import _apply_config, _DefaultsFormatter, _scenario, build_parser, main
+from rockstudy.cli import COMMANDS, _apply_config, _DefaultsFormatter, _scenario, build_parser, main
 from rockstudy.model.block import BLOCK_PRESETS
 from rockstudy.studies import parameters
 
@@ -50,6 +50,14 @@ def test_every_help_states_every_default(command):
         assert "default" in formatter._get_help_string(action), action.option_strings
     text = sub.format_help()
     assert "default" in text
+
+
+@pytest.mark.parametrize("command", sorted(COMMANDS))
+def test_every_command_answers_help(command, capsys):
+    """``rockstudy COMMAND --help`` prints its help and exits 0 (a ``%`` in a help text breaks argparse)."""
+    with pytest.raises(SystemExit) as stop:
+        main([command, "--help"])
+    assert stop.value.code == 0 and f"usage: rockstudy {command}" in capsys.readouterr().out
 
 
 def test_spectrum_takes_realisations_not_realisation():

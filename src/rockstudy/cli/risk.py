@@ -91,8 +91,9 @@ def register(sub) -> None:
     site.add_argument("--hazard", metavar="FILE", help="hazard file of one or many sites: two columns (PGA [g], "
                       "annual rate of exceedance [1/yr]), an OpenQuake hazard-curve CSV, an nshmp-haz curves CSV "
                       "or a USGS hazard tool JSON")
+    units = ", ".join(HAZARD_UNITS).replace("%", "%%")  # argparse formats help with %: "%g" must be "%%g"
     site.add_argument("--hazard-unit", choices=tuple(HAZARD_UNITS), metavar="UNIT",
-                      help=f"unit of the hazard file's PGA levels ({', '.join(HAZARD_UNITS)}); default: the file's, "
+                      help=f"unit of the hazard file's PGA levels ({units}); default: the file's, "
                            "else g, refused when the curve cannot be in g")
     site.add_argument("--scenario", metavar="KEY=VALUE,...", help="earthquake scenario, e.g. "
                       "mag=7,dist_rup=10,v_s30=400 (optional: mechanism, dip, depth_tor, dist_jb, dist_x)")
