@@ -8,6 +8,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.text import Text  # noqa: E402
+from test_plotting import with_map  # noqa: E402
 
 from builders import BLC06, fake_spectrum  # noqa: E402
 from rockstudy import plotting  # noqa: E402
@@ -15,7 +16,6 @@ from rockstudy.analysis.spectra import Scenario  # noqa: E402
 from rockstudy.model.control import Control  # noqa: E402
 from rockstudy.plotting import histories, layout, records, style  # noqa: E402
 from rockstudy.studies import datasets  # noqa: E402
-from test_plotting import with_map  # noqa: E402
 
 
 @pytest.fixture(scope="module")
