@@ -2,7 +2,7 @@
 another in a circle (also not through an import inside a function).
 
 Layers, bottom to top: ``_version`` < ``core/`` < ``model/`` < ``engine/`` < ``analysis/`` < ``studies/``
-< ``cli/``, ``plotting/``, ``report.py`` < the package face ``__init__.py``.
+< ``cli/``, ``plotting/``, ``report/`` < the package face ``__init__.py``.
 """
 from __future__ import annotations
 

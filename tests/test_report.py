@@ -144,3 +144,65 @@ def test_a_wide_table_is_shown_transposed_on_its_page():
     narrow = "| a | b |\n|---|---|\n| 1 | 2 |\n"
     assert transposed_wide_tables(narrow) == narrow
     assert markdown_page(text).count("<tr>") == 13
+
+
+def stripes_fragility(statuses: dict) -> xr.Dataset:
+    """A fragility in PGA over the strategies of ``statuses`` (strategy: fit status): "ok" fits have a median
+    of 0.5 g, 0.6 g, ... with a 95 % interval; the others none, as :func:`fit_lognormal_stripes` leaves them."""
+    fitted = [status == "ok" for status in statuses.values()]
+    median = np.array([0.5 + 0.1 * k if ok else np.nan for k, ok in enumerate(fitted)])
+    return xr.Dataset({"fragility_median_physical": ("strategy", median, {"units": "g"}),
+                       "median_low_physical": ("strategy", 0.8 * median, {"units": "g"}),
+                       "median_high_physical": ("strategy", 1.2 * median, {"units": "g"}),
+                       "fragility_median": ("strategy", 4 * median, {"units": "1"}),
+                       "fragility_dispersion": ("strategy", np.where(fitted, 0.4, np.nan)),
+                       "median_shift_percent": ("strategy", 100 * (median / median[0] - 1)),
+                       "fit_status": ("strategy", list(statuses.values()))},
+                      coords={"strategy": list(statuses)}, attrs={"record_suite": "test", "n_records": 2})
+
+
+SCENARIO = {"M7": {"mag": 7, "dist_rup": 10, "v_s30": 400}}
+
+
+def power_law_site():
+    from rockstudy.analysis.hazard import HazardCurve
+    x = np.geomspace(0.001, 20.0, 200)
+    return {"site": HazardCurve(x, 1e-4 * x ** -2.5, source="power law")}
+
+
+@pytest.mark.parametrize("sites", ["scenario", "hazard", "both"])
+def test_a_risk_table_says_what_each_cell_means(sites):
+    """A device that never overturns on the stripes (NaN median, fit status "no overturning") and one that
+    overturns on every stripe: their cells say so or carry a footnote that does, no cell is NaN, and the
+    sentence on the share from outside the hazard curve is there only with a hazard curve."""
+    pytest.importorskip("pygmm")
+    from rockstudy.analysis.risk_sites import risk_dataset
+    fragility = stripes_fragility({"FS": "ok", "CS01": "no overturning", "CS02": "all overturned", "PASSIVE": "ok"})
+    ds = risk_dataset(fragility, scenarios=SCENARIO if sites != "hazard" else None,
+                      hazard_curves=power_law_site() if sites != "scenario" else None, years=50)
+    table = report.risk_markdown(ds)
+    assert not re.search(r"\bnan\b", table, re.IGNORECASE), table
+    rows = {line.split(" | ")[0].strip("| "): line.split(" | ") for line in table.splitlines() if line.startswith("| ")}
+    assert "never overturns on these stripes" in rows["CS01"][1] and "overturns on every stripe" in rows["CS02"][1]
+    for name in ("CS01", "CS02"):
+        marks = {cell.strip(" |")[-1] for cell in rows[name][1:]}
+        assert len(marks) == 1 and all(cell.strip(" |").startswith("—") for cell in rows[name][2:]), rows[name]
+        mark = marks.pop()
+        note = next(line for line in table.splitlines() if line.startswith(f"- {mark} {name} "))
+        assert "no number is given" in note
+    assert "—" not in "".join(rows["PASSIVE"][1:-1]) and "%" in rows["PASSIVE"][-1]
+    assert ("outside the curve" in table) == (sites != "scenario")
+    overview = report.beyond_overview_html([fragility], [ds])
+    assert not re.search(r"\bnan\b", overview, re.IGNORECASE) and "never overturns on these stripes" in overview
+
+
+def test_a_risk_table_without_any_rate_claims_no_share_from_outside_the_curve():
+    """Every strategy never overturns on the stripes, FS too: no rate, so no sentence on where the rates
+    come from, and the change over FS of the others points to FS's footnote."""
+    from rockstudy.analysis.risk_sites import risk_dataset
+    ds = risk_dataset(stripes_fragility({"FS": "no overturning", "CS01": "no overturning"}),
+                      hazard_curves=power_law_site(), years=50)
+    table = report.risk_markdown(ds)
+    assert not re.search(r"\bnan\b", table, re.IGNORECASE), table
+    assert "outside the curve" not in table and "- site: hazard curve power law." in table
+    assert table.count("never overturns on these stripes") == 2 + 2  # two median cells, two footnotes

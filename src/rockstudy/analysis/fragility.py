@@ -16,7 +16,7 @@ Intensity measures (each record is scaled to the IM level):
 * ``pgv_ratio``: PGV·p/(g·tanα), the peak ground velocity in the rocking block's own scale
   (:func:`rockstudy.model.record_suites.peak_ground_velocity`).
 
-The Markdown tables of these datasets are in :mod:`rockstudy.report`.
+The Markdown tables of these datasets are in :mod:`rockstudy.report.fragility_tables`.
 """
 from __future__ import annotations
 

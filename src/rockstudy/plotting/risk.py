@@ -15,7 +15,7 @@ def plot_hazard_curves(ax, risk):
     ax : matplotlib.axes.Axes
         The axes to draw on.
     risk : xarray.Dataset
-        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`) with hazard curves: ``hazard_pga`` [g] and
+        A risk dataset (:func:`rockstudy.analysis.risk_sites.risk_dataset`) with hazard curves: ``hazard_pga`` [g] and
         ``hazard_rate`` [1/yr] over (hazard, hazard_point), NaN-padded.
     """
     lines = []
@@ -40,7 +40,7 @@ def plot_risk_fragilities(ax, risk):
     ax : matplotlib.axes.Axes
         The axes to draw on.
     risk : xarray.Dataset
-        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`): ``fragility_median`` [g] and
+        A risk dataset (:func:`rockstudy.analysis.risk_sites.risk_dataset`): ``fragility_median`` [g] and
         ``fragility_dispersion`` [-] over ``strategy``; with scenarios, ``median_pga`` [g] and ``ln_std_pga`` [-]
         over ``scenario``.
     """
@@ -77,8 +77,8 @@ def plot_disaggregation(ax, risk, hazard: int = 0):
     ax : matplotlib.axes.Axes
         The axes to draw on.
     risk : xarray.Dataset
-        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`) with hazard curves: ``disaggregation`` [-] over
-        (strategy, hazard, pga_band), ``pga_band_low`` and ``pga_band_high`` [g].
+        A risk dataset (:func:`rockstudy.analysis.risk_sites.risk_dataset`) with hazard curves: ``disaggregation``
+        [-] over (strategy, hazard, pga_band), ``pga_band_low`` and ``pga_band_high`` [g].
     hazard : int, default 0
         Position of the hazard curve along ``hazard``.
     """
@@ -108,7 +108,7 @@ def plot_scenario_probabilities(ax, risk):
     ax : matplotlib.axes.Axes
         The axes to draw on.
     risk : xarray.Dataset
-        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`) with scenarios: ``scenario_probability``,
+        A risk dataset (:func:`rockstudy.analysis.risk_sites.risk_dataset`) with scenarios: ``scenario_probability``,
         ``scenario_probability_low`` and ``scenario_probability_high`` [-] over (strategy, scenario).
     """
     strategies = [str(s) for s in risk["strategy"].values]
@@ -138,7 +138,7 @@ def figure_risk(risk):
     Parameters
     ----------
     risk : xarray.Dataset
-        A risk dataset (:func:`rockstudy.analysis.risk.risk_dataset`); with a ``hazard`` coordinate, three panels
+        A risk dataset (:func:`rockstudy.analysis.risk_sites.risk_dataset`); with a ``hazard`` coordinate, three panels
         on two rows: :func:`plot_hazard_curves` and the fragilities above, :func:`plot_disaggregation` (first
         hazard curve) below; else two side by side: the fragilities and :func:`plot_scenario_probabilities`.
     """

@@ -8,6 +8,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.text import Text  # noqa: E402
+from test_plotting import with_map  # noqa: E402
 
 from builders import BLC06, fake_spectrum  # noqa: E402
 from rockstudy import plotting  # noqa: E402
@@ -15,7 +16,6 @@ from rockstudy.analysis.spectra import Scenario  # noqa: E402
 from rockstudy.model.control import Control  # noqa: E402
 from rockstudy.plotting import histories, layout, records, style  # noqa: E402
 from rockstudy.studies import datasets  # noqa: E402
-from test_plotting import with_map  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -216,7 +216,7 @@ def test_the_risk_figure_with_a_hazard_curve_is_as_wide_as_without():
     """Three panels on two rows: a page that fits the figure to its width draws it at the two-panel scale."""
     pytest.importorskip("pygmm")
     from rockstudy.analysis.hazard import HazardCurve
-    from rockstudy.analysis.risk import risk_dataset
+    from rockstudy.analysis.risk_sites import risk_dataset
     from rockstudy.plotting.risk import figure_risk
     fragility = xr.Dataset({"fragility_median_physical": ("strategy", [0.5, 0.8], {"units": "g"}),
                             "median_low_physical": ("strategy", [0.4, 0.7], {"units": "g"}),

@@ -10,7 +10,7 @@ from rockstudy.analysis.hazard import read_hazard_sites
 from rockstudy.analysis.risk_sites import risk_dataset
 from rockstudy.plotting.sites import figure_risk_sites, mapped_sites
 
-DATA = Path(__file__).resolve().parent / "data" / "hazard"
+DATA = Path(__file__).resolve().parents[1] / "data" / "hazard"
 
 
 def risk_of_the_bay():
