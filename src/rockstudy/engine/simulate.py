@@ -14,7 +14,7 @@ from rockstudy.core import validation
 from rockstudy.core.constants import FAST_ATOL, FAST_RTOL, FREE_TIME, MAX_STEP_FRACTION
 from rockstudy.core.constants import rest_velocity as default_rest_velocity
 from rockstudy.core.limits import OVERTURN_CRITERIA
-from rockstudy.core.quantities import ATOL_RANGE, RTOL_RANGE, check_arguments  # noqa: F401 -- named in docs
+from rockstudy.core.quantities import ATOL_RANGE, RTOL_RANGE, check_arguments, declares  # noqa: F401 -- named in docs
 from rockstudy.engine import _kernel
 from rockstudy.engine.simulation_result import (
     FRACTURE_ELEMENTS,
@@ -275,6 +275,8 @@ def check_inputs(block, anchorage, control, motion, *, engine="fast", overturn_c
                         f"{validation.MAX_CONTROLLER_SAMPLES:.0e}", "s")
 
 
+@declares(free_time="free_time", initial_rotation="initial_rotation", initial_velocity="initial_velocity",
+          rest_velocity="rest_velocity", rtol="rtol", atol="atol")
 def simulate(block: Block, anchorage: Anchorage, control: Control, motion: GroundMotion, *,
              engine: str = "fast", overturn_criterion: str = "flat", free_time: float = DEFAULT_FREE_TIME,
              initial_rotation: float = 0.0, initial_velocity: float = 0.0,

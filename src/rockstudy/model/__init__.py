@@ -6,10 +6,3 @@ paper's formulas as compiled scalar functions, and how excitations are built. Th
 :mod:`rockstudy.engine` integrate them.
 """
 
-from rockstudy.core.quantities import declare
-
-# the numeric arguments of rockstudy.model.noise's NoiseReading, noise_generator and noisy_record (checked there
-# by check_arguments)
-declare("NoiseReading", step="noise_step", band="band", span="noise_span")
-declare("noise_generator", seed="seed", level="noise_level", realisation="realisation")
-declare("noisy_record", omega="circular_frequency", level="noise_level", realisation="realisation", seed="seed")

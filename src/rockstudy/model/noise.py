@@ -41,7 +41,7 @@ import numpy as np
 from rockstudy.core import validation
 from rockstudy.core.constants import NOISE_DT
 from rockstudy.core.limits import LEVEL_MEANINGS, RESCALES
-from rockstudy.core.quantities import QUANTITIES, check_arguments
+from rockstudy.core.quantities import QUANTITIES, check_arguments, declares
 from rockstudy.model.excitation import GroundMotion, analytic, excitation_duration, sample_count
 
 NOISE_LEVELS = {"R000": 0.0, "R001": 0.01, "R005": 0.05, "R010": 0.10}
@@ -76,6 +76,7 @@ def _check_rescale(rescale, name: str = "rescale") -> str:
     return rescale
 
 
+@declares(step="noise_step", band="band", span="noise_span")
 @dataclass(frozen=True)
 class NoiseReading:
     """One reading of the paper's noise model (§5): how a noisy record is made from a baseline.
@@ -214,6 +215,7 @@ def _as_reading(reading) -> NoiseReading:
     return reading
 
 
+@declares(seed="seed", level="noise_level", realisation="realisation")
 def noise_generator(seed: int, level: float, realisation: int) -> np.random.Generator:
     """Random generator for one noise realisation, keyed by what it means.
 
@@ -492,6 +494,7 @@ class NoisyRecord:
                 "noise_energy_ratio": self.energy_ratio, "noise_pga_ratio": self.pga_ratio}
 
 
+@declares(omega="circular_frequency", level="noise_level", realisation="realisation", seed="seed")
 def noisy_record(kind: str, omega: float, level: float, realisation: int, seed: int,
                  reading: NoiseReading | None = None) -> NoisyRecord:
     """Realisation ``realisation`` of the unit-amplitude ``kind`` excitation at noise ``level``.
