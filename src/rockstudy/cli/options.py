@@ -14,7 +14,6 @@ import os
 from rockstudy.analysis.scenario import DEFAULT_BLOCK, DEFAULT_EXCITATION, DEFAULT_OVERTURN_CRITERION
 from rockstudy.analysis.spectra import AmplitudeGrid
 from rockstudy.core import config_files, declarations, validation
-from rockstudy.core.quantities import check_arguments
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME, ENGINES, OVERTURN_CRITERIA
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS
@@ -259,16 +258,17 @@ def _apply_config(args, argv, parser) -> None:
                                                                                "damping_ratio")}
 
 
-_GRID_NAMES = ("--min-amplitude-ratio", "--max-amplitude-ratio", "--amplitude-step", "--resolution")
+GRID_OPTIONS = {"start": "--min-amplitude-ratio", "stop": "--max-amplitude-ratio", "step": "--amplitude-step",
+                "resolution": "--resolution"}
+"""The option that sets each field of :class:`AmplitudeGrid`: the grid's check names it in its messages."""
 
 
 def _grid(args, parser):
-    """The amplitude scan, and the simulations one threshold may need (the checks name the options)."""
-    given = {"start": args.min_amplitude_ratio, "stop": args.max_amplitude_ratio, "step": args.amplitude_step,
-             "resolution": args.resolution}
-    check_arguments("AmplitudeGrid", given, dict(zip(given, _GRID_NAMES)))  # each as declared, named by its option
-    sims = validation.check_amplitude_grid(*given.values(), names=_GRID_NAMES)  # their relations and the work
-    return AmplitudeGrid(**given), sims
+    """The amplitude scan, checked once by :class:`AmplitudeGrid` naming the options, and the simulations one
+    threshold may need."""
+    grid = AmplitudeGrid(start=args.min_amplitude_ratio, stop=args.max_amplitude_ratio, step=args.amplitude_step,
+                         resolution=args.resolution, names=GRID_OPTIONS)
+    return grid, grid.simulations()
 
 
 def _check_outputs(args, parser) -> None:
