@@ -93,7 +93,7 @@ def _cmd_simulate(args, parser):
         from rockstudy.studies.datasets import history_dataset
         ds = history_dataset(res, scenario, motion, args.frequency_ratio, args.amplitude_ratio, args.realisation)
         if args.output:
-            write_output(ds, args.output, "time history")
+            write_output(ds, args.output)
             out["output"] = args.output
         if args.plot:
             from rockstudy.plotting import figure_control_history, save_figure
@@ -153,7 +153,7 @@ def _cmd_simulate_record(args, parser):
                         amplitude_ratio_note="PGA/(g tan(alpha)) of the scaled record",
                         title=f"Time history, {args.strategy}, record {record.name}, scale {args.record_scale:g}")
         if args.output:
-            write_output(ds, args.output, "time history")
+            write_output(ds, args.output)
             out["output"] = args.output
         if args.plot:
             from rockstudy.plotting import figure_control_history, plain_text, save_figure

@@ -99,10 +99,10 @@ def _cmd_spectrum(args, parser):
     with progress_bar() as progress:  # a bar at a terminal; elsewhere the log lines
         ds = document_missing(spectrum(scenario, freqs, realisations=range(n_real), grid=grid, with_map=args.map,
                                        progress=progress))
+    write_output(ds, args.output)  # the result first: a plot that cannot be written loses nothing computed
     if args.plot:
         from rockstudy.plotting import figure_spectrum, save_figure
         save_figure(figure_spectrum(ds, label=args.strategy), args.plot)
-    write_output(ds, args.output, "spectrum")
     print_json({"output": args.output, "frequencies": len(freqs), "realisations": int(ds.sizes["realisation"]),
                 "simulations": int(ds.n_simulations.sum()), "compute_time_s": ds.attrs["compute_time_s"]})
 
