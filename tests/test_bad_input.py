@@ -434,28 +434,28 @@ def test_cli_help_loads_neither_numba_nor_xarray(flag):
 
 
 def test_a_full_disk_keeps_the_spectrum(tmp_path, capsys, monkeypatch):
-    """The write of --output fails as on a full disk: the error says so and where the result is kept."""
+    """The write of --output fails as on a full disk: one line says so and where the result is kept."""
     import errno
+    import tempfile
 
-    import rockstudy.core.io as io
-
-    real = io.write_netcdf
+    real = os.fsync
     calls = []
 
-    def full(ds, path, **kw):
-        calls.append(path)
-        if len(calls) == 1:
-            raise OSError(errno.ENOSPC, "No space left on device")
-        return real(ds, path, **kw)
-    monkeypatch.setattr(io, "write_netcdf", full)
+    def full(fd):
+        calls.append(fd)
+        if len(calls) == 1:  # the output's write; the kept copy is written
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        return real(fd)
+    monkeypatch.setattr(os, "fsync", full)
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path / "tmp"))
+    (tmp_path / "tmp").mkdir()
     out = tmp_path / "s.nc"
     status, err, took = cli_outcome(["spectrum", "--frequency-start", "2", "--frequency-stop", "2",
                                      "--max-amplitude-ratio", "1.5", "--amplitude-step", "0.3", "--resolution",
                                      "0.3", "--output", str(out)], capsys)
-    kept = [p for p in calls[1:] if Path(p).exists()]
-    for path in kept:
-        Path(path).unlink()
-    ok = status == 2 and "full" in err and "kept" in err and bool(kept)
+    kept = tmp_path / "tmp" / "rockstudy-kept" / "s.nc"
+    ok = (status == 2 and "full" in err and str(kept) in err and kept.exists() and not out.exists()
+          and len(err.strip().splitlines()) == 1)
     verdict("faults", ok, f"full disk: status {status}, {err.strip()[:300]}")
 
 

@@ -105,6 +105,51 @@ def test_output_paths_are_checked(path, needle):
         v.check_output_path("--output", path)
 
 
+def _special(kind: str, folder: Path) -> Path:
+    """An existing file that is not a regular one, outside /dev."""
+    import socket
+    import stat
+    path = folder / kind
+    if kind == "fifo":
+        os.mkfifo(path)
+    elif kind == "socket":
+        sock = socket.socket(socket.AF_UNIX)
+        sock.bind(str(path))
+        sock.close()
+    elif kind == "link-to-fifo":
+        os.mkfifo(folder / "target")
+        path.symlink_to(folder / "target")
+    else:
+        try:
+            os.mknod(path, 0o600 | stat.S_IFCHR, os.makedev(1, 3))  # the null device, made outside /dev
+        except PermissionError:
+            pytest.skip("making a device node needs root")
+    return path
+
+
+@pytest.mark.parametrize("kind", ["fifo", "socket", "link-to-fifo", "device"])
+def test_output_path_refuses_an_existing_non_regular_file_anywhere(kind):
+    import stat
+    import tempfile
+    folder = Path(tempfile.mkdtemp(prefix="rs-", dir="/tmp"))  # short: a socket's path has at most 107 bytes
+    try:
+        path = _special(kind, folder)
+        before = os.lstat(path).st_mode
+        with pytest.raises(v.InputError, match="not a regular file") as refused:
+            v.check_output_path("--output", path)
+        assert str(path) in str(refused.value) and len(str(refused.value).splitlines()) == 1
+        assert os.lstat(path).st_mode == before and not stat.S_ISREG(os.stat(path).st_mode)  # still there
+        assert sorted(p.name for p in folder.iterdir()) == sorted({path.name, "target"} & {
+            p.name for p in folder.iterdir()})  # no probe or other file left behind
+        regular = folder / "x.nc"
+        regular.write_text("")
+        assert v.check_output_path("--output", regular) == regular  # a regular file is replaced as before
+    finally:
+        for p in folder.iterdir():
+            p.unlink()
+        folder.rmdir()
+
+
 def test_output_path_folder_and_format(tmp_path):
     with pytest.raises(v.InputError, match="is a folder"):
         v.check_output_path("--output", tmp_path)

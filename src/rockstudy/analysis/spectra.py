@@ -12,7 +12,7 @@ import itertools
 import logging
 import math
 import time
-from dataclasses import asdict, dataclass, fields
+from dataclasses import InitVar, asdict, dataclass, fields
 
 import numba
 import numpy as np
@@ -34,6 +34,10 @@ log = logging.getLogger("rockstudy")
 PAPER_EQUATIONS = "Eqs. 1-17 (model), Eq. 23 (excitation), Figs. 5-8 (spectra)"
 
 
+GRID_FIELDS = ("start", "stop", "step", "resolution")
+"""The fields of :class:`AmplitudeGrid`, in order."""
+
+
 @declares(start="amplitude_ratio", stop="amplitude_ratio", step="amplitude_ratio",
           resolution="amplitude_resolution")
 @dataclass(frozen=True)
@@ -46,19 +50,34 @@ class AmplitudeGrid:
         Coarse scan from ``start`` to ``stop`` (inclusive) in ``step``. [-]
     resolution : float
         Width of the final bracket around the threshold. [-]
+    names : dict, optional
+        The caller's name of each field in error messages (``{"stop": "--max-amplitude-ratio"}``); a field
+        missing from it is named ``AmplitudeGrid.<field>``. Not stored.
+
+    Raises
+    ------
+    rockstudy.core.validation.InputError
+        When a field is out of its declared range, or the scan and its resolution do not fit together
+        (:func:`~rockstudy.core.relations.check_amplitude_grid`): the one check of a grid, at construction.
     """
 
     start: float = 0.9
     stop: float = 6.0
     step: float = 0.1
     resolution: float = 0.01
+    names: InitVar[dict | None] = None
 
-    def __post_init__(self):
-        check_arguments("AmplitudeGrid", self.__dict__)  # each field's type and range (core.quantities)
-        if self.stop <= self.start:
-            raise ValueError(f"AmplitudeGrid.stop ({self.stop}) must exceed start ({self.start})")
-        if self.resolution > self.step:
-            raise ValueError(f"AmplitudeGrid.resolution ({self.resolution}) must not exceed step ({self.step})")
+    def __post_init__(self, names):
+        names = names or {}
+        check_arguments("AmplitudeGrid", self.__dict__, names)  # each field's type and range (core.quantities)
+        validation.check_amplitude_grid(self.start, self.stop, self.step, self.resolution,  # their relations
+                                        names=tuple(names.get(f, f"AmplitudeGrid.{f}") for f in GRID_FIELDS))
+
+    def simulations(self) -> int:
+        """The most simulations one threshold on this grid may need: the scan's points and the bisection's
+        steps (the grid was checked when it was made)."""
+        return validation.grid_size(self.start, self.stop, self.step) + validation.bisection_steps(
+            self.step, self.resolution)
 
     def values(self) -> np.ndarray:
         n = int(math.floor((self.stop - self.start) / self.step + 1e-9))
@@ -71,7 +90,7 @@ DEFAULT_FREQUENCY_GRID = {"start": 0.25, "stop": 5.0, "step": 0.1}
 
 @declares(start="frequency_ratio", stop="frequency_ratio", step="frequency_ratio")
 def frequency_grid(start: float = DEFAULT_FREQUENCY_GRID["start"], stop: float = DEFAULT_FREQUENCY_GRID["stop"],
-                   step: float = DEFAULT_FREQUENCY_GRID["step"]) -> np.ndarray:
+                   step: float = DEFAULT_FREQUENCY_GRID["step"], *, names: dict | None = None) -> np.ndarray:
     """Frequency ratios ω_p/p from ``start`` to ``stop`` (inclusive) in ``step``: the abscissa of an
     overturning spectrum.
 
@@ -82,6 +101,9 @@ def frequency_grid(start: float = DEFAULT_FREQUENCY_GRID["start"], stop: float =
     step : float
         Spacing of the ratios; the grid has at most :data:`~rockstudy.core.validation.MAX_GRID_POINTS`
         points. [-]
+    names : dict, optional
+        The caller's name of each argument in error messages (``{"step": "--frequency-step"}``); an argument
+        missing from it is named as it is here.
 
     Returns
     -------
@@ -95,14 +117,12 @@ def frequency_grid(start: float = DEFAULT_FREQUENCY_GRID["start"], stop: float =
     """
     # finite numbers (not bools), 0 < start <= stop <= the largest ratio, at most MAX_GRID_POINTS points: the
     # size is bounded before the grid is made
-    check_arguments("frequency_grid", {"start": start, "stop": stop, "step": step})
+    names = names or {}
+    check_arguments("frequency_grid", {"start": start, "stop": stop, "step": step}, names)
     validation.check_grid("frequency_grid", start, stop, step, high=MAX_FREQUENCY_RATIO,
-                          names=("start", "stop", "step"))
+                          names=tuple(names.get(arg, arg) for arg in ("start", "stop", "step")))
     n = int(math.floor((stop - start) / step + 1e-9))
     return np.round(start + step * np.arange(n + 1), 10)
-
-
-GRID_NAMES = ("AmplitudeGrid.start", "AmplitudeGrid.stop", "AmplitudeGrid.step", "AmplitudeGrid.resolution")
 
 
 def _check_call(scenario, grid) -> None:
@@ -360,7 +380,7 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     realisations = _realisation_list(realisations)
     if scenario.noise_level == 0 and len(realisations) > 1:
         realisations = realisations[:1]  # without noise every realisation is the same record
-    sims = validation.check_amplitude_grid(grid.start, grid.stop, grid.step, grid.resolution, names=GRID_NAMES)
+    sims = grid.simulations()  # the grid was checked when it was made
     scenario.check_span([freqs.min(), freqs.max()], frequency_name="frequency_ratios")
     n_real = len(realisations)
     validation.check_workload("realisations", n_real, n_real * len(freqs), sims * (2 if with_map else 1),

@@ -12,7 +12,9 @@ Every command checks all its arguments before any heavy work against their decla
 with status 2 and a message naming the argument, the value and what is allowed; ``--config FILE`` is
 checked like any study config (an unknown key or a bad value is refused, naming the key). A run that hits
 the fast engine's event cap ends with an "undetermined" result, not a traceback. A closed pipe
-(``rockstudy records | head -1``) ends the command quietly.
+(``rockstudy records | head -1``) ends the command quietly. A dependency that fails to import is one line
+naming it (exit 1); an output that cannot be written is one line (exit 2) saying why and where the computed
+result was kept instead (:func:`rockstudy.core.io.atomic_write`).
 
 The commands live in modules of this package, one per group: each exposes ``register(sub)``, which adds
 its subparsers to argparse's subparsers ``sub`` and sets ``run=<function(args, parser)>`` on each;
@@ -129,9 +131,16 @@ def main(argv=None):
     argv : sequence of str or None, default None
         The arguments after the program's name, e.g. ``["spectrum", "--help"]``; None: ``sys.argv[1:]``.
     """
+    argv = sys.argv[1:] if argv is None else list(argv)
+    try:
+        return _main(argv)
+    except ImportError as exc:  # a dependency that fails to load (a broken compiled library): one line naming it
+        return _dependency_failed(exc)
+
+
+def _main(argv: list) -> int:
     from rockstudy.core.validation import InputError
 
-    argv = sys.argv[1:] if argv is None else list(argv)
     given = [word for word in argv if word in COMMANDS][:1]
     parser = build_parser(given)
     try:
@@ -148,6 +157,12 @@ def main(argv=None):
         parser.error(str(exc))
     except BrokenPipeError:
         return _quiet_broken_pipe()
+    except OSError as exc:  # an output could not be written (core.io's OutputError): why, and where the result is
+        io = sys.modules.get("rockstudy.core.io")  # loaded by every writer; not by the help
+        if io is None or not isinstance(exc, io.OutputError):
+            raise
+        sys.stderr.write(f"{parser.prog}: error: {str(exc).splitlines()[0]}\n")
+        return 2
     except ValueError as exc:  # a result strict JSON cannot carry (NaN, inf): one line, nothing printed
         from rockstudy.cli.output import NonFiniteOutputError
         if not isinstance(exc, NonFiniteOutputError):
@@ -162,6 +177,21 @@ def main(argv=None):
             raise
         return _interrupted()
     return 0
+
+
+def _dependency_failed(exc: ImportError) -> int:
+    """One line naming the dependency that failed to import, and how to repair it; a module of rockstudy
+    itself that is missing is a fault of the package, whose traceback is kept."""
+    failing = exc.name or ""
+    if failing.startswith("rockstudy"):
+        raise exc
+    first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    if first.startswith("rockstudy"):  # the library named the dependency already (rockstudy._import)
+        sys.stderr.write(f"{first}\n")
+    else:
+        sys.stderr.write(f"rockstudy: error: {failing or 'a dependency'} failed to import ({first}); reinstall it "
+                         "(pip install -e .)\n")
+    return 1
 
 
 def _interrupted() -> int:

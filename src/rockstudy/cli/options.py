@@ -9,12 +9,10 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 
 from rockstudy.analysis.scenario import DEFAULT_BLOCK, DEFAULT_EXCITATION, DEFAULT_OVERTURN_CRITERION
 from rockstudy.analysis.spectra import AmplitudeGrid
 from rockstudy.core import config_files, declarations, validation
-from rockstudy.core.quantities import check_arguments
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME, ENGINES, OVERTURN_CRITERIA
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS
@@ -259,16 +257,17 @@ def _apply_config(args, argv, parser) -> None:
                                                                                "damping_ratio")}
 
 
-_GRID_NAMES = ("--min-amplitude-ratio", "--max-amplitude-ratio", "--amplitude-step", "--resolution")
+GRID_OPTIONS = {"start": "--min-amplitude-ratio", "stop": "--max-amplitude-ratio", "step": "--amplitude-step",
+                "resolution": "--resolution"}
+"""The option that sets each field of :class:`AmplitudeGrid`: the grid's check names it in its messages."""
 
 
 def _grid(args, parser):
-    """The amplitude scan, and the simulations one threshold may need (the checks name the options)."""
-    given = {"start": args.min_amplitude_ratio, "stop": args.max_amplitude_ratio, "step": args.amplitude_step,
-             "resolution": args.resolution}
-    check_arguments("AmplitudeGrid", given, dict(zip(given, _GRID_NAMES)))  # each as declared, named by its option
-    sims = validation.check_amplitude_grid(*given.values(), names=_GRID_NAMES)  # their relations and the work
-    return AmplitudeGrid(**given), sims
+    """The amplitude scan, checked once by :class:`AmplitudeGrid` naming the options, and the simulations one
+    threshold may need."""
+    grid = AmplitudeGrid(start=args.min_amplitude_ratio, stop=args.max_amplitude_ratio, step=args.amplitude_step,
+                         resolution=args.resolution, names=GRID_OPTIONS)
+    return grid, grid.simulations()
 
 
 def _check_outputs(args, parser) -> None:
@@ -388,12 +387,11 @@ def _record_description(info) -> dict:
             "record_station": info.station}
 
 
-
-
-def write_output(ds, path, what: str = "result") -> None:
-    """Write ``ds`` to ``--output`` (atomically); when that fails (a full disk, a vanished folder) the computed
-    ``what`` is not lost: it is written to the temporary folder instead, and the error (exit 2) says why and
-    where it is.
+def write_output(ds, path) -> None:
+    """Write ``ds`` to ``--output`` (atomically, :func:`rockstudy.core.io.write_netcdf`). When that fails (a
+    full disk, a vanished folder) the computed result is not lost: the writer keeps it in the temporary
+    folder and raises :class:`~rockstudy.core.io.OutputError`, which :func:`rockstudy.cli.main` prints as one
+    line (exit 2) saying why and where it is.
 
     Parameters
     ----------
@@ -401,32 +399,7 @@ def write_output(ds, path, what: str = "result") -> None:
         The computed result.
     path : str or pathlib.Path
         The ``--output`` file.
-    what : str, default "result"
-        What ``ds`` is, in the error message (e.g. "spectrum").
     """
-    import errno
-    import shutil
-    import tempfile
-    from pathlib import Path
-
     from rockstudy.core.io import write_netcdf
 
-    try:
-        write_netcdf(ds, path)
-        return
-    except (OSError, RuntimeError) as exc:
-        folder = Path(path).expanduser().absolute().parent
-        try:
-            free = shutil.disk_usage(folder).free
-        except OSError:
-            free = None
-        full = getattr(exc, "errno", None) == errno.ENOSPC or (free is not None and free < 16 * 2**20)
-        reason = (f"the disk is full ({free / 2**20:.1f} MiB free in {folder})" if full and free is not None
-                  else f"{type(exc).__name__}: {exc}")
-    kept = Path(tempfile.gettempdir()) / f"rockstudy-kept-{os.getpid()}-{Path(path).name}"
-    try:
-        write_netcdf(ds, kept)
-        where = f"the computed {what} is kept in {kept}"
-    except (OSError, RuntimeError):
-        where = f"the computed {what} could not be kept in {kept.parent} either"
-    validation.fail("--output", str(path), f"it cannot be written: {reason}; {where}")
+    write_netcdf(ds, path)

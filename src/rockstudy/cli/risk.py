@@ -161,7 +161,7 @@ def run_fragility(args, parser) -> None:
                                  measure=args.intensity_measure, resolution=args.threshold_resolution,
                                  n_boot=args.bootstrap, seed=args.seed, overturn_criterion=args.overturn_criterion,
                                  free_time=args.free_time)
-    options.write_output(ds, args.output, "fragility")
+    options.write_output(ds, args.output)
     d = ds.sel(strategy=args.strategy)
     unit = ds["fragility_median_physical"].attrs["units"]
     key = "median_g" if unit in (STANDARD_GRAVITY_UNITS, "g") else "median_pgv_m_per_s"

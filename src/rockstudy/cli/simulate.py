@@ -23,6 +23,7 @@ from rockstudy.cli.options import (
 )
 from rockstudy.cli.output import grid_values, print_json
 from rockstudy.core import declarations, validation
+from rockstudy.core.constants import NOISE_DT
 
 GRID_KEYS = ("amplitude_ratio", "last_safe_amplitude_ratio", "max_amplitude_ratio", "scan_start_amplitude_ratio",
              "frequency_ratio")
@@ -93,7 +94,7 @@ def _cmd_simulate(args, parser):
         from rockstudy.studies.datasets import history_dataset
         ds = history_dataset(res, scenario, motion, args.frequency_ratio, args.amplitude_ratio, args.realisation)
         if args.output:
-            write_output(ds, args.output, "time history")
+            write_output(ds, args.output)
             out["output"] = args.output
         if args.plot:
             from rockstudy.plotting import figure_control_history, save_figure
@@ -119,8 +120,9 @@ def _cmd_simulate_record(args, parser):
     validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_TIME_SPAN - record.duration,
                                  why=f"the record lasts {record.duration:.4g} s and a simulation at most "
                                      f"{validation.MAX_TIME_SPAN:g} s")
-    if args.output or args.plot:  # the stored history samples the ground motion at min(DT, 2.5 ms)
-        samples = (record.duration + args.free_time) / min(record.dt, 0.0025)
+    history_dt = min(record.dt, NOISE_DT)  # the stored history samples the ground motion at most every 2.5 ms
+    if args.output or args.plot:
+        samples = (record.duration + args.free_time) / history_dt
         if samples > validation.MAX_HISTORY_SAMPLES:
             validation.fail("--record", args.record,
                             f"its DT = {record.dt:g} s over {record.duration:.4g} s plus --free-time "
@@ -146,14 +148,14 @@ def _cmd_simulate_record(args, parser):
                delay_s=args.delay, sensor_band_hz=args.sensor_band, **_record_description(info))
     if args.output or args.plot:
         from rockstudy.studies.datasets import history_dataset
-        ds = history_dataset(res, scenario, motion, math.nan, pga_ratio, 0, dt=min(record.dt, 0.0025))
+        ds = history_dataset(res, scenario, motion, math.nan, pga_ratio, 0, dt=history_dt)
         ds.attrs.update(record.to_attrs(), **({} if info is None else info.to_attrs()), excitation="record",
                         record_scale=args.record_scale,
                         excitation_end_s=record.duration,
                         amplitude_ratio_note="PGA/(g tan(alpha)) of the scaled record",
                         title=f"Time history, {args.strategy}, record {record.name}, scale {args.record_scale:g}")
         if args.output:
-            write_output(ds, args.output, "time history")
+            write_output(ds, args.output)
             out["output"] = args.output
         if args.plot:
             from rockstudy.plotting import figure_control_history, plain_text, save_figure

@@ -25,6 +25,9 @@ from rockstudy.cli.output import print_json
 from rockstudy.cli.progress import progress_bar
 from rockstudy.core import declarations, validation
 
+FREQUENCY_OPTIONS = {"start": "--frequency-start", "stop": "--frequency-stop", "step": "--frequency-step"}
+"""The option that sets each argument of :func:`~rockstudy.analysis.spectra.frequency_grid`."""
+
 SECONDS_PER_SIMULATION = 1e-3
 """Rough cost of one simulation on one core, for the estimate printed before a spectrum. [s]"""
 
@@ -76,10 +79,8 @@ def _cmd_spectrum(args, parser):
                                why="the CPUs numba can use on this machine")
     scenario = _scenario(args, parser)
     grid, sims_per_case = _grid(args, parser)
-    n_freq = validation.check_grid("frequency grid", args.frequency_start, args.frequency_stop, args.frequency_step,
-                                   high=validation.MAX_FREQUENCY_RATIO,
-                                   names=("--frequency-start", "--frequency-stop", "--frequency-step"))
-    freqs = frequency_grid(args.frequency_start, args.frequency_stop, args.frequency_step)
+    freqs = frequency_grid(args.frequency_start, args.frequency_stop, args.frequency_step, names=FREQUENCY_OPTIONS)
+    n_freq = len(freqs)
     _check_time_span(scenario, [args.frequency_start, float(freqs[-1])],
                      "--frequency-start" if args.frequency_start < 1 else "--frequency-stop")
     n_real = 1 if scenario.noise_level == 0 else args.realisations
@@ -98,10 +99,10 @@ def _cmd_spectrum(args, parser):
     with progress_bar() as progress:  # a bar at a terminal; elsewhere the log lines
         ds = document_missing(spectrum(scenario, freqs, realisations=range(n_real), grid=grid, with_map=args.map,
                                        progress=progress))
+    write_output(ds, args.output)  # the result first: a plot that cannot be written loses nothing computed
     if args.plot:
         from rockstudy.plotting import figure_spectrum, save_figure
         save_figure(figure_spectrum(ds, label=args.strategy), args.plot)
-    write_output(ds, args.output, "spectrum")
     print_json({"output": args.output, "frequencies": len(freqs), "realisations": int(ds.sizes["realisation"]),
                 "simulations": int(ds.n_simulations.sum()), "compute_time_s": ds.attrs["compute_time_s"]})
 

@@ -13,6 +13,7 @@ strictly monotonic (CF §1.2) before anything is written.
 """
 from __future__ import annotations
 
+import errno
 import os
 import tempfile
 import threading
@@ -116,6 +117,8 @@ def atomic_write(path, write: Callable[[str], None]) -> Path:
         return _atomic_write(path, write)
     except OSError as exc:
         reason = exc.strerror or str(exc).splitlines()[0]
+        if exc.errno == errno.ENOSPC:
+            reason = f"the disk is full: {reason}"
         kept = kept_path(path)
         try:
             if kept.resolve() == path.resolve():
@@ -241,7 +244,13 @@ def write_netcdf(ds: xr.Dataset, path, *, compress: bool = True) -> Path:
         for name, var in ds.data_vars.items():
             if var.dtype.kind in "fiub" and var.ndim > 0:
                 encoding[name] = {"zlib": True, "complevel": 4}
-    return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
+
+    def write(tmp):
+        try:
+            ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+        except RuntimeError as exc:  # the netCDF library's own errors (an HDF error on a full disk): an OSError
+            raise OSError(errno.EIO, f"netCDF: {str(exc).splitlines()[0] if str(exc) else 'write failed'}") from exc
+    return atomic_write(path, write)
 
 
 def declared_sizes(path) -> dict:

@@ -16,6 +16,7 @@ never leaves a partial output.
 from __future__ import annotations
 
 import os
+import stat
 import tempfile
 from pathlib import Path
 
@@ -94,7 +95,6 @@ def check_input_file(name: str, path, max_bytes: int) -> Path:
     pathlib.Path
         The path, with ``~`` expanded.
     """
-    import stat
     if path is None or str(path).strip() == "":
         fail(name, path, "give a file name")
     p = Path(path).expanduser()
@@ -143,7 +143,8 @@ def check_results_dir(name: str, path) -> Path:
 
 
 def check_output_path(name: str, path, *, formats: tuple[str, ...] | None = None) -> Path:
-    """An output file that can be written: not a folder, not under /proc, /sys or /dev, in a folder that
+    """An output file that can be written: not a folder, not under /proc, /sys or /dev, not an existing file
+    other than a regular one (a FIFO, a socket or a device node anywhere is never replaced), in a folder that
     exists or can be made and where a file can be created (tested by creating and removing one in the
     nearest existing folder; no folder is made by the check), and with one of ``formats`` as its suffix
     if given.
@@ -170,6 +171,12 @@ def check_output_path(name: str, path, *, formats: tuple[str, ...] | None = None
         fail(name, str(path), f"it lies in a system folder ({', '.join(PSEUDO_FILESYSTEMS)})")
     if p.is_dir():
         fail(name, str(path), "it is a folder; give a file name")
+    try:  # stat does not open the file: a FIFO is looked at, never read or written
+        mode = os.stat(p).st_mode
+    except OSError:  # nothing there yet (or a dangling link): the probe below decides
+        mode = None
+    if mode is not None and not stat.S_ISREG(mode):
+        fail(name, str(path), "it exists and is not a regular file (a FIFO, a socket or a device); give a file name")
     if formats is not None and p.suffix.lstrip(".").lower() not in formats:
         fail(name, str(path), f"the file name must end in {', '.join('.' + f for f in formats)}")
     # the nearest folder that exists: a file is created there as a probe, and nothing is left behind (the
