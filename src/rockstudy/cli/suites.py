@@ -216,7 +216,7 @@ def run_export(args, parser) -> dict:
         path = validation.check_output_path("--output", args.output or default)
     except validation.InputError as exc:
         parser.error(str(exc))
-    times = record_suites.record_time(record)
+    times = record.times
     try:
         written = export_record(record, path, fmt, title=f"{info.name} {info.event} {info.station}")
     except OSError as exc:

@@ -12,7 +12,7 @@ is refused) are the one declaration of the study config. From them come
   sets that key (``--kappa-max`` is ``anchorage.kappa_max``).
 
 The ranges of numeric keys are those of :mod:`rockstudy.core.quantities`, the other limits those of
-:mod:`rockstudy.core.validation`. Relations between keys (a noise level named by
+:mod:`rockstudy.core.limits`. Relations between keys (a noise level named by
 a sweep exists, a_max,0 within the scan, the work of one job) are checked after these declarations by
 :func:`rockstudy.studies.study.check_study`. pydantic is imported only here, and only by the config
 checks: neither ``rockstudy --help`` nor a simulation loads it.
@@ -40,20 +40,7 @@ from rockstudy.core import validation as v
 from rockstudy.core.config_files import count_nodes
 from rockstudy.core.config_messages import KeyRelationError, _model_at, _short
 from rockstudy.core.limits import EXCITATIONS, LEVEL_MEANINGS, MAX_TEXT, OVERTURN_CRITERIA, RESCALES, STRATEGIES
-from rockstudy.core.quantities import (  # noqa: F401 -- the limits, where the config's readers look for them
-    MAX_A_MAX0_G,
-    MAX_ALPHA,
-    MAX_BLOCK_SIZE,
-    MAX_DENSITY,
-    MAX_PGA_G,
-    MAX_ROTATION_RATIO,
-    MIN_ALPHA,
-    MIN_BLOCK_SIZE,
-    MIN_DESIGN_RESOLUTION,
-    MIN_DESIGN_STEP,
-    MIN_PGA_G,
-    QUANTITIES,
-)
+from rockstudy.core.quantities import MAX_PGA_G, MAX_ROTATION_RATIO, QUANTITIES
 from rockstudy.core.validation import InputError
 
 SCHEMA_PATH = "workflow/schemas/config.schema.yaml"

@@ -574,23 +574,10 @@ def read_entries(items, key: str = "records"):
     return out
 
 
-def record_time(record: Record) -> np.ndarray:
-    """Times of a record's samples, ``k * dt`` for k = 0 .. npts - 1. [s]
-
-    Parameters
-    ----------
-    record : Record
-        The record.
-    """
-    return np.arange(record.acceleration.size) * float(record.dt)
-
-
 def record_series(ds, name: str):
-    """One record of a record-set dataset (:func:`suite_dataset`) as a :class:`xarray.DataArray` of
-    its ``npts`` samples over a time coordinate ``t`` [s] (named as every time axis of rockstudy's
-    files): the accessor for the padded
-    ``acceleration(record, sample)`` array, whose sample k of a record lies at ``k * dt`` of that
-    record (the steps differ between records, so the dataset has no shared time axis).
+    """One record of a record-set dataset (:func:`suite_dataset`) as a :class:`xarray.DataArray` of its
+    ``npts`` samples over a time coordinate ``t`` [s]: the accessor for the padded ``acceleration(record,
+    sample)`` array, whose sample k lies at ``k * dt`` of its record (records differ in their steps).
 
     Parameters
     ----------
