@@ -37,6 +37,8 @@ exclude_patterns = ["_build", "figures/*.md"]
 templates_path = []
 
 myst_enable_extensions = ["dollarmath"]
+# keep "--width" as typed: Sphinx's smart quotes would turn an option's "--" into an en dash in help texts
+smartquotes = False
 myst_heading_anchors = 3            # links to a page's sections (model.md#noise-readings-...)
 
 autodoc_member_order = "bysource"
