@@ -19,11 +19,8 @@ import math
 import sys
 
 from rockstudy.cli import COMMANDS
+from rockstudy.model.record_export import DEFAULT_FORMAT, FORMATS, export_record, export_text  # noqa: F401
 
-FORMATS = ("one-column", "two-column", "at2")
-"""What ``--format`` accepts."""
-DEFAULT_FORMAT = "one-column"
-"""The export format unless ``--format`` names another."""
 LISTING_FIELDS = ("record", "suite", "id", "rsn", "event", "year", "magnitude", "station", "distance_km",
                   "site_class", "pga_g", "pgv_m_per_s", "pulse", "dt_s", "npts")
 """The columns of ``records --json`` and ``--csv``."""
@@ -137,61 +134,6 @@ def add_export_arguments(parser) -> None:
                                          "--format at2]")
 
 
-def export_text(times, values, fmt: str, unit: str = "g") -> str:
-    """The samples as text: one a line (``one-column``) or a header naming the units and then time and sample a
-    line (``two-column``).
-
-    Parameters
-    ----------
-    times : array_like
-        Sample times, written by ``two-column``. [s]
-    values : array_like
-        The samples, in ``unit``.
-    fmt : {"one-column", "two-column"}
-        The layout.
-    unit : str, default "g"
-        The samples' unit, named in the two-column header.
-    """
-    import numpy as np
-
-    values = np.asarray(values, dtype=float)
-    if fmt == "one-column":
-        return "".join(f"{a:.9e}\n" for a in values)
-    if fmt == "two-column":
-        return f"time [s], acceleration [{unit}]\n" + "".join(
-            f"{t:.6f} {a:.9e}\n" for t, a in zip(np.asarray(times, float), values))
-    raise ValueError(f"format: {fmt!r} is not one of {', '.join(FORMATS)}")
-
-
-def export_record(record, path, fmt: str, title: str = "") -> dict:
-    """Write ``record`` to ``path`` in ``fmt`` and return what a reader needs: ``unit`` of the values written,
-    ``to_m_per_s2`` (the factor to m/s²) and, for one column, the OpenSees line reading the file in m/s².
-
-    Parameters
-    ----------
-    record : rockstudy.model.records.Record
-        The record (its ``acceleration`` in m/s², its ``unit`` the unit of its source).
-    path : str or pathlib.Path
-        The file to write (checked by the caller).
-    fmt : {"one-column", "two-column", "at2"}
-        The layout.
-    title : str, default ""
-        An AT2 file's first header line.
-    """
-    from rockstudy.core.io import write_text
-    from rockstudy.model.records import unit_factor, write_at2
-    if fmt == "at2":
-        write_at2(record, path, title=title or record.name)
-        unit = "g"  # the AT2 format's unit
-    else:
-        unit = record.unit
-        write_text(export_text(record.times, record.acceleration / unit_factor(unit), fmt, unit), path)
-    factor = unit_factor(unit)
-    return {"format": fmt, "unit": unit, "to_m_per_s2": factor,
-            "opensees": f"timeSeries Path 1 -dt {record.dt!r} -filePath {path} -factor {factor!r}"
-                        if fmt == "one-column" else None}
-
-
 def run_export(args, parser) -> dict:
     """``records --export``: write the record and print (and return) the summary.
 
@@ -216,13 +158,12 @@ def run_export(args, parser) -> dict:
         path = validation.check_output_path("--output", args.output or default)
     except validation.InputError as exc:
         parser.error(str(exc))
-    times = record.times
     try:
         written = export_record(record, path, fmt, title=f"{info.name} {info.event} {info.station}")
     except OSError as exc:
         parser.error(f"argument --output: cannot write {str(path)!r}: {exc.strerror or exc}")
     summary = {"record": info.name, "event": info.event, "station": info.station, "file": str(path),
                "dt_s": record.dt, "npts": int(record.acceleration.size),
-               "duration_s": float(times[-1]) if times.size else 0.0, **written}
+               "duration_s": record.duration, **written}
     print_json(summary)
     return summary
