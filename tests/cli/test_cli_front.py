@@ -2,6 +2,7 @@
 dimensions, --config FILE, one-column records, the compact simulate summary."""
 import argparse
 import json
+import math
 
 import numpy as np
 import pytest
@@ -238,3 +239,11 @@ def test_simulate_plot_spans_the_whole_run(tmp_path):
     assert whole.axes[-1].get_xlim()[1] == pytest.approx(end)
     assert paper.axes[-1].get_xlim()[1] == pytest.approx(1.3 * ds.attrs["excitation_end_s"])
     plt.close("all")
+
+
+def test_a_non_finite_result_is_one_line_exit_1_and_nothing_printed(monkeypatch, capsys):
+    """A result strict JSON cannot carry (NaN, inf) ends the command with one line naming the entry."""
+    monkeypatch.setattr("rockstudy.cli.output._first_non_finite", lambda obj, path="": ("records[0].pga_g", math.nan))
+    assert main(["records", "--json"]) == 1
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and "records[0].pga_g is nan, not a finite number" in err

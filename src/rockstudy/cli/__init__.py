@@ -30,6 +30,7 @@ import sys
 from typing import NamedTuple
 
 from rockstudy._version import __version__
+from rockstudy.cli.output import NonFiniteOutputError
 
 
 class Command(NamedTuple):
@@ -163,10 +164,7 @@ def _main(argv: list) -> int:
             raise
         sys.stderr.write(f"{parser.prog}: error: {str(exc).splitlines()[0]}\n")
         return 2
-    except ValueError as exc:  # a result strict JSON cannot carry (NaN, inf): one line, nothing printed
-        from rockstudy.cli.output import NonFiniteOutputError
-        if not isinstance(exc, NonFiniteOutputError):
-            raise
+    except NonFiniteOutputError as exc:  # a result strict JSON cannot carry (NaN, inf): one line, nothing printed
         sys.stderr.write(f"{parser.prog}: error: {exc}\n")
         return 1
     except KeyboardInterrupt:
