@@ -51,7 +51,7 @@ configfile: "config.yaml"
 report: "workflow/report/workflow.rst"
 
 
-# The config, checked against its declaration (rockstudy.core.declarations) before anything walks it: an
+# The config, checked against its declaration (rockstudy.studies.config_model) before anything walks it: an
 # overlay (--configfile, then --config) replaces the sections it gives (a block by its dimensions replaces the
 # preset), and a bad key ends the run with one short message naming it (exit 1, no traceback).
 try:

@@ -1,4 +1,4 @@
-"""Bad input by class: values generated from the declarations (rockstudy.core.declarations, through the
+"""Bad input by class: values generated from the declarations (rockstudy.studies.config_model, through the
 schema generated from them) walk the study config check, the command line and the record readers; each case
 ends within 2 s in a clear error (at most three lines, naming the input) or in a valid result.
 
@@ -26,13 +26,13 @@ import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from rockstudy.core import config_files, declarations, validation
-from rockstudy.studies import study
+from rockstudy.core import config_files, validation
+from rockstudy.studies import config_model, study
 
 ROOT = Path(__file__).resolve().parents[1]
 DEFAULT = yaml.safe_load((ROOT / "config.yaml").read_text())
 SCHEMA_FILE = yaml.safe_load((ROOT / "workflow" / "schemas" / "config.schema.yaml").read_text())
-DECLARED = declarations.config_schema()
+DECLARED = config_model.config_schema()
 COUNTS = os.environ.get("ROCKSTUDY_BAD_INPUT_COUNTS")
 EXAMPLES = int(os.environ.get("ROCKSTUDY_BAD_INPUT_EXAMPLES", "40"))
 PROPERTY = settings(max_examples=EXAMPLES, deadline=None, derandomize=True, database=None,
@@ -129,7 +129,7 @@ def bad_values(decl: dict):
 def config_outcome(config):
     """None if the config is accepted, else the message a person reads, the way the Snakefile checks it."""
     try:
-        if "declarations" in Path(study.__file__).read_text():  # the declared check first, then the schema
+        if "config_model" in Path(study.__file__).read_text():  # the declared check first, then the schema
             study.check_study(config)
             jsonschema.validate(config, SCHEMA_FILE)
         else:  # the order before the declarations: sizes, schema (Snakemake prints the error whole), check

@@ -16,7 +16,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from rockstudy.core import config_files, declarations
+from rockstudy.core import config_files
+from rockstudy.studies import config_model
 
 ROOT = Path(__file__).resolve().parents[1]
 FENCE = re.compile(r"^```(\w+)[^\n]*\n(.*?)^```", re.MULTILINE | re.DOTALL)
@@ -56,7 +57,7 @@ def test_yaml_block_is_a_valid_config_or_overlay(where, body):
     from rockstudy.studies import study
 
     data = yaml.safe_load(body)
-    if not isinstance(data, dict) or not set(data) <= set(declarations.Study.model_fields):
+    if not isinstance(data, dict) or not set(data) <= set(config_model.Study.model_fields):
         return  # not a config: parsed is enough
     config = config_files.replace_sections(merge(copy.deepcopy(DEFAULT), data), data)
     study.check_study(config)

@@ -9,6 +9,7 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
+import fresh_python
 import rockstudy
 
 ROOT = Path(rockstudy.__file__).parent
@@ -88,3 +89,34 @@ def test_the_checker_sees_an_upward_import(tmp_path):
     bad.write_text("def f():\n    from rockstudy.studies.study import check_study\n")
     (target, _), = imports(bad, {"rockstudy.studies.study"})
     assert layer(target) > LAYERS["model"]
+
+
+def test_core_holds_no_config_model():
+    """The config's models live with the study (``rockstudy.studies.config_model``): no module of ``core``
+    defines a pydantic model or imports pydantic at its top, and importing every module of ``core`` in a fresh
+    interpreter loads no module of a higher layer and not pydantic."""
+    for path in sorted((ROOT / "core").rglob("*.py")):
+        tree = ast.parse(path.read_text())
+        top = [a.name for n in tree.body if isinstance(n, ast.Import) for a in n.names]
+        top += [n.module for n in tree.body if isinstance(n, ast.ImportFrom) and n.module]
+        assert not [m for m in top if m.split(".")[0] == "pydantic"], f"{path.name} imports pydantic"
+        bases = [ast.unparse(b) for n in ast.walk(tree) if isinstance(n, ast.ClassDef) for b in n.bases]
+        assert not {"BaseModel", "pydantic.BaseModel", "Section"} & set(bases), f"{path.name} defines a model"
+    modules = sorted(name for name in graph() if layer(name) == LAYERS["core"] and name != "rockstudy.core")
+    loaded = fresh_python.run(
+        "import importlib, sys\n"
+        f"for m in {modules!r}: importlib.import_module(m)\n"
+        "print(' '.join(sorted(m for m in sys.modules if m.startswith(('rockstudy.', 'pydantic')))))").split()
+    assert modules and set(modules) <= set(loaded)
+    above = sorted({"pydantic" if m.startswith("pydantic") else m for m in loaded
+                    if m.startswith("pydantic") or (m.startswith("rockstudy.") and layer(m) > LAYERS["core"])})
+    assert not above, f"importing core loads {above}"
+
+
+def test_the_checker_sees_core_importing_the_config_model(tmp_path):
+    """The oracle can fail: core importing the config's models (at the top or inside a function) is caught."""
+    bad = tmp_path / "bad.py"
+    bad.write_text("from rockstudy.studies import config_model\n\ndef f():\n    import rockstudy.analysis.risk_sites\n")
+    found = imports(bad, {"rockstudy.studies.config_model", "rockstudy.analysis.risk_sites"})
+    assert [layer(t) for t, _ in found] == [LAYERS["studies"], LAYERS["analysis"]]
+    assert all(layer(t) > LAYERS["core"] for t, _ in found)

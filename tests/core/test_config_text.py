@@ -17,8 +17,8 @@ import yaml
 from pydantic import BaseModel
 
 from rockstudy.core import config_files
-from rockstudy.core import declarations as d
 from rockstudy.core.validation import InputError
+from rockstudy.studies import config_model as d
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT = yaml.safe_load((ROOT / "config.yaml").read_text())

@@ -22,11 +22,10 @@ from hypothesis import strategies as st
 
 import rockstudy
 from rockstudy.analysis import fragility, record_scan
-from rockstudy.core import declarations
 from rockstudy.core.quantities import ARGUMENTS, QUANTITIES, SIZES, Quantity, check_arguments
 from rockstudy.core.validation import InputError
 from rockstudy.model import noise, records
-from rockstudy.studies import design
+from rockstudy.studies import config_model, design
 
 BLC06 = rockstudy.BLOCK_PRESETS["BLC06"]
 
@@ -222,7 +221,7 @@ def test_a_config_key_and_its_library_argument_accept_the_same_values(path, owne
     if q.integer and isinstance(value, float):
         return  # the library takes 3.0 as a seed, the strict config does not: a type, not a range
     try:
-        declarations.check_value(path, value)
+        config_model.check_value(path, value)
         config_ok = True
     except InputError:
         config_ok = False

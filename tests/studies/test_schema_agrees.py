@@ -15,13 +15,13 @@ from pathlib import Path
 import pytest
 import yaml
 
-from rockstudy.core import declarations
 from rockstudy.core.validation import InputError
+from rockstudy.studies import config_model
 from rockstudy.studies.study import check_study
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT = yaml.safe_load((ROOT / "config.yaml").read_text())
-SCHEMA = declarations.config_schema()
+SCHEMA = config_model.config_schema()
 BOUNDS = ("minimum", "exclusiveMinimum", "maximum", "exclusiveMaximum")
 
 

@@ -6,9 +6,9 @@
 RISK = config.get("risk")
 
 if RISK and BEYOND:
-    from rockstudy.analysis import risk_sites as risk_analysis
+    from rockstudy.studies import risk as risk_section
 
-    RISK_HAZARD = risk_analysis.check_config(RISK)  # every scenario in range and hazard file readable, at load
+    RISK_HAZARD = risk_section.check_config(RISK)  # every scenario in range and hazard file readable, at load
     RISK_MAPPED_SITES = sum(s.lon is not None and s.lat is not None for sites in RISK_HAZARD.values() for s in sites)
     RISK_FILES = (
         [f"{OUT}/risk/{name}.nc" for name in RECORD_SETS]

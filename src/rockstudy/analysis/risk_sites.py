@@ -339,46 +339,6 @@ def _finite_fit(ds: xr.Dataset, strategy: str) -> bool:
                 and np.isfinite(float(ds["fragility_median"].sel(strategy=strategy))))
 
 
-def check_config(section: dict, key: str = "risk") -> dict:
-    """The config's ``risk:`` section: its declaration (:class:`rockstudy.core.declarations.Risk`: every value
-    in range, no unknown key), at least one site, every hazard file readable. Returns every site of each hazard
-    file (a list of :class:`~rockstudy.analysis.hazard.HazardSite`) by the file's name.
-
-    Parameters
-    ----------
-    section : dict
-        The ``risk:`` section: ``scenarios``, ``hazard_curves`` (name: file path), ``hazard_units`` (name: the
-        unit of that file's PGA levels, when not g or not stated by the file) and the other keys of
-        :class:`rockstudy.core.declarations.Risk`.
-    key : str, default "risk"
-        Where the section sits in the config: errors name ``<key>.<entry>``.
-
-    Raises
-    ------
-    ValueError
-        (:class:`~rockstudy.core.validation.InputError`) naming ``<key>.<entry>``.
-    """
-    from rockstudy.analysis.hazard import read_hazard_sites
-    from rockstudy.core import declarations
-    declarations.check_config(section, declarations.Risk, key)
-    scenarios, curves = section.get("scenarios") or {}, section.get("hazard_curves") or {}
-    units = section.get("hazard_units") or {}
-    if not scenarios and not curves:
-        raise validation.InputError(f"{key}: give at least one scenario or hazard curve")
-    from rockstudy.analysis.ground_motion import check_range, check_scenario
-    for name, scenario in scenarios.items():
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            check_range(check_scenario(scenario, f"{key}.scenarios.{name}"), section.get("gmm") or DEFAULT_GMM,
-                        f"{key}.scenarios.{name}", bool(section.get("outside_gmm_range")))
-    unknown = sorted(set(units) - set(curves))
-    if unknown:
-        raise validation.InputError(f"{key}.hazard_units: {', '.join(unknown)} is not a hazard curve's name "
-                                    f"({', '.join(curves) or 'none given'})")
-    return {name: read_hazard_sites(path, f"{key}.hazard_curves.{name}", units.get(name))
-            for name, path in curves.items()}
-
-
 def risk_warnings_markdown(ds: xr.Dataset) -> str:
     """Lines to append to a risk table: each scenario answered outside its model's published range, and what
     reading each hazard file did (conversions, levels dropped); "" when there is nothing to say.

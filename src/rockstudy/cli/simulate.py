@@ -22,8 +22,9 @@ from rockstudy.cli.options import (
     write_output,
 )
 from rockstudy.cli.output import grid_values, print_json
-from rockstudy.core import declarations, validation
+from rockstudy.core import validation
 from rockstudy.core.constants import NOISE_DT
+from rockstudy.studies import config_model
 
 GRID_KEYS = ("amplitude_ratio", "last_safe_amplitude_ratio", "max_amplitude_ratio", "scan_start_amplitude_ratio",
              "frequency_ratio")
@@ -69,7 +70,7 @@ def _cmd_simulate(args, parser):
         return _cmd_simulate_record(args, parser)
     check_no_record_options(args, parser)
     _check_common(args)
-    declarations.check_option("--amplitude-ratio", args.amplitude_ratio)
+    config_model.check_option("--amplitude-ratio", args.amplitude_ratio)
     scenario = _scenario(args, parser)
     _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
     _check_outputs(args, parser)
@@ -107,7 +108,7 @@ def _cmd_simulate_record(args, parser):
     """``simulate --record FILE``: one run under a recorded (or synthetic) ground motion."""
     _check_record_options(args, parser)
     _check_common(args, single_frequency=False)
-    declarations.check_option("--record-scale", args.record_scale)
+    config_model.check_option("--record-scale", args.record_scale)
     _check_outputs(args, parser)
     info, record = _read_record(args, parser)
     scenario = _scenario(args, parser, sensor_step=record.dt)

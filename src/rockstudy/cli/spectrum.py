@@ -23,7 +23,8 @@ from rockstudy.cli.options import (
 )
 from rockstudy.cli.output import print_json
 from rockstudy.cli.progress import progress_bar
-from rockstudy.core import declarations, validation
+from rockstudy.core import validation
+from rockstudy.studies import config_model
 
 FREQUENCY_OPTIONS = {"start": "--frequency-start", "stop": "--frequency-stop", "step": "--frequency-step"}
 """The option that sets each argument of :func:`~rockstudy.analysis.spectra.frequency_grid`."""
@@ -74,7 +75,7 @@ def _cmd_spectrum(args, parser):
     if args.engine != "fast":
         parser.error("argument --engine: spectra run on the fast engine only")
     _check_common(args, single_frequency=False)
-    declarations.check_option("--realisations", args.realisations)
+    config_model.check_option("--realisations", args.realisations)
     validation.check_int_range("--threads", args.threads, 1, numba.config.NUMBA_NUM_THREADS,
                                why="the CPUs numba can use on this machine")
     scenario = _scenario(args, parser)
@@ -113,7 +114,7 @@ def _cmd_jos(args, parser):
     from rockstudy.analysis.jos import jos
     from rockstudy.core.io import read_netcdf
     from rockstudy.studies.tables import check_spectrum_file, spectrum_mismatches
-    declarations.check_option("--a-max0", args.a_max0)
+    config_model.check_option("--a-max0", args.a_max0)
     datasets = {}
     for name, path in (("--reference", args.reference), ("--system", args.system)):
         validation.check_input_file(name, path, validation.MAX_DATASET_BYTES)

@@ -1,7 +1,7 @@
 """Config files as the library reads them: YAML with a bound on its nodes (aliases expanded) before anything
 walks it, and overlays that replace the sections they give instead of merging into them.
 
-The values' declarations (type, unit, range, size) are in :mod:`rockstudy.core.declarations`; this module
+The values' declarations (type, unit, range, size) are in :mod:`rockstudy.studies.config_model`; this module
 only bounds a file's shape and applies an overlay, so that a config is never walked unbounded.
 """
 from __future__ import annotations

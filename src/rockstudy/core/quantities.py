@@ -6,9 +6,9 @@ value enters names the quantity it is, and takes its check from it:
 * the library's arguments -- each public class and function declares the quantity of each of its numeric
   arguments where it is defined (:func:`declares`, which fills :data:`ARGUMENTS`), and
   :func:`check_arguments` is the check those classes and functions run first;
-* the study config -- :mod:`rockstudy.core.declarations` builds its pydantic fields from
+* the study config -- :mod:`rockstudy.studies.config_model` builds its pydantic fields from
   :meth:`Quantity.annotated`, so the JSON schema Snakemake validates against carries the same ranges;
-* the command line -- :data:`rockstudy.core.declarations.OPTIONS` gives each numeric option the quantity of
+* the command line -- :data:`rockstudy.studies.config_model.OPTIONS` gives each numeric option the quantity of
   the config key it stands for.
 
 The inputs of the risk analyses (fragility median and dispersion, exposure time, earthquake scenarios) are

@@ -1,7 +1,7 @@
 """Every input of the risk analyses declared once: its range, unit and meaning, and its default.
 
 The library's checks (:mod:`rockstudy.analysis.risk`, :mod:`rockstudy.analysis.ground_motion`), the
-command line's (``rockstudy risk``) and the config's ``risk:`` section (:class:`rockstudy.core.declarations.Risk`,
+command line's (``rockstudy risk``) and the config's ``risk:`` section (:class:`rockstudy.studies.config_model.Risk`,
 and through it the generated config schema) derive from these declarations.
 """
 from __future__ import annotations

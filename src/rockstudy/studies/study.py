@@ -22,7 +22,7 @@ from rockstudy.studies.parameters import (
 
 
 def check_sizes(config: dict) -> None:
-    """No list or mapping of the config is longer than declared (:mod:`rockstudy.core.declarations`), and the
+    """No list or mapping of the config is longer than declared (:mod:`rockstudy.studies.config_model`), and the
     config has at most :data:`~rockstudy.core.config_files.MAX_NODES` values (YAML aliases expanded).
 
     Parameters
@@ -62,15 +62,14 @@ def check_study(config: dict) -> None:
     """
     # the sections' checks and the model's limits, imported here: a job that only logs or fingerprints
     # (every workflow script) does not load the compiled model
-    from rockstudy.core import declarations
     from rockstudy.model.excitation import check_time_span, excitation_duration
     from rockstudy.model.noise import reading_from_dict
     from rockstudy.model.sensor import SENSOR_STEP, check_band
-    from rockstudy.studies import beyond, device_calibration, noise_readings
+    from rockstudy.studies import beyond, config_model, device_calibration, noise_readings
 
     # the model: every key's type, unit, range and size, and the relations between keys that need no
     # computation (its validators); then what needs the model's computations and bounds the work
-    declarations.check_config(config)
+    config_model.check_config(config)
     validation.check_results_dir("results_dir", config["results_dir"])
     levels = config["noise_levels"]
     noise_free_level(levels)

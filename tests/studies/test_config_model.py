@@ -9,8 +9,8 @@ import pytest
 import yaml
 
 from rockstudy.core import config_files
-from rockstudy.core import declarations as d
 from rockstudy.core.validation import InputError
+from rockstudy.studies import config_model as d
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT = yaml.safe_load((ROOT / "config.yaml").read_text())
@@ -18,7 +18,7 @@ TINY = yaml.safe_load((ROOT / ".test" / "config.yaml").read_text())
 
 
 def test_checked_in_schema_is_the_generated_one():
-    """Regenerate with ``python -m rockstudy.core.declarations`` when this fails."""
+    """Regenerate with ``python -m rockstudy.studies.config_model`` when this fails."""
     assert (ROOT / d.SCHEMA_PATH).read_text() == d.schema_text()
 
 

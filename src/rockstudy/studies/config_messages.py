@@ -1,6 +1,6 @@
 """At most three lines for a config key pydantic refuses: the key path, the value, what is allowed and, for
 an unknown key, the closest known one (:func:`message`). The config's models are in
-:mod:`rockstudy.core.declarations`, which words its errors with these.
+:mod:`rockstudy.studies.config_model`, which words its errors with these.
 """
 from __future__ import annotations
 

@@ -4,7 +4,7 @@ The models below (pydantic v2, strict: a ``bool`` is not a number, NaN and inf a
 is refused) are the one declaration of the study config. From them come
 
 * the JSON schema Snakemake validates ``config.yaml`` against (``workflow/schemas/config.schema.yaml``,
-  written by ``python -m rockstudy.core.declarations``; a test fails when the checked-in file is stale),
+  written by ``python -m rockstudy.studies.config_model``; a test fails when the checked-in file is stale),
 * :func:`check_config`, the first step of :func:`rockstudy.studies.study.check_study` and of the CLI's
   ``--config``, whose error names the key path, the value, what is allowed and, for an unknown key, the
   closest known one,
@@ -14,8 +14,9 @@ is refused) are the one declaration of the study config. From them come
 The ranges of numeric keys are those of :mod:`rockstudy.core.quantities`, the other limits those of
 :mod:`rockstudy.core.limits`. Relations between keys (a noise level named by
 a sweep exists, a_max,0 within the scan, the work of one job) are checked after these declarations by
-:func:`rockstudy.studies.study.check_study`. pydantic is imported only here, and only by the config
-checks: neither ``rockstudy --help`` nor a simulation loads it.
+:func:`rockstudy.studies.study.check_study`. pydantic is imported only here and by
+:mod:`rockstudy.studies.config_messages`, and only by the config checks: neither ``rockstudy --help`` nor a
+simulation loads it. ``core`` holds no config model: the models live with the study that reads them.
 """
 from __future__ import annotations
 
@@ -34,14 +35,14 @@ from pydantic import (
     model_validator,
 )
 
-from rockstudy.core import config_messages
 from rockstudy.core import risk_inputs as r
 from rockstudy.core import validation as v
 from rockstudy.core.config_files import count_nodes
-from rockstudy.core.config_messages import KeyRelationError, _model_at, _short
 from rockstudy.core.limits import EXCITATIONS, LEVEL_MEANINGS, MAX_TEXT, OVERTURN_CRITERIA, RESCALES, STRATEGIES
 from rockstudy.core.quantities import MAX_PGA_G, MAX_ROTATION_RATIO, QUANTITIES
 from rockstudy.core.validation import InputError
+from rockstudy.studies import config_messages
+from rockstudy.studies.config_messages import KeyRelationError, _model_at, _short
 
 SCHEMA_PATH = "workflow/schemas/config.schema.yaml"
 """Where the generated schema is checked in, relative to the repository."""
@@ -435,7 +436,7 @@ OPTIONS = {
 # ----------------------------------------------------------------------------------------------- checks
 
 def message(error: ValidationError, model=None, prefix: str = "") -> str:
-    """At most three lines for the first error of ``error`` (:func:`rockstudy.core.config_messages.message`,
+    """At most three lines for the first error of ``error`` (:func:`rockstudy.studies.config_messages.message`,
     with the sections' class names left out of the key path).
 
     Parameters
@@ -582,7 +583,8 @@ def config_schema() -> dict:
 def schema_text() -> str:
     """The checked-in schema file's text: a generated-file header and :func:`config_schema` as YAML."""
     import yaml
-    header = ("# GENERATED from rockstudy.core.declarations (python -m rockstudy.core.declarations); do not edit.\n"
+    header = ("# GENERATED from rockstudy.studies.config_model (python -m rockstudy.studies.config_model); "
+              "do not edit.\n"
               "# Snakemake validates config.yaml against it; rockstudy.studies.study.check_study checks the rest.\n")
     return header + yaml.safe_dump(config_schema(), sort_keys=False, width=118)
 
