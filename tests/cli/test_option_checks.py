@@ -59,3 +59,82 @@ def test_grid_errors_name_the_option(option, value, needle, tmp_path, capsys):
     assert needle in err and "AmplitudeGrid" not in err and "Traceback" not in err
     assert len(err.strip().splitlines()) <= 3
     assert not (tmp_path / "s.nc").exists()
+
+
+# --- every option that sets a library object is checked once, by that object, naming the option -------------
+
+def _object_options():
+    """(owner, field, option, quantity) of every option that sets a field of a library object, from the objects'
+    declarations (core.quantities.ARGUMENTS) and the CLI's maps of fields to options."""
+    from rockstudy.cli import options
+    from rockstudy.core.quantities import ARGUMENTS
+    maps = {"NoiseReading": options.OPTION_NAMES, "Anchorage": options.OPTION_NAMES, "Control": options.OPTION_NAMES,
+            "Scenario": options.SCENARIO_OPTIONS, "Block": {f: f"--{f}" for f in options.BLOCK_OPTIONS}}
+    return [(owner, field, names[field], quantity) for owner, names in maps.items()
+            for field, quantity in ARGUMENTS[owner].items() if field in names]
+
+
+OBJECT_OPTIONS = _object_options()
+DIMENSIONS = ["--width", "0.4", "--height", "1.6", "--depth", "0.4"]
+
+
+def _past_the_ends(quantity):
+    """Values just outside the declared range (the open ends themselves), as the command line writes them."""
+    q = quantities.QUANTITIES[quantity]
+    out = []
+    if q.low is not None:
+        out.append(q.low if q.low_open else q.low - max(abs(q.low), 1.0))
+    if q.high is not None:
+        out.append(q.high if q.high_open else q.high + max(abs(q.high), 1.0))
+    return [str(int(x)) if q.integer else f"{x:g}" for x in out]
+
+
+def test_the_generation_covers_the_objects_options():
+    options = {option for _, _, option, _ in OBJECT_OPTIONS}
+    assert {"--noise-step", "--noise-band", "--noise-span", "--kappa-max", "--kappa-min", "--damping-ratio",
+            "--sampling-time", "--delay", "--sensor-band", "--noise-level", "--seed", "--free-time", "--width",
+            "--height", "--depth", "--density", "--restitution"} <= options
+
+
+@pytest.mark.parametrize("command", ["simulate", "threshold", "spectrum"])
+@pytest.mark.parametrize("owner,field,option,quantity", OBJECT_OPTIONS, ids=[o[2] for o in OBJECT_OPTIONS])
+def test_a_bad_value_is_refused_once_naming_the_option(command, owner, field, option, quantity, tmp_path, capsys):
+    values = _past_the_ends(quantity)
+    assert values, f"{quantity} declares no range"
+    extra = ["--output", str(tmp_path / "s.nc")] + TINY if command == "spectrum" else []
+    for value in values:
+        with pytest.raises(SystemExit) as exc:
+            main([command, *extra, *DIMENSIONS, f"{option}={value}"])
+        assert exc.value.code == 2
+        err = capsys.readouterr().err
+        lines = err.strip().splitlines()
+        assert [line for line in lines if "error" in line] == [lines[0]], err  # one error line
+        assert len(lines) <= 3 and lines[0].startswith(f"rockstudy: error: {option} "), err
+        assert f"{owner}." not in err and field not in err.replace(option, ""), err  # the option, not the field
+        assert "Traceback" not in err
+    assert not (tmp_path / "s.nc").exists()
+
+
+def test_simulate_checks_each_object_option_once(monkeypatch, capsys):
+    checked = []
+    real = quantities.Quantity.check
+
+    def counted(self, name, value):
+        checked.append(name)
+        return real(self, name, value)
+    monkeypatch.setattr(quantities.Quantity, "check", counted)
+    from rockstudy.studies import config_model
+    by_option = _count(monkeypatch, config_model, "check_option")
+    given = {"--noise-level": "0.05", "--seed": "7", "--free-time": "2", "--noise-step": "0.005",
+             "--noise-band": "20", "--noise-span": "0.5", "--kappa-max": "1.5", "--kappa-min": "0.1",
+             "--damping-ratio": "0.1", "--sampling-time": "0.01", "--delay": "0.01", "--sensor-band": "20",
+             "--density": "2500", "--restitution": "0.9"}
+    main(["simulate", "--strategy", "CS02", "--frequency-ratio", "2", "--amplitude-ratio", "1.2", *DIMENSIONS]
+         + [word for pair in given.items() for word in pair])
+    assert json.loads(capsys.readouterr().out)["strategy"] == "CS02"
+    for _, _, option, _ in OBJECT_OPTIONS:
+        assert checked.count(option) == 1, (option, checked.count(option))
+    # not checked again under the field's own name (Block aside: block_from_dict also builds the block)
+    fields = {f"{owner}.{field}" for owner, field, _, _ in OBJECT_OPTIONS if owner != "Block"}
+    assert not fields & set(checked), sorted(fields & set(checked))
+    assert sorted(args[0] for args, _ in by_option) == ["--amplitude-ratio", "--frequency-ratio", "--realisation"]

@@ -4,7 +4,7 @@ criterion, free time), and the ground motion it gives at one frequency and ampli
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import InitVar, dataclass, field
 from typing import NamedTuple
 
 import numpy as np
@@ -83,6 +83,9 @@ class Scenario:
         Overturned at |θ| >= π/2 (default) or at |θ| >= α.
     free_time : float
         Free motion allowed after the excitation. [s]
+    names : dict, optional
+        The caller's name of ``noise_level``, ``seed`` and ``free_time`` in error messages
+        (``{"free_time": "--free-time"}``); one missing from it is named ``Scenario.<field>``. Not stored.
     """
 
     block: Block
@@ -94,15 +97,17 @@ class Scenario:
     noise: NoiseReading = DEFAULT_READING
     overturn_criterion: str = DEFAULT_OVERTURN_CRITERION
     free_time: float = DEFAULT_FREE_TIME
+    names: InitVar[dict | None] = None
 
-    def __post_init__(self):
+    def __post_init__(self, names):
         for name, kind in (("block", Block), ("anchorage", Anchorage), ("control", Control)):
             if not isinstance(getattr(self, name), kind):
                 raise validation.InputError(f"Scenario.{name} must be a rockstudy {kind.__name__}, got "
                                    f"{type(getattr(self, name)).__name__} {getattr(self, name)!r}")
         if not isinstance(self.excitation, str) or self.excitation not in EXCITATIONS:
             raise ValueError(f"excitation must be one of {', '.join(EXCITATIONS)}, got {self.excitation!r}")
-        check_arguments("Scenario", {"noise_level": self.noise_level, "seed": self.seed, "free_time": self.free_time})
+        check_arguments("Scenario", {"noise_level": self.noise_level, "seed": self.seed, "free_time": self.free_time},
+                        names)
         if not isinstance(self.noise, NoiseReading):
             raise ValueError(f"noise must be a rockstudy.model.noise.NoiseReading, got {self.noise!r}")
         if self.overturn_criterion not in OVERTURN_CRITERIA:

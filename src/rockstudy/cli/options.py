@@ -1,6 +1,7 @@
 """The options the simulating commands share (block, anchorage, control, noise, grids, ``--config``), with the
-library's defaults, and their checks: each option is checked against its declaration
-(:data:`rockstudy.studies.config_model.OPTIONS`), the relations between options by the library
+library's defaults, and their checks: each option is checked once, by the library object it sets, which names
+the option in its message (``Anchorage(..., names=OPTION_NAMES)``); the few that set no object against their
+declarations (:data:`rockstudy.studies.config_model.OPTIONS`); the relations between options by the library
 (:mod:`rockstudy.core.validation`, :meth:`Scenario.check_span`).
 
 Imported only when a command that simulates is parsed: ``rockstudy --help`` does not load the library.
@@ -129,47 +130,72 @@ def device_and_end_options(p: argparse.ArgumentParser, motion: str) -> None:
     _numeric(p, "--free-time", DEFAULT_FREE_TIME, f"free motion allowed after {motion} [s]")
 
 
-CHECKED_OPTIONS = ("--noise-level", "--seed", "--sampling-time", "--delay", "--kappa-max", "--kappa-min",
-                   "--damping-ratio", "--free-time", "--noise-step", "--noise-band", "--noise-span", "--sensor-band",
-                   "--width", "--height", "--depth", "--density", "--restitution")
-"""The options every simulating command shares, checked against their declarations."""
+FIELD_OPTIONS = ("--frequency-ratio", "--realisation")
+"""Options no library object takes at construction (a run's frequency and noise realisation), checked against
+their declarations by :func:`_check_common`; every other option is checked once, by the library object it
+sets (:data:`OPTION_NAMES`, :data:`SCENARIO_OPTIONS`, :data:`GRID_OPTIONS`), naming the option."""
+
+SCENARIO_OPTIONS = {"noise_level": "--noise-level", "seed": "--seed", "free_time": "--free-time"}
+"""The option that sets each number of :class:`~rockstudy.analysis.scenario.Scenario`: its check names it."""
 
 
 def _check_common(args, single_frequency=True) -> None:
-    """The options every simulating command shares, against their declarations
-    (:data:`rockstudy.studies.config_model.OPTIONS`); raises :class:`validation.InputError` naming the option."""
-    names = CHECKED_OPTIONS + (("--frequency-ratio",) if single_frequency else ()) + (
+    """``--frequency-ratio`` and ``--realisation`` against their declarations
+    (:data:`rockstudy.studies.config_model.OPTIONS`), before the scenario's time span uses them; raises
+    :class:`validation.InputError` naming the option."""
+    names = (("--frequency-ratio",) if single_frequency else ()) + (
         ("--realisation",) if hasattr(args, "realisation") else ())
     for name in names:
         config_model.check_option(name, getattr(args, name[2:].replace("-", "_"), None))
 
 
-def _scenario(args, parser, sensor_step=None):
-    """The scenario of the options; ``sensor_step`` [s]: the step of the record the sensor reads
-    (default: the noisy record's, or the analytic excitation's sampling for the sensor)."""
+def _scenario(args, parser, sensor_step=None, record=False):
+    """The scenario of the options, each checked once by the library object it sets (naming the option).
+    ``sensor_step`` [s]: the step of the record the sensor reads (default: the noisy record's, or the
+    analytic excitation's sampling for the sensor); ``record``: the run reads a record, whose step is not
+    known yet (:func:`check_sensor_band` after reading it)."""
     from rockstudy.analysis.scenario import Scenario
     from rockstudy.model.noise import NoiseReading
-    from rockstudy.model.sensor import SENSOR_STEP, check_band
+    from rockstudy.model.sensor import SENSOR_STEP
     noise = {"step": args.noise_step, "rescale": args.noise_rescale, "level_means": args.noise_level_means,
              "band": args.noise_band, "span": args.noise_span}
-    anchorage = {"kappa_max": args.kappa_max, "kappa_min": args.kappa_min, "damping_ratio": args.damping_ratio}
+    anchorage = {**getattr(args, "anchorage_base", {}), "kappa_max": args.kappa_max, "kappa_min": args.kappa_min,
+                 "damping_ratio": args.damping_ratio}
     control = {"strategy": args.strategy, "sampling_time": args.sampling_time, "delay": args.delay,
                "sensor_band": args.sensor_band}
+    block = _block(args, parser)
     try:
-        NoiseReading.check(OPTION_NAMES, **noise)
-        Anchorage.check(OPTION_NAMES, **anchorage)
-        Control.check(OPTION_NAMES, **control)
-        if args.sensor_band is not None:
-            if sensor_step is None:
-                sensor_step = args.noise_step if args.noise_level > 0 else SENSOR_STEP
-            check_band(args.sensor_band, sensor_step, "--sensor-band")
+        parts = (NoiseReading(**noise, names=OPTION_NAMES), Anchorage(**anchorage, names=OPTION_NAMES),
+                 Control(**control, names=OPTION_NAMES))
+        scenario = Scenario(block, parts[1], parts[2], excitation=args.excitation, noise_level=args.noise_level,
+                            seed=args.seed, noise=parts[0], overturn_criterion=args.overturn_criterion,
+                            free_time=args.free_time, names=SCENARIO_OPTIONS)
     except ValueError as exc:
         parser.error(str(exc))
-    anchorage = {**getattr(args, "anchorage_base", {}), **anchorage}
-    return Scenario(_block(args, parser), Anchorage(**anchorage), Control(**control),
-                    excitation=args.excitation, noise_level=args.noise_level, seed=args.seed,
-                    noise=NoiseReading(**noise), overturn_criterion=args.overturn_criterion,
-                    free_time=args.free_time)
+    if not record:
+        check_sensor_band(args, parser, sensor_step if sensor_step is not None else
+                          args.noise_step if args.noise_level > 0 else SENSOR_STEP)
+    return scenario
+
+
+def check_sensor_band(args, parser, sensor_step: float) -> None:
+    """``--sensor-band`` (when given) below the Nyquist frequency of the record the sensor reads.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options.
+    parser : argparse.ArgumentParser
+        The command's parser (exit 2 naming ``--sensor-band``).
+    sensor_step : float
+        Sampling step of the record the sensor reads. [s]
+    """
+    from rockstudy.model.sensor import check_band
+    if args.sensor_band is not None:
+        try:
+            check_band(args.sensor_band, sensor_step, "--sensor-band")
+        except ValueError as exc:
+            parser.error(str(exc))
 
 
 def _block(args, parser):
@@ -184,7 +210,7 @@ def _block(args, parser):
     if spec is None:
         return BLOCK_PRESETS[args.block]
     try:
-        return block_from_dict(spec)
+        return block_from_dict(spec, {name: f"--{name}" for name in dims})
     except ValueError as exc:
         message = str(exc)
         if dims:

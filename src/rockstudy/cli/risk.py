@@ -138,8 +138,7 @@ def run_fragility(args, parser) -> None:
     from rockstudy.studies import parameters
     try:
         validation.check_output_path("--output", args.output, formats=("nc",))
-        anchorage = {"kappa_max": args.kappa_max, "kappa_min": args.kappa_min, "damping_ratio": args.damping_ratio}
-        Anchorage.check({k: f"--{k.replace('_', '-')}" for k in anchorage}, **anchorage)
+        anchorage = Anchorage(args.kappa_max, args.kappa_min, args.damping_ratio, names=options.OPTION_NAMES)
         block = _block(args)
         QUANTITIES["free_time"].check("--free-time", args.free_time)
         levels = parameters.intensity_levels({"start": args.levels_start, "stop": args.levels_stop,
@@ -154,10 +153,11 @@ def run_fragility(args, parser) -> None:
         _fail(parser, exc)
     strategies = ["FS"] if args.strategy == "FS" else ["FS", args.strategy]
     try:
-        controls = [Control(s, sampling_time=args.sampling_time, delay=args.delay) for s in strategies]
+        controls = [Control(s, sampling_time=args.sampling_time, delay=args.delay, names=options.OPTION_NAMES)
+                    for s in strategies]
     except ValueError as exc:
         _fail(parser, exc)
-    ds = suite_fragility_dataset(block, Anchorage(**anchorage), controls, entries, levels, suite=args.suite,
+    ds = suite_fragility_dataset(block, anchorage, controls, entries, levels, suite=args.suite,
                                  measure=args.intensity_measure, resolution=args.threshold_resolution,
                                  n_boot=args.bootstrap, seed=args.seed, overturn_criterion=args.overturn_criterion,
                                  free_time=args.free_time)

@@ -18,6 +18,7 @@ from rockstudy.cli.options import (
     _record_description,
     _scenario,
     check_no_record_options,
+    check_sensor_band,
     record_args,
     write_output,
 )
@@ -109,9 +110,10 @@ def _cmd_simulate_record(args, parser):
     _check_record_options(args, parser)
     _check_common(args, single_frequency=False)
     config_model.check_option("--record-scale", args.record_scale)
+    scenario = _scenario(args, parser, record=True)
     _check_outputs(args, parser)
     info, record = _read_record(args, parser)
-    scenario = _scenario(args, parser, sensor_step=record.dt)
+    check_sensor_band(args, parser, record.dt)
     motion = record.motion(args.record_scale)
     pga_ratio = motion.peak() / scenario.block.uplift_acceleration
     top = validation.MAX_AMPLITUDE_RATIO * args.record_scale / pga_ratio if pga_ratio > 0 else None
@@ -174,9 +176,10 @@ def _cmd_threshold_record(args, parser):
     from rockstudy.model.records import STANDARD_GRAVITY
     _check_record_options(args, parser)
     _check_common(args, single_frequency=False)
+    scenario = _scenario(args, parser, record=True)
     grid, _ = _grid(args, parser)
     info, record = _read_record(args, parser)
-    scenario = _scenario(args, parser, sensor_step=record.dt)
+    check_sensor_band(args, parser, record.dt)
     validation.check_nonnegative("--free-time", args.free_time, "s", validation.MAX_TIME_SPAN - record.duration,
                                  why=f"the record lasts {record.duration:.4g} s and a simulation at most "
                                      f"{validation.MAX_TIME_SPAN:g} s")

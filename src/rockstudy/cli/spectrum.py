@@ -10,7 +10,6 @@ from rockstudy.analysis.spectra import DEFAULT_FREQUENCY_GRID
 from rockstudy.analysis.utility_index import DEFAULT_A_MAX0
 from rockstudy.cli import COMMANDS
 from rockstudy.cli.options import (
-    _check_common,
     _check_outputs,
     _check_time_span,
     _common,
@@ -74,7 +73,6 @@ def _cmd_spectrum(args, parser):
     from rockstudy.studies.datasets import document_missing
     if args.engine != "fast":
         parser.error("argument --engine: spectra run on the fast engine only")
-    _check_common(args, single_frequency=False)
     config_model.check_option("--realisations", args.realisations)
     validation.check_int_range("--threads", args.threads, 1, numba.config.NUMBA_NUM_THREADS,
                                why="the CPUs numba can use on this machine")

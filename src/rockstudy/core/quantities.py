@@ -8,8 +8,8 @@ value enters names the quantity it is, and takes its check from it:
   :func:`check_arguments` is the check those classes and functions run first;
 * the study config -- :mod:`rockstudy.studies.config_model` builds its pydantic fields from
   :meth:`Quantity.annotated`, so the JSON schema Snakemake validates against carries the same ranges;
-* the command line -- :data:`rockstudy.studies.config_model.OPTIONS` gives each numeric option the quantity of
-  the config key it stands for.
+* the command line -- an option is checked by the class or function it is passed to, which names the option
+  in its message (``names={"kappa_max": "--kappa-max"}``, the argument of :func:`check_arguments`).
 
 The inputs of the risk analyses (fragility median and dispersion, exposure time, earthquake scenarios) are
 declared the same way, beside their defaults, in :mod:`rockstudy.core.risk_inputs`.

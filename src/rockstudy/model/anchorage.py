@@ -10,7 +10,7 @@ block (the paper does not publish its values):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import InitVar, dataclass
 
 from numba import njit
 
@@ -37,6 +37,15 @@ class Anchorage:
         theta_K,u, rotation at which a spring breaks; None means alpha. [rad]
     damper_ultimate_rotation : float or None
         theta_D,u, rotation at which a damper breaks; None means alpha. [rad]
+    names : dict, optional
+        The caller's name of each field in error messages (``{"kappa_max": "--kappa-max"}``); a field missing
+        from it is named ``Anchorage.<field>``. Not stored.
+
+    Raises
+    ------
+    ValueError
+        (:class:`~rockstudy.core.validation.InputError` for a range) naming the field, its value and what is
+        allowed: the one check of an anchorage, at construction (:meth:`check`).
     """
 
     kappa_max: float = 1.0
@@ -44,9 +53,10 @@ class Anchorage:
     damping_ratio: float = 0.05
     spring_ultimate_rotation: float | None = None
     damper_ultimate_rotation: float | None = None
+    names: InitVar[dict | None] = None
 
-    def __post_init__(self):
-        self.check(**self.__dict__)
+    def __post_init__(self, names):
+        self.check(names, **self.__dict__)
 
     @staticmethod
     def check(names=None, *, kappa_max=1.0, kappa_min=0.0, damping_ratio=0.05, spring_ultimate_rotation=None,

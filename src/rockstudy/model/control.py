@@ -23,7 +23,7 @@ driving Xg_ddot.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import InitVar, dataclass
 
 from numba import njit
 
@@ -53,15 +53,25 @@ class Control:
         Cut-off f_c of the sensor through which the controller reads Ẍg (a causal second-order
         Butterworth low-pass of the record, :mod:`rockstudy.model.sensor`); None: the controller reads
         the driving Ẍg itself (the ideal sensor). Only CS02 reads Ẍg. [Hz]
+    names : dict, optional
+        The caller's name of each field in error messages (``{"delay": "--delay"}``); a field missing from it
+        is named ``Control.<field>``. Not stored.
+
+    Raises
+    ------
+    ValueError
+        (:class:`~rockstudy.core.validation.InputError` for a range) naming the field, its value and what is
+        allowed: the one check of a control, at construction (:meth:`check`).
     """
 
     strategy: str = "CS01"
     sampling_time: float = 0.0
     delay: float = 0.0
     sensor_band: float | None = None
+    names: InitVar[dict | None] = None
 
-    def __post_init__(self):
-        band = self.check(**self.__dict__)
+    def __post_init__(self, names):
+        band = self.check(names, **self.__dict__)
         object.__setattr__(self, "sensor_band", band)
 
     @staticmethod

@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass
+from dataclasses import InitVar, dataclass
 
 import numpy as np
 
@@ -98,11 +98,15 @@ class NoiseReading:
     span : float, default 0.0
         Noise continues for this long after the intense part [0, T_d], at the same RMS; 0:
         noise on the intense part only. [s]
+    names : dict, optional
+        The caller's name of each field in error messages (``{"step": "--noise-step"}``); a field missing from
+        it is named ``NoiseReading.<field>``. Not stored.
 
     Raises
     ------
     ValueError
-        Naming the field, its value and what is allowed.
+        Naming the field, its value and what is allowed: the one check of a reading, at construction
+        (:meth:`check`).
     """
 
     step: float = NOISE_DT
@@ -110,9 +114,10 @@ class NoiseReading:
     level_means: str = "energy"
     band: float | None = None
     span: float = 0.0
+    names: InitVar[dict | None] = None
 
-    def __post_init__(self):
-        for key, value in self.check(**self.__dict__).items():
+    def __post_init__(self, names):
+        for key, value in self.check(names, **self.__dict__).items():
             object.__setattr__(self, key, value)
 
     @staticmethod
@@ -202,8 +207,7 @@ def reading_from_dict(spec: dict | None, key: str = "noise") -> NoiseReading:
     unknown = set(spec) - set(fields)
     if unknown:
         raise ValueError(f"{key}: unknown key(s) {sorted(unknown)}; allowed: {', '.join(fields)}")
-    NoiseReading.check({field: f"{key}.{field}" for field in fields}, **spec)
-    return NoiseReading(**spec)
+    return NoiseReading(**spec, names={field: f"{key}.{field}" for field in fields})
 
 
 def _as_reading(reading) -> NoiseReading:

@@ -8,8 +8,7 @@ is refused) are the one declaration of the study config. From them come
 * :func:`check_config`, the first step of :func:`rockstudy.studies.study.check_study` and of the CLI's
   ``--config``, whose error names the key path, the value, what is allowed and, for an unknown key, the
   closest known one,
-* :func:`check_value`, the check of one value by its key path, which the CLI applies to the option that
-  sets that key (``--kappa-max`` is ``anchorage.kappa_max``).
+* :func:`check_value`, the check of one value by its key path (``"anchorage.kappa_max"``).
 
 The ranges of numeric keys are those of :mod:`rockstudy.core.quantities`, the other limits those of
 :mod:`rockstudy.core.limits`. Relations between keys (a noise level named by
@@ -422,16 +421,12 @@ _MODEL_NAMES = {cls.__name__ for cls in (*Section.__subclasses__(), Noise)}
 
 OPTIONS = {
     "--frequency-ratio": Q("frequency_ratio"), "--amplitude-ratio": Q("amplitude_ratio"),
-    "--noise-level": Q("noise_level"), "--realisation": Q("realisation"), "--realisations": Count, "--seed": Seed,
-    "--sampling-time": Q("sampling_time"), "--delay": Q("delay"), "--free-time": Q("free_time"),
-    "--kappa-max": Kappa, "--kappa-min": Kappa, "--damping-ratio": Damping,
-    "--width": Q("length"), "--height": Q("length"), "--depth": Q("length"), "--density": Q("density"),
-    "--restitution": Q("restitution"), "--noise-step": Q("noise_step"), "--noise-band": Q("band"),
-    "--noise-span": Q("noise_span"), "--sensor-band": Q("band"), "--record-scale": Q("record_scale"),
+    "--realisation": Q("realisation"), "--realisations": Count, "--record-scale": Q("record_scale"),
     "--record-dt": Q("record_dt"), "--a-max0": Q("a_max0_g"),
 }
-"""The command line's numeric options, each declared like the config key it stands for (``--kappa-max`` is
-``anchorage.kappa_max``); the CLI checks them with :func:`check_option`."""
+"""The command line's numeric options that set no library object (a run's frequency, the number of
+realisations), each declared like the config key it stands for; the CLI checks them with :func:`check_option`.
+Every other option is checked by the object it sets, which names the option (``Anchorage(..., names=...)``)."""
 
 # ----------------------------------------------------------------------------------------------- checks
 

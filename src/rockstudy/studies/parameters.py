@@ -40,7 +40,7 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def block_from_dict(spec: dict) -> Block:
+def block_from_dict(spec: dict, names: dict | None = None) -> Block:
     """A :class:`Block` from ``{"preset": name}`` or from its dimensions (``width``, ``height``, ...).
 
     Parameters
@@ -49,6 +49,9 @@ def block_from_dict(spec: dict) -> Block:
         ``{"preset": name}`` (a key of :data:`~rockstudy.model.block.BLOCK_PRESETS`), or the block's
         dimensions: ``width``, ``height``, ``depth`` [m] and optionally ``density``, ``gravity``,
         ``restitution`` (None: Eq. 14).
+    names : dict, optional
+        The caller's name of each dimension in error messages (``{"width": "--width"}``); one missing from it
+        is named ``block.<field>``.
     """
     spec = dict(spec)
     preset = spec.pop("preset", None)
@@ -66,7 +69,8 @@ def block_from_dict(spec: dict) -> Block:
     if missing:
         raise validation.InputError(f"block: missing key(s) {sorted(missing)}; give a preset or width, height "
                                     "and depth")
-    check_arguments("Block", spec, {field: f"block.{field}" for field in spec})  # as Block checks them
+    names = names or {}
+    check_arguments("Block", spec, {field: names.get(field, f"block.{field}") for field in spec})  # as Block does
     restitution = spec.get("restitution")
     shape = Block(**{**spec, "restitution": 0.0})  # the proportions, before Eq. 14 is applied
     if restitution is None:  # a squat block would get e < 0 from Eq. (14)
@@ -97,13 +101,13 @@ def scenario_from_dict(spec: dict) -> Scenario:
     spec = dict(spec)
     block = block_from_dict(spec.pop("block"))
     anchorage, control = spec.pop("anchorage", {}), spec.pop("control", {})
-    try:
-        Anchorage.check({f.name: f"anchorage.{f.name}" for f in fields(Anchorage)}, **anchorage)
-        Control.check({f.name: f"control.{f.name}" for f in fields(Control)}, **control)
+    try:  # each checked once, at construction, naming its config key
+        anchorage = Anchorage(**anchorage, names={f.name: f"anchorage.{f.name}" for f in fields(Anchorage)})
+        control = Control(**control, names={f.name: f"control.{f.name}" for f in fields(Control)})
     except ValueError as exc:
         raise validation.InputError(str(exc)) from None
     noise = reading_from_dict(spec.pop("noise", None), key="noise")
-    return Scenario(block, Anchorage(**anchorage), Control(**control), noise=noise, **spec)
+    return Scenario(block, anchorage, control, noise=noise, **spec)
 
 
 def amplitude_grid(spec: dict, key: str = "amplitude_grid") -> AmplitudeGrid:
