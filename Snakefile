@@ -37,7 +37,8 @@ if DeploymentMethod.CONDA in workflow.deployment_settings.deployment_method:
                  f"{workflow.basedir} without --conda-prefix or --directory")
 
 try:  # the --configfile files as written (bounded, aliases expanded) and the --config KEY=VALUE words, typed as
-    # in a file: each is an overlay that replaces the sections it gives, applied in Snakemake's order
+    # in a file: each is an overlay that replaces the sections it gives, applied in Snakemake's order. A number
+    # YAML 1.1 does not read as written (010: 8 in a file, 10 in Snakemake's --config) is refused on both.
     OVERLAYS = [config_files.load_yaml(path) for path in workflow.overwrite_configfiles]
     COMMAND_LINE = config_files.command_line_overlay(workflow.config_settings.config,
                                                      workflow.config_settings.config_args)

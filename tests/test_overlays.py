@@ -169,3 +169,38 @@ def test_cli_block_options_are_not_merged_into_the_files_block(tmp_path, capsys)
         main(["simulate", "--config", _config_file(tmp_path, TALL), "--height", "3.0"])
     err = capsys.readouterr().err
     assert stop.value.code == 2 and "width" in err and "depth" in err and len(err.strip().splitlines()) <= 3
+
+
+# Numbers as written: `010` is octal 8 in a config file (YAML 1.1) and 10 on Snakemake's command line; both
+# paths refuse it before any job, naming the key and both readings.
+@needs_snakemake
+@pytest.mark.parametrize("how,key", [
+    (("--config", "free_time=010"), "--config free_time"),
+    (("--config", "block={width: 010, height: 2.5, depth: 0.5}"), "--config block.width"),
+    ("file", "line 1: free_time"),
+])
+def test_a_number_not_read_as_written_is_refused_on_both_paths(tmp_path, how, key):
+    if how == "file":
+        overlay = tmp_path / "overlay.yaml"
+        overlay.write_text("free_time: 010\n")
+        how = ("--configfile", str(overlay))
+    res, given = dry_run(tmp_path, *how, "results_dir=out" if how[0] == "--config" else "--config",
+                         *(() if how[0] == "--config" else ("results_dir=out",)))
+    assert res.returncode == 1 and given is None, res.stdout[-2000:]
+    errors = [line for line in res.stderr.splitlines() if "error" in line.lower()]
+    assert len(errors) == 1 and errors[0].startswith("config error: "), res.stderr
+    assert key in errors[0] and "010 is not allowed" in errors[0] and "write 10 or 8" in errors[0], errors[0]
+    assert "Job stats" not in res.stdout and not (tmp_path / "out").exists()
+
+
+@needs_snakemake
+def test_the_decimal_on_the_command_line_is_read_as_written(tmp_path):
+    wrapper = WRAPPER.replace('"noise_levels": LEVELS', '"noise_levels": LEVELS, "free_time": config["free_time"]')
+    (tmp_path / "config.yaml").write_text((ROOT / "config.yaml").read_text())
+    (tmp_path / "Snakefile").write_text(wrapper)
+    res = subprocess.run(["snakemake", "--snakefile", str(tmp_path / "Snakefile"), "--directory", str(tmp_path),
+                          "-n", "--config", "free_time=10", "results_dir=out", "--", "all"],
+                         capture_output=True, text=True, timeout=600)
+    planned = [line for line in res.stdout.splitlines() if line.startswith("PLANNED ")]
+    assert res.returncode == 0 and planned, res.stderr[-2000:]
+    assert json.loads(planned[0].split(" ", 1)[1])["free_time"] == 10

@@ -65,6 +65,7 @@ def test_a_number_yaml_misreads_is_refused_or_read_as_written(path, form, tmp_pa
         config = config_files.load_yaml(file)
     except InputError as exc:
         assert f"line {line}" in str(exc) and form in str(exc) and str(file) in str(exc), str(exc)
+        assert f": {_key_path(path)}: {form} is not allowed" in str(exc), str(exc)  # the key, not only the line
         assert len(str(exc).splitlines()) <= 3
         return
     node = config
@@ -73,6 +74,41 @@ def test_a_number_yaml_misreads_is_refused_or_read_as_written(path, form, tmp_pa
     decimal = form.replace("_", "")
     assert node == decimal or (isinstance(node, (int, float)) and node == float(decimal)), (
         f"{form} read as {node!r}")
+
+
+def _key_path(path) -> str:
+    """``a.b[0].c`` of a path of keys and indices."""
+    return "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in path).lstrip(".")
+
+
+@pytest.mark.parametrize(("path", "form"), NUMBER_CASES)
+def test_the_command_line_refuses_or_reads_as_written_as_a_file_does(path, form):
+    """The same number given on Snakemake's command line (``--config KEY=VALUE``, a section as a YAML flow
+    mapping) as Snakemake parses it and the Snakefile reads it: refused naming the key path, or read as the
+    decimal it shows (or kept as the text it is) -- never as another number; and refused whenever Snakemake
+    would read it as a number a config file reads differently (``010``: 10 here, 8 in a file)."""
+    cli = pytest.importorskip("snakemake.cli")
+    marker = "NUMBER-MARKER"
+    top = path[0]
+    if len(path) == 1:
+        word = f"{top}={form}"
+    else:
+        text = yaml.safe_dump(_set(DEFAULT, path, marker)[top], default_flow_style=True, width=10**6).strip()
+        word = f"{top}={text.replace(marker, form)}"
+    parsed = cli.parse_config([word])
+    try:
+        overlay = config_files.command_line_overlay(parsed, [word])
+    except InputError as exc:
+        assert str(exc).startswith(f"--config {_key_path(path)}: {form} is not allowed"), str(exc)
+        assert len(str(exc).splitlines()) <= 3
+        return
+    node = overlay
+    for part in path:
+        node = node[part]
+    decimal = form.replace("_", "")
+    assert node == form or (isinstance(node, (int, float)) and node == float(decimal)), f"{word} read as {node!r}"
+    file_reading = yaml.safe_load(form)
+    assert not (isinstance(node, (int, float)) and node != file_reading), f"{word}: {node!r}, a file {file_reading!r}"
 
 
 def _names_mappings(model, prefix=""):

@@ -84,7 +84,9 @@ def command_line_overlay(parsed, words=None) -> dict:
     again from its text in ``words`` (the ``KEY=VALUE`` words as given, Snakemake's
     ``workflow.config_settings.config_args``) as a config file is read (:func:`yaml.safe_load`), and the
     whole is bounded (:func:`count_nodes`). A plain value (a number, a word) is kept as Snakemake reads it.
-    A key given twice is merged, as Snakemake merges it (:func:`merge`).
+    A number YAML 1.1 does not read as written (``010``, :data:`NOT_DECIMAL`) is refused, as in a config file
+    (Snakemake reads ``free_time=010`` as 10, a file ``free_time: 010`` is 8). A key given twice is merged, as
+    Snakemake merges it (:func:`merge`).
 
     Parameters
     ----------
@@ -113,11 +115,15 @@ def command_line_overlay(parsed, words=None) -> dict:
             value = parsed[key]
             if isinstance(value, (Mapping, list)):
                 try:
-                    value = yaml.safe_load(text)
+                    node = yaml.compose(text, Loader=yaml.SafeLoader)
                 except yaml.YAMLError as exc:
                     raise InputError(f"--config {key}: not valid YAML: {getattr(exc, 'problem', None) or exc}"
                                      ) from None
+                check_numbers(node, "--config", key, line=False)
+                value = yaml.safe_load(text)
                 count_nodes(value, name=f"--config {key}")
+            elif isinstance(value, (int, float)) and not isinstance(value, bool) and NOT_DECIMAL.fullmatch(text):
+                raise InputError(not_as_written(f"--config {key}", text))  # Snakemake read 010 as 10
             merge(overlay, {key: value})
     count_nodes(overlay, name="--config")
     return overlay
@@ -186,28 +192,71 @@ def count_nodes(value, limit: int = MAX_NODES, name: str = "config") -> int:
 NOT_DECIMAL = re.compile(r"[-+]?(0[0-7_]+|0o[0-7_]+|0x[0-9a-fA-F_]+|0b[01_]+"  # octal, hexadecimal, binary
                          r"|[0-9][0-9_]*(:[0-5]?[0-9])+(\.[0-9_]*)?)")  # sexagesimal
 """Numbers YAML 1.1 (PyYAML, Snakemake) does not read as written: ``010`` is octal 8, ``0x10`` 16, ``0b10`` 2
-and ``1:30`` sexagesimal 90, while ``--config free_time=010`` and YAML 1.2 read 10 or text."""
+and ``1:30`` sexagesimal 90, while ``--config free_time=010`` and YAML 1.2 read 10 or text. A config file or
+``--config`` value holding one is refused on both paths (:func:`check_numbers`): which number was meant cannot
+be known, and a file read as one number by Snakemake and another elsewhere is read two ways."""
+
+_NUMBER_TAGS = ("tag:yaml.org,2002:int", "tag:yaml.org,2002:float")
 
 
-def _loader(name: str):
-    """A :class:`yaml.SafeLoader` that refuses a number :data:`NOT_DECIMAL` would misread, naming the file,
-    the line and the text."""
+def not_as_written(where: str, text: str) -> str:
+    """The message refusing the number ``text`` that YAML 1.1 does not read as written, at ``where`` (the file,
+    line and key path, or the ``--config`` key): what each path would read and what to write instead.
+
+    Parameters
+    ----------
+    where : str
+        The place named first (``"my.yaml: line 3: free_time"``, ``"--config free_time"``).
+    text : str
+        The number as written (``"010"``).
+    """
     import yaml
+    as_yaml = yaml.safe_load(text)
+    digits = text.replace("_", "")
+    as_decimal = int(digits) if re.fullmatch(r"[-+]?[0-9]+", digits) else None
+    readings = f"a config file reads it as {as_yaml!r} (YAML 1.1)"
+    choices = [str(as_yaml)]
+    if as_decimal is not None:
+        readings += f", --config as {as_decimal}"
+        choices.insert(0, str(as_decimal))
+    return (f"{where}: {text} is not allowed: {readings}; write {' or '.join(dict.fromkeys(choices))} (decimal, "
+            "without a leading zero), or quote it if it is text")
 
-    def number(loader, node):
-        if NOT_DECIMAL.fullmatch(node.value):
-            raise InputError(f"{name}: line {node.start_mark.line + 1}: {node.value} is not allowed: YAML reads it as "
-                             f"{yaml.safe_load(node.value)!r}, not as written; write the number in decimal without a "
-                             "leading zero (or quote it if it is text)")
-        kind = "int" if node.tag.endswith(":int") else "float"
-        return getattr(yaml.SafeLoader, f"construct_yaml_{kind}")(loader, node)
 
-    class Loader(yaml.SafeLoader):
-        pass
+def check_numbers(node, name: str, prefix: str = "", line: bool = True) -> None:
+    """Refuse (:class:`InputError`) the first number in a composed YAML document (:func:`yaml.compose`) that
+    :data:`NOT_DECIMAL` matches, naming ``name``, its line and its key path (:func:`not_as_written`). A quoted
+    value is text and is not refused. Each node is visited once, also when aliases repeat it.
 
-    Loader.add_constructor("tag:yaml.org,2002:int", number)
-    Loader.add_constructor("tag:yaml.org,2002:float", number)
-    return Loader
+    Parameters
+    ----------
+    node : yaml.Node or None
+        The document's root node.
+    name : str
+        What the messages call the document (a file, ``--config block``).
+    prefix : str, default ""
+        The key path of ``node`` in the config (``"block"`` for ``--config block={...}``).
+    line : bool, default True
+        Name the line in the document (``"my.yaml: line 3: free_time"``); False for a one-line ``--config``
+        value (``"--config block.width"``).
+    """
+    import yaml
+    seen, stack = set(), [(node, prefix)]
+    while stack:
+        item, path = stack.pop()
+        if item is None or id(item) in seen:
+            continue
+        seen.add(id(item))
+        if isinstance(item, yaml.ScalarNode):
+            if item.tag in _NUMBER_TAGS and NOT_DECIMAL.fullmatch(item.value):
+                where = f"{name}: line {item.start_mark.line + 1}: {path or 'value'}" if line else f"{name} {path}"
+                raise InputError(not_as_written(where, item.value))
+        elif isinstance(item, yaml.MappingNode):
+            for key, value in reversed(item.value):
+                stack.append((value, f"{path}.{key.value}" if path else str(key.value)))
+                stack.append((key, f"{path} (a key)" if path else "a key"))
+        elif isinstance(item, yaml.SequenceNode):
+            stack.extend((value, f"{path}[{i}]") for i, value in reversed(list(enumerate(item.value))))
 
 
 def load_yaml(path, name: str | None = None) -> dict:
@@ -227,7 +276,13 @@ def load_yaml(path, name: str | None = None) -> dict:
     p = v.check_input_file(name, path, 2**20)
     try:
         with open(p, encoding="utf-8") as f:
-            data = yaml.load(f, Loader=_loader(name))  # noqa: S506 -- a SafeLoader, see _loader
+            loader = yaml.SafeLoader(f)
+            try:  # composed, its numbers checked as written, then built
+                node = loader.get_single_node()
+                check_numbers(node, name)
+                data = None if node is None else loader.construct_document(node)
+            finally:
+                loader.dispose()
     except (yaml.YAMLError, UnicodeDecodeError) as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f" (line {mark.line + 1})" if mark is not None else ""
