@@ -65,12 +65,12 @@ def block_from_dict(spec: dict, names: dict | None = None) -> Block:
     if unknown:
         raise validation.InputError(f"block: unknown key(s) {sorted(unknown)}; allowed: preset or "
                                     f"{', '.join(BLOCK_FIELDS)}")
+    names = names or {}  # each value given, as Block checks it, then what is missing
+    check_arguments("Block", spec, {field: names.get(field, f"block.{field}") for field in spec})
     missing = {"width", "height", "depth"} - set(spec)
     if missing:
         raise validation.InputError(f"block: missing key(s) {sorted(missing)}; give a preset or width, height "
                                     "and depth")
-    names = names or {}
-    check_arguments("Block", spec, {field: names.get(field, f"block.{field}") for field in spec})  # as Block does
     restitution = spec.get("restitution")
     shape = Block(**{**spec, "restitution": 0.0})  # the proportions, before Eq. 14 is applied
     if restitution is None:  # a squat block would get e < 0 from Eq. (14)
