@@ -45,15 +45,21 @@ from rockstudy.model.noise import noisy_record, record_motion
 BLC06 = BLOCK_PRESETS["BLC06"]
 
 
-def cases(n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None = None):
-    """(P, record, vertical record, want_history, want_log) of ``n`` random runs."""
+def cases(n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None = None, sampled: bool = False):
+    """(P, record, vertical record, want_history, want_log) of ``n`` random runs; with ``sampled`` every run
+    has sampled control (T_s from the record step up, a T_s that is no multiple of it, delays from none to
+    several samples) and two in three runs a noisy record."""
     rng = np.random.default_rng(seed)
     records = [(noisy_record("modulated", fr * BLC06.p, 0.05, k, 7), fr * BLC06.p)
                for k, fr in enumerate((0.7, 1.5, 3.0, 4.5))]
     for i in range(n):
         strategy = ("FS", "PASSIVE", "CS01", "CS02")[i % 4]
-        sampling = (0.0, 0.0, 0.01, 0.1)[(i // 4) % 4]
-        delay = 0.0 if sampling == 0 else float(rng.choice([0, 0.02, 0.06]))
+        if sampled:
+            sampling = (0.0025, 0.003, 0.01, 0.05, 0.1, 0.2)[(i // 4) % 6]
+            delay = float(rng.choice([0, 0, 0.0025, 0.02, 0.06]))
+        else:
+            sampling = (0.0, 0.0, 0.01, 0.1)[(i // 4) % 4]
+            delay = 0.0 if sampling == 0 else float(rng.choice([0, 0.02, 0.06]))
         band = float(rng.choice([5.0, 20.0, 60.0])) if sensor else None
         control = Control(strategy, sampling_time=sampling, delay=delay, sensor_band=band)
         kmax = float(rng.uniform(0.1, 4.0))
@@ -62,7 +68,7 @@ def cases(n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None =
                               spring_ultimate_rotation=float(rng.uniform(0.3, 1.2) * BLC06.alpha),
                               damper_ultimate_rotation=float(rng.uniform(0.3, 1.2) * BLC06.alpha))
         amplitude = float(rng.uniform(1.0, 4.0)) * BLC06.uplift_acceleration
-        if i % 3 == 0:
+        if (i % 3 != 2) if sampled else (i % 3 == 0):
             rec, omega = records[int(rng.integers(len(records)))]
             motion = record_motion(rec, amplitude, omega)
         else:
@@ -82,9 +88,10 @@ def cases(n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None =
         yield P, kn.writable(kernel_record(control, motion)), kn.writable(motion.vertical), want_history, want_log
 
 
-def save(path: str, n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None = None) -> None:
+def save(path: str, n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None = None,
+         sampled: bool = False) -> None:
     fields = {}
-    for i, (P, rec, vert, want_history, want_log) in enumerate(cases(n, seed, sensor, vertical, stepper)):
+    for i, (P, rec, vert, want_history, want_log) in enumerate(cases(n, seed, sensor, vertical, stepper, sampled)):
         result = kn.simulate_kernel(P, rec, vert, want_history, want_log)
         for name, value in zip(kn.KernelResult._fields, result):
             fields[f"{i}/{name}"] = np.array(value, copy=True)
@@ -182,6 +189,8 @@ def main(argv=None) -> int:
     s.add_argument("--seed", type=int, default=77)
     s.add_argument("--sensor", action="store_true", help="give the controller a sensor (random band)")
     s.add_argument("--vertical", action="store_true", help="add vertical records to every other run")
+    s.add_argument("--sampled", action="store_true",
+                   help="sampled control in every run (T_s 2.5 ms to 0.2 s, delays), mostly on noisy records")
     s.add_argument("--stepper", choices=("taylor", "dopri"), default=None,
                    help="how the engine steps between record knots (default: the engine's default; code from "
                         "before the Taylor step has no such choice and always uses Dormand-Prince)")
@@ -194,7 +203,7 @@ def main(argv=None) -> int:
                    help="allow runs that B ends earlier as safe (ST_BOUND) where A did not overturn; else bit for bit")
     args = ap.parse_args(argv)
     if args.command == "save":
-        save(args.path, args.n, args.seed, args.sensor, args.vertical, args.stepper)
+        save(args.path, args.n, args.seed, args.sensor, args.vertical, args.stepper, args.sampled)
         return 0
     return compare(args.a, args.b, args.tolerance, args.early_stop)
 

@@ -93,10 +93,35 @@ def test_suite_fragility_names_every_record_and_its_threshold(blc06):
     # the table shows both fits of the object in g: the stripes' and the records' thresholds'
     from rockstudy.analysis.risk import threshold_fit
     from rockstudy.report import fragility_markdown
+    from rockstudy.report.fragility_tables import _num
     table = fragility_markdown(ds)
     assert "records' thresholds' fit" in table
-    for s in ("FS", "CS01"):
+    for s in ("FS", "CS01"):  # (a strategy that no record overturned shows "—")
         fit, d = threshold_fit(ds, s), ds.sel(strategy=s)
-        row = (f"| {s} | {float(d.fragility_median_physical):.3f} ({float(d.fragility_dispersion):.2f}) "
-               f"| {fit.median:.3f} ({fit.dispersion:.2f}) |")
+        row = (f"| {s} | {_num(d.fragility_median_physical)} ({_num(d.fragility_dispersion, '.2f')}) "
+               f"| {_num(fit.median)} ({_num(fit.dispersion, '.2f')}) |")
         assert row in table
+
+
+def test_tables_show_a_missing_number_as_a_dash(blc06):
+    """A strategy without a fit (every number of its row not finite: no record overturned it, say) prints
+    "—" in each of its cells in every fragility table, never "nan"; the other rows print as before."""
+    from rockstudy.analysis.fragility import suite_summary
+    from rockstudy.model import record_suites
+    from rockstudy.report import fragility_markdown
+    from rockstudy.report.fragility_tables import suite_summary_markdown
+    entries = [record_suites.load_record(f"synthetic:SYN00{i}") for i in range(3)]
+    ds = suite_fragility_dataset(blc06, Anchorage(), [Control("FS"), Control("CS01")], entries,
+                                 np.arange(1.0, 5.01, 0.5), suite="synthetic", resolution=0.05, n_boot=5,
+                                 free_time=10.0)
+    before = fragility_markdown(ds)
+    gone = ds.copy(deep=True)
+    for name, var in gone.data_vars.items():
+        if "strategy" in var.dims and var.dtype.kind == "f":
+            gone[name] = var.where(var.strategy != "CS01")
+    tables = fragility_markdown(gone) + suite_summary_markdown(suite_summary([gone]))
+    assert "nan" not in tables.lower()
+    cs01 = [line for line in tables.splitlines() if "| CS01 |" in line]
+    assert len(cs01) == 3 and all(line.count("—") >= 4 for line in cs01)
+    fs_row = next(line for line in before.splitlines() if line.startswith("| FS |"))
+    assert fs_row in tables

@@ -244,6 +244,43 @@ def test_quiet_knots_at_rest_pass_as_the_driver_would(blc06):
     assert n_rest_knots > 1000  # the runs do rest between knots, so the loop is exercised
 
 
+def test_controller_samples_in_the_step_loop_as_the_driver_would(blc06):
+    """Under sampled control an outcome run takes the controller's samples inside its loops — at rest in
+    the loop over known times, rocking in the step loop when a sample leaves the device as it is — where
+    a run with its history on takes every sample through the driver's loop. Both must be the very same
+    run, to the bit, for every strategy, sampling times from the record step up (one no multiple of it)
+    and delays from none to several samples."""
+    from rockstudy.engine import _kernel as kn
+    from rockstudy.engine.simulate import pack_parameters
+    from rockstudy.model.noise import noisy_record, record_motion
+
+    rng = np.random.default_rng(12)
+    samples_rocking = 0
+    for i in range(96):
+        strategy = ("FS", "PASSIVE", "CS01", "CS02")[i % 4]
+        ts = (0.0025, 0.003, 0.01, 0.1)[(i // 4) % 4]
+        delay = float(rng.choice([0.0, 0.0025, 0.06]))
+        fr = float(rng.uniform(0.5, 5.0))
+        rec = noisy_record("modulated", fr * blc06.p, float(rng.choice([0.01, 0.05, 0.1])), i, 7)
+        kmax = float(rng.uniform(0.1, 3.0))
+        anchorage = Anchorage(kappa_max=kmax, kappa_min=float(rng.uniform(0, kmax)),
+                              damping_ratio=float(rng.uniform(0, 0.1)))
+        motion = record_motion(rec, float(rng.uniform(1.0, 4.0)) * blc06.uplift_acceleration, fr * blc06.p)
+        control = Control(strategy, sampling_time=ts, delay=delay)
+        P = pack_parameters(blc06, anchorage, control, motion, free_time=5.0, energy_bound=False)
+        quiet = kn.simulate_kernel(P, motion.record, motion.vertical, False, True)
+        driver = kn.simulate_kernel(P, motion.record, motion.vertical, True, True)
+        assert (quiet.status, quiet.end_time, quiet.n_impacts, quiet.max_abs_theta) == \
+            (driver.status, driver.end_time, driver.n_impacts, driver.max_abs_theta), (i, strategy, ts, delay)
+        for field in ("fracture_times", "impact_times", "uplift_times", "rest_times"):
+            np.testing.assert_array_equal(getattr(quiet, field), getattr(driver, field), err_msg=f"{i} {field}")
+        hist = driver.history
+        rocking = (hist[:, 1] != 0.0) & (hist[:, 0] < motion.duration)
+        on_sample = np.abs(hist[:, 0] / ts - np.round(hist[:, 0] / ts)) < 1e-9
+        samples_rocking += int(np.sum(rocking & on_sample))
+    assert samples_rocking > 1000  # the runs do rock across samples, so the step loop takes them
+
+
 def _pumping_device_peak(block, kappa_high, theta, theta_dot, n_half_cycles=40):
     """Largest |θ| of free rocking under the worst device: K = κ_hi exactly while the block returns
     (sin θ·θ̇ < 0), 0 while it moves out; undamped; impacts by Eq. (14). Independent of the engine:

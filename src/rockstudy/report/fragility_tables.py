@@ -11,6 +11,23 @@ import numpy as np
 if TYPE_CHECKING:
     import xarray as xr
 
+NONE = "—"
+"""What a table shows for a number that is not there (no fit, no overturning, no interval)."""
+
+
+def _num(x, spec: str = ".3f") -> str:
+    """``x`` formatted with ``spec``, or :data:`NONE` when it is not a finite number."""
+    x = float(x)
+    return format(x, spec) if np.isfinite(x) else NONE
+
+
+def _ci(low, high, spec: str = ".3f") -> str:
+    """An interval "(low–high)", or "(—)" when neither end is a finite number."""
+    if not (np.isfinite(float(low)) or np.isfinite(float(high))):
+        return f"({NONE})"
+    return f"({_num(low, spec)}–{_num(high, spec)})"
+
+
 def fragility_markdown(ds: xr.Dataset) -> str:
     """Markdown table of the fits: median (95 % interval), dispersion, median shift over FS (interval).
 
@@ -25,10 +42,11 @@ def fragility_markdown(ds: xr.Dataset) -> str:
              f"| median shift over FS | fit |", "|---|---|---|---|---|---|"]
     for s in ds.strategy.values:
         d = ds.sel(strategy=s)
-        lines.append(f"| {s} | {float(d.fragility_median):.3f} ({float(d.median_low):.3f}–{float(d.median_high):.3f}) "
-                     f"| {float(d.fragility_dispersion):.3f} ± {float(d.dispersion_se):.3f} "
-                     f"| {float(d.median_ratio):.3f} ({float(d.median_ratio_low):.3f}–{float(d.median_ratio_high):.3f})"
-                     f" | {float(d.median_shift_percent):+.1f} % | {str(d.fit_status.values)} |")
+        shift = _num(d.median_shift_percent, "+.1f")
+        lines.append(f"| {s} | {_num(d.fragility_median)} {_ci(d.median_low, d.median_high)} "
+                     f"| {_num(d.fragility_dispersion)} ± {_num(d.dispersion_se)} "
+                     f"| {_num(d.median_ratio)} {_ci(d.median_ratio_low, d.median_ratio_high)}"
+                     f" | {shift}{' %' if shift != NONE else ''} | {str(d.fit_status.values)} |")
     lines.append("")
     lines.append(f"{ds.attrs['n_records']} records, {ds.sizes['intensity']} IM levels "
                  f"({float(ds.intensity.min()):g}–{float(ds.intensity.max()):g}); "
@@ -53,8 +71,8 @@ def _two_fits(ds: xr.Dataset) -> list:
             "| strategy | stripes' fit θ [g] (β) | records' thresholds' fit θ [g] (β) |", "|---|---|---|"]
     for s in ds.strategy.values:
         d, fit = ds.sel(strategy=s), threshold_fit(ds, str(s))
-        rows.append(f"| {s} | {float(d.fragility_median_physical):.3f} ({float(d.fragility_dispersion):.2f}) "
-                    f"| {fit.median:.3f} ({fit.dispersion:.2f}) |")
+        rows.append(f"| {s} | {_num(d.fragility_median_physical)} ({_num(d.fragility_dispersion, '.2f')}) "
+                    f"| {_num(fit.median)} ({_num(fit.dispersion, '.2f')}) |")
     return rows
 
 
@@ -74,12 +92,12 @@ def suite_summary_markdown(rows) -> str:
              f"[{r0['physical_unit']}] (95 % CI) | β ± se | median {INTENSITY_MEASURES[r0['other_measure']]} (95 % CI) "
              "| θ/θ_FS (bootstrap 95 % CI) | shift over FS | fit |", "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append(f"| {r['suite']} | {r['strategy']} | {r['median']:.3f} ({r['median_low']:.3f}–"
-                     f"{r['median_high']:.3f}) | {r['median_physical']:.3f} ({r['median_physical_low']:.3f}–"
-                     f"{r['median_physical_high']:.3f}) | {r['dispersion']:.3f} ± {r['dispersion_se']:.3f} | "
-                     f"{r['median_other']:.3f} ({r['median_other_low']:.3f}–{r['median_other_high']:.3f}) | "
-                     f"{r['median_ratio']:.3f} ({r['median_ratio_low']:.3f}–{r['median_ratio_high']:.3f}) | "
-                     f"{r['median_shift_percent']:+.1f} % | {r['fit']} |")
+        shift = _num(r["median_shift_percent"], "+.1f")
+        cells = [f"{_num(r[k])} {_ci(r[k + '_low'], r[k + '_high'])}" for k in ("median", "median_physical")]
+        cells.append(f"{_num(r['dispersion'])} ± {_num(r['dispersion_se'])}")
+        cells += [f"{_num(r[k])} {_ci(r[k + '_low'], r[k + '_high'])}" for k in ("median_other", "median_ratio")]
+        lines.append(f"| {r['suite']} | {r['strategy']} | " + " | ".join(cells)
+                     + f" | {shift}{' %' if shift != NONE else ''} | {r['fit']} |")
     return "\n".join(lines) + "\n"
 
 

@@ -298,7 +298,7 @@ def setup(P, vert, want_history, want_log):
     C[C_BOUND] = _flag(P[I_BOUND] != 0.0 and not want_history and not want_log)
     # with sampled control a stale K_max can give energy back: a weaker bound over half-cycles
     C[C_BOUND_SWITCHING] = _flag(sampled and kmax != kmin)
-    C[C_QUIET_KNOTS] = _flag(int(P[I_KIND]) == RECORD and not sampled and nvert == 0 and not want_history)
+    C[C_QUIET_KNOTS] = _flag(int(P[I_KIND]) == RECORD and nvert == 0 and not want_history)
     # Taylor steps between record knots: Ẍg linear on every step, no vertical motion (docs/model.md)
     C[C_TAYLOR] = _flag(takes_taylor_steps(P, nvert))
     C[C_HISTORY] = _flag(want_history)
@@ -454,27 +454,37 @@ def ground_phase(S, C, P, rec, vert, t_next):
 
 
 @njit(cache=True, inline=inline_into("drive"))
-def pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next):
-    """REST under a record, without sampled control or vertical motion: pass the record knots before
-    the end of the excitation at which the block is still at rest in one loop. Each knot gets what the
-    driver's loop would give it — the same uplift test at the knot (:func:`ground_phase`), the same
-    known-time events (none: a knot changes nothing, only a pending apex invalidates the stored
-    derivative) and the same next known time — without the rest of the loop. Returns the known-time
-    event from which :func:`ground_phase` goes on. [s]"""
+def pass_quiet_knots(S, C, P, rec, vert, B, queue_times, queue_values, t_next):
+    """REST under a record without vertical motion: pass the known-time events before the end of the
+    excitation at which the block is still at rest in one loop. Each gets what the driver's loop would
+    give it — the same uplift test there (:func:`ground_phase`), the same known-time events (at a record
+    knot none: it changes nothing, only a pending apex invalidates the stored derivative; with sampled
+    control the controller's samples and decisions, :func:`known_time_events`, and the driver's count of
+    passes and its early stop at rest, :func:`below_driven_bound`) and the same next known time —
+    without the rest of the loop. Returns the known-time event from which :func:`ground_phase` goes on
+    (the state's own time when the driver is to end the run there). [s]"""
     # events.exit_value's REST test, (g + Ÿg)·tanα with Ÿg = 0 (no vertical record here), its tan
     # taken once and the ground reading inlined: the same bits without a call per knot
     uplift = P[I_G] * math.tan(P[I_ALPHA])
+    sampled = C[C_SAMPLED] != 0.0
     while t_next < P[I_DUR] and t_next > S[R_T]:
         if abs(ground_acceleration(t_next, P, rec)) - uplift > 0.0:
             break  # uplift inside (t, t_next]: ground_phase locates it
         S[R_T] = t_next
         if S[R_APEX] != 0.0:
             S[R_F0_OK] = 0.0
+        if sampled:  # the driver's pass ends with these events; its next pass starts with its checks
+            known_time_events(S, C, P, rec, queue_times, queue_values)
+            if S[R_N_STEPS] > MAX_STEPS:
+                return S[R_T]
+            S[R_N_STEPS] += 1.0
+            if C[C_DRIVEN] != 0.0 and below_driven_bound(S, C, P, B):
+                return S[R_T]
         t_next = next_known_time(S, C, P, vert, queue_times)
     return t_next
 
 
-@njit(cache=True, inline=inline_into("drive"))
+@njit(cache=True, inline=inline_into("drive", "integrate"), **NO_REFCOUNT)
 def known_time_events(S, C, P, rec, queue_times, queue_values):
     """Apply what happens at a known-time event: the end of the excitation, controller samples due
     (decision k taken at k·T_s acts from k·T_s + Δτ), decisions that act now. A record knot
@@ -836,11 +846,12 @@ def _close_steps(S, t, th, thd, f0, f0_ok, h, hint, x_hint, max_abs, steps):
 
 
 @njit(cache=True, **NO_REFCOUNT)
-def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N):
+def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, queue_values, H, N):
     """ROCK: steps towards ``t_next`` — Taylor steps while a record without vertical motion lasts
     (``C_TAYLOR``), Dormand–Prince steps otherwise — each accepted step searched for state events
     (:func:`search_events`); stops at the earliest, located on the step's polynomial. A step ends on
-    every known-time event; at a record knot where nothing else happens the steps go on (to the next
+    every known-time event; at a record knot where nothing else happens, and (without a history) at a
+    controller sample whose decisions leave the device as it is, the steps go on (to the next
     known-time event) without returning. Returns STEPPED, EVENT, OVERTURNED or NEED_ROOM; past the
     run's budget of steps (``R_N_STEPS`` > ``MAX_STEPS``) it returns STEPPED and the driver ends the run.
 
@@ -857,6 +868,9 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N):
     cd_eff = C[C_CD] * S[R_DAMPER + _working(S)]
     use_taylor = C[C_TAYLOR] != 0.0 and h_on
     want_history = C[C_HISTORY] != 0.0
+    # controller samples taken here (what the driver's two passes there would do): not with a history,
+    # whose rows the next segment would begin with a row at the sample
+    samples_here = C[C_SAMPLED] != 0.0 and not want_history
     seg = segment_events(S, C, P)
     use_xg_event = seg[2]
     inv_g = 1.0 / P[I_G]
@@ -874,81 +888,109 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N):
     max_abs = S[R_MAX_ABS]
     result = STEPPED
     x_at, x_end = -1.0, 0.0  # a Taylor step's Ẍg at its end, x_end, serves the next step starting there
-    while t < t_next:
-        steps += 1
-        if steps > MAX_STEPS:
-            break  # the driver ends the run
-        if want_history and _hist_full(H, nh):
-            S[R_RESUME] = 1.0
-            S[R_T_NEXT] = t_next
-            result = NEED_ROOM
-            break
-        hh, h, lazy = _trial_step(h, lazy, h_hh, h_err, t, t_next, hmax)
-        if hh <= 0.0:
-            break
-        if use_taylor:
-            x0 = x_end if t == x_at else ground_acceleration(t, P, rec)
-            x_at = t + hh
-            x_end = ground_acceleration(x_at, P, rec)
-            n0, n1, err, f_end = taylor.step(hh, th, thd, side, kap_eff, cd_eff, x0 * inv_g, (x_end - x0) * inv_g / hh,
-                                             p, sin_alpha, cos_alpha, Q, rtol, atol)
-        else:
-            n0, n1, err = dopri.step(t, hh, th, thd, f0, K, side, kap_eff, cd_eff, h_on, P, rec, vert, rtol, atol)
-            f_end = K[6, 1]
-        if err > 1.0:
-            h = hh * max(0.2, 0.9 * guarded_pow(err, -0.2))
-            lazy = False
-            continue
-        # ---- accepted: look for state events on (t, t + hh] ----
-        best, negligible, max_abs = search_events(seg, P, rec, K, Q, t, hh, th, thd, n0, n1, hint, x_hint, max_abs)
-        if best < 0.0:
-            # left θ = 0 and came back within one step: the excursion is shorter than the step,
-            # so resolve it with a smaller one (a zero-length event here would re-uplift at the
-            # same instant forever)
-            h = 0.25 * hh
-            lazy = False
-            continue
-        if best <= 1.0:  # ---- move to the earliest event ----
-            S[R_N_EVENTS] += 1
-            t, th, thd = _event_point(best, negligible, t, hh, n0, n1, Q)
+    while True:
+        while t < t_next:
+            steps += 1
+            if steps > MAX_STEPS:
+                break  # the driver ends the run
+            if want_history and _hist_full(H, nh):
+                S[R_RESUME] = 1.0
+                S[R_T_NEXT] = t_next
+                result = NEED_ROOM
+                break
+            hh, h, lazy = _trial_step(h, lazy, h_hh, h_err, t, t_next, hmax)
+            if hh <= 0.0:
+                break
+            if use_taylor:
+                x0 = x_end if t == x_at else ground_acceleration(t, P, rec)
+                x_at = t + hh
+                x_end = ground_acceleration(x_at, P, rec)
+                n0, n1, err, f_end = taylor.step(hh, th, thd, side, kap_eff, cd_eff, x0 * inv_g,
+                                                 (x_end - x0) * inv_g / hh, p, sin_alpha, cos_alpha, Q, rtol, atol)
+            else:
+                n0, n1, err = dopri.step(t, hh, th, thd, f0, K, side, kap_eff, cd_eff, h_on, P, rec, vert, rtol, atol)
+                f_end = K[6, 1]
+            if err > 1.0:
+                h = hh * max(0.2, 0.9 * guarded_pow(err, -0.2))
+                lazy = False
+                continue
+            # ---- accepted: look for state events on (t, t + hh] ----
+            best, negligible, max_abs = search_events(seg, P, rec, K, Q, t, hh, th, thd, n0, n1, hint, x_hint, max_abs)
+            if best < 0.0:
+                # left θ = 0 and came back within one step: the excursion is shorter than the step,
+                # so resolve it with a smaller one (a zero-length event here would re-uplift at the
+                # same instant forever)
+                h = 0.25 * hh
+                lazy = False
+                continue
+            if best <= 1.0:  # ---- move to the earliest event ----
+                S[R_N_EVENTS] += 1
+                t, th, thd = _event_point(best, negligible, t, hh, n0, n1, Q)
+                if abs(th) > max_abs:
+                    max_abs = abs(th)
+                result = EVENT
+                break
+            # ---- plain accepted step ----
+            t = t + hh
+            if t_next - t < TIME_TOLERANCE * (1.0 + t):
+                t = t_next
+                f0_ok = True
+            th, thd, f0 = n0, n1, f_end
             if abs(th) > max_abs:
                 max_abs = abs(th)
-            result = EVENT
+            if want_history:
+                nh = _write_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
+            lazy, h_hh, h_err = True, hh, err
+            if hint == 0.0 and thd != 0.0:
+                hint = sign(thd)
+            # early overturning: nothing can bring the block back
+            if t >= exc_end and side * th > alpha and side * thd > 0.0 and (spring == 0.0 or kmax == 0.0):
+                S[R_T_OVER] = t
+                result = OVERTURNED
+                break
+            if t == t_next and t < exc_end:
+                # on a known-time event: when it is only a record knot (the next one lies ahead, so
+                # nothing acts here) go on as a new segment would, else leave the step loop
+                S[R_T] = t
+                t_after = next_known_time(S, C, P, vert, queue_times)
+                if t_after > t:
+                    t_next = t_after
+                    f0_ok = False
+                    # _segment_start's cut of h after θ = 0, without the power unless it cuts
+                    x_hint, hint, h_cut = _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint,
+                                                         math.inf if lazy else h, P, rec)
+                    if not lazy:
+                        h = h_cut
+                    elif h_cut < math.inf:
+                        h = min(_grown_step(h_hh, h_err), h_cut)
+                        lazy = False
+        # stopped on a controller sample or decision with nothing else due (no history): take it as the
+        # driver's pass would; when it leaves the device, the excitation and the stored θ̈ as they are,
+        # the driver's next pass would start the next segment here, so go on (counting both passes).
+        # Outside the step loop, whose code stays that of continuous control.
+        if not (samples_here and result == STEPPED and t == t_next and t < exc_end and steps < MAX_STEPS):
             break
-        # ---- plain accepted step ----
-        t = t + hh
-        if t_next - t < TIME_TOLERANCE * (1.0 + t):
-            t = t_next
-            f0_ok = True
-        th, thd, f0 = n0, n1, f_end
-        if abs(th) > max_abs:
-            max_abs = abs(th)
-        if want_history:
-            nh = _write_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
-        lazy, h_hh, h_err = True, hh, err
-        if hint == 0.0 and thd != 0.0:
-            hint = sign(thd)
-        # early overturning: nothing can bring the block back
-        if t >= exc_end and side * th > alpha and side * thd > 0.0 and (spring == 0.0 or kmax == 0.0):
-            S[R_T_OVER] = t
-            result = OVERTURNED
+        S[R_TH] = th
+        S[R_THD] = thd
+        kap_before, h_before = S[R_KAP_ON], S[R_H_ON]
+        known_time_events(S, C, P, rec, queue_times, queue_values)
+        steps += 1
+        if S[R_KAP_ON] != kap_before or S[R_H_ON] != h_before or S[R_APEX] != 0.0:
+            f0_ok = False  # what known_time_events says of θ̈ at t, which closing would overwrite
             break
-        if t == t_next and t < exc_end:
-            # on a known-time event: when it is only a record knot (the next one lies ahead, so
-            # nothing acts here) go on as a new segment would, else return to the driver
-            S[R_T] = t
-            t_after = next_known_time(S, C, P, vert, queue_times)
-            if t_after > t:
-                t_next = t_after
-                f0_ok = False
-                # _segment_start's cut of h after θ = 0, without the power unless it cuts
-                x_hint, hint, h_cut = _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint,
-                                                     math.inf if lazy else h, P, rec)
-                if not lazy:
-                    h = h_cut
-                elif h_cut < math.inf:
-                    h = min(_grown_step(h_hh, h_err), h_cut)
-                    lazy = False
+        steps += 1
+        t_after = next_known_time(S, C, P, vert, queue_times)
+        if not t_after > t:
+            break
+        t_next = t_after
+        f0_ok = False
+        x_hint, hint, h_cut = _segment_start(t, th, thd, f0, side, use_xg_event, x_hint, hint,
+                                             math.inf if lazy else h, P, rec)
+        if not lazy:
+            h = h_cut
+        elif h_cut < math.inf:
+            h = min(_grown_step(h_hh, h_err), h_cut)
+            lazy = False
     if lazy:
         h = _grown_step(h_hh, h_err)
     N[N_HISTORY] = nh
@@ -1069,7 +1111,7 @@ def drive(S, C, P, rec, vert, B, K, Q, queue_times, queue_values, H, impacts, up
                 status = ST_BOUND
                 break
             if mode == MODE_REST and C[C_QUIET_KNOTS] != 0.0 and S[R_H_ON] != 0.0:
-                t_next = pass_quiet_knots(S, C, P, rec, vert, queue_times, t_next)
+                t_next = pass_quiet_knots(S, C, P, rec, vert, B, queue_times, queue_values, t_next)
             left = ground_phase(S, C, P, rec, vert, t_next)
             if left == UPLIFTED and want_log:
                 _log_event(UPLIFTED, S, impacts, uplifts, rests, N)
@@ -1090,7 +1132,7 @@ def drive(S, C, P, rec, vert, B, K, Q, queue_times, queue_values, H, impacts, up
             break
         if S[R_APEX] != 0.0 and apex(S, C, P, rec, vert) == HELD:
             continue
-        result = integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, H, N)
+        result = integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, queue_values, H, N)
         if result == NEED_ROOM:
             return GROW
         if result == OVERTURNED:
