@@ -115,6 +115,44 @@ def test_a_bad_value_is_refused_once_naming_the_option(command, owner, field, op
     assert not (tmp_path / "s.nc").exists()
 
 
+def _run_options():
+    """(command, owner, argument, option, quantity) of every option that sets an argument of one run, from the
+    declarations of the method or function the command passes it to and the CLI's map of arguments to options."""
+    from rockstudy.analysis import spectra  # noqa: F401 -- declares threshold
+    from rockstudy.cli import options
+    from rockstudy.core.quantities import ARGUMENTS
+    owners = {"simulate": "Scenario.motion", "threshold": "threshold"}
+    return [(command, owner, arg, options.RUN_OPTIONS[arg], quantity) for command, owner in owners.items()
+            for arg, quantity in ARGUMENTS[owner].items()]
+
+
+RUN_CASES = _run_options()
+
+
+def test_the_generation_covers_the_run_options():
+    assert {(case[0], case[3]) for case in RUN_CASES} == {
+        ("simulate", "--frequency-ratio"), ("simulate", "--amplitude-ratio"), ("simulate", "--realisation"),
+        ("threshold", "--frequency-ratio"), ("threshold", "--realisation")}
+
+
+@pytest.mark.parametrize("command,owner,arg,option,quantity", RUN_CASES, ids=[f"{c[0]}{c[3]}" for c in RUN_CASES])
+def test_a_bad_run_option_is_refused_once_naming_it(command, owner, arg, option, quantity, monkeypatch, capsys):
+    from rockstudy.studies import config_model
+    by_option = _count(monkeypatch, config_model, "check_option")
+    values = _past_the_ends(quantity)
+    assert len(values) == 2, quantity
+    for value in values:
+        with pytest.raises(SystemExit) as exc:
+            main([command, *DIMENSIONS, f"{option}={value}"] + (TINY[8:] if command == "threshold" else []))
+        assert exc.value.code == 2
+        err = capsys.readouterr().err
+        lines = err.strip().splitlines()
+        assert [line for line in lines if "error" in line] == [lines[0]], err
+        assert len(lines) <= 3 and lines[0].startswith(f"rockstudy: error: {option} = "), err
+        assert arg not in err.replace(option, "") and "Traceback" not in err, err
+    assert by_option == []  # the CLI did not check it first
+
+
 def test_simulate_checks_each_object_option_once(monkeypatch, capsys):
     checked = []
     real = quantities.Quantity.check
@@ -129,12 +167,33 @@ def test_simulate_checks_each_object_option_once(monkeypatch, capsys):
              "--noise-band": "20", "--noise-span": "0.5", "--kappa-max": "1.5", "--kappa-min": "0.1",
              "--damping-ratio": "0.1", "--sampling-time": "0.01", "--delay": "0.01", "--sensor-band": "20",
              "--density": "2500", "--restitution": "0.9"}
-    main(["simulate", "--strategy", "CS02", "--frequency-ratio", "2", "--amplitude-ratio", "1.2", *DIMENSIONS]
-         + [word for pair in given.items() for word in pair])
+    runs = {"--frequency-ratio": "2", "--amplitude-ratio": "1.2", "--realisation": "1"}
+    main(["simulate", "--strategy", "CS02", *DIMENSIONS]
+         + [word for pair in {**given, **runs}.items() for word in pair])
     assert json.loads(capsys.readouterr().out)["strategy"] == "CS02"
-    for _, _, option, _ in OBJECT_OPTIONS:
+    for option in [case[2] for case in OBJECT_OPTIONS] + list(runs):
         assert checked.count(option) == 1, (option, checked.count(option))
     # not checked again under the field's own name (Block aside: block_from_dict also builds the block)
     fields = {f"{owner}.{field}" for owner, field, _, _ in OBJECT_OPTIONS if owner != "Block"}
     assert not fields & set(checked), sorted(fields & set(checked))
-    assert sorted(args[0] for args, _ in by_option) == ["--amplitude-ratio", "--frequency-ratio", "--realisation"]
+    # a run's frequency, amplitude and realisation are checked once, by Scenario.motion, not by the CLI first
+    assert by_option == []
+    again = {"frequency_ratio", "amplitude_ratio"} & set(checked)  # (noisy_record takes the realisation on)
+    assert not again, sorted(again)
+
+
+def test_threshold_checks_each_run_option_once(monkeypatch, capsys):
+    checked = []
+    real = quantities.Quantity.check
+
+    def counted(self, name, value):
+        checked.append(name)
+        return real(self, name, value)
+    monkeypatch.setattr(quantities.Quantity, "check", counted)
+    from rockstudy.studies import config_model
+    by_option = _count(monkeypatch, config_model, "check_option")
+    main(["threshold", "--strategy", "FS", "--frequency-ratio", "2", "--noise-level", "0.05", "--realisation", "1",
+          *DIMENSIONS] + TINY[8:])
+    assert json.loads(capsys.readouterr().out)["realisation"] == 1
+    assert checked.count("--frequency-ratio") == 1 and checked.count("--realisation") == 1
+    assert by_option == []

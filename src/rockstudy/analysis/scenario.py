@@ -125,8 +125,10 @@ class Scenario:
         return frequency_ratio * self.block.p
 
     @declares(frequency_ratio="frequency_ratio", amplitude_ratio="run_amplitude_ratio", realisation="realisation")
-    def motion(self, frequency_ratio: float, amplitude_ratio: float, realisation: int = 0):
-        """The ground motion and its noise record info (None without noise).
+    def motion(self, frequency_ratio: float, amplitude_ratio: float, realisation: int = 0, *,
+               names: dict | None = None):
+        """The ground motion and its noise record info (None without noise), after checking the arguments
+        and the simulation's time span (:meth:`check_span`).
 
         Parameters
         ----------
@@ -136,9 +138,17 @@ class Scenario:
             a_p/(g·tanα). [-]
         realisation : int, default 0
             Noise realisation index k, >= 0 (unused without noise).
+        names : dict, optional
+            The caller's name of each argument and, for the time span, of ``free_time``, ``sampling_time``,
+            ``step`` and ``span`` in error messages (:data:`SPAN_NAMES`; ``{"frequency_ratio":
+            "--frequency-ratio"}``).
         """
-        check_arguments("Scenario.motion", {"frequency_ratio": frequency_ratio, "amplitude_ratio": amplitude_ratio,
-                                            "realisation": realisation})
+        checked = check_arguments("Scenario.motion", {"frequency_ratio": frequency_ratio,
+                                                      "amplitude_ratio": amplitude_ratio,
+                                                      "realisation": realisation}, names)
+        frequency_ratio, amplitude_ratio, realisation = (checked["frequency_ratio"], checked["amplitude_ratio"],
+                                                         checked["realisation"])
+        self.check_span([frequency_ratio], **span_names(names))
         omega = self.omega(frequency_ratio)
         amplitude = amplitude_ratio * self.block.uplift_acceleration
         if self.noise_level == 0:
@@ -269,6 +279,23 @@ class Scenario:
         attrs.update(excitation=self.excitation, noise_level=self.noise_level, noise_seed=int(self.seed),
                      **self.noise.to_attrs(), overturn_criterion=self.overturn_criterion, free_time_s=self.free_time)
         return attrs
+
+
+SPAN_NAMES = {"frequency_ratio": "frequency_name", "free_time": "free_time_name", "sampling_time": "sampling_name",
+              "step": "step_name", "span": "span_name"}
+"""The keyword of :meth:`Scenario.check_span` that names each input of a simulation's time span."""
+
+
+def span_names(names: dict | None) -> dict:
+    """The keywords of :meth:`Scenario.check_span` naming the inputs ``names`` names (a ``names=`` argument of
+    :meth:`Scenario.motion` or :func:`rockstudy.analysis.spectra.threshold`); the others keep their defaults.
+
+    Parameters
+    ----------
+    names : dict or None
+        The caller's name of inputs (``{"free_time": "--free-time"}``), by the keys of :data:`SPAN_NAMES`.
+    """
+    return {SPAN_NAMES[key]: name for key, name in (names or {}).items() if key in SPAN_NAMES}
 
 
 def _unit_peak(excitation: str, rec: NoisyRecord | None) -> float:

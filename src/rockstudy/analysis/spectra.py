@@ -19,7 +19,7 @@ import numpy as np
 import xarray as xr
 
 from rockstudy._version import __version__
-from rockstudy.analysis.scenario import Scenario
+from rockstudy.analysis.scenario import Scenario, span_names
 from rockstudy.core import validation
 from rockstudy.core.constants import PAPER
 from rockstudy.core.interrupts import interruptible
@@ -217,7 +217,7 @@ class ThresholdResult:
 @declares(frequency_ratio="frequency_ratio", realisation="realisation")
 def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 0,
               grid: AmplitudeGrid = AmplitudeGrid(), engine: str = "fast",
-              energy_bound: bool = True) -> ThresholdResult:
+              energy_bound: bool = True, names: dict | None = None) -> ThresholdResult:
     """Minimum overturning amplitude ratio a_p/(g·tanα) at one frequency ratio: one point of an
     overturning spectrum (§4 of the paper), found by an upward scan of the amplitude grid (every
     lower level shown safe) and a bisection to the grid's resolution.
@@ -239,6 +239,9 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
         "Early stops"); it
         never changes an outcome, only the time spent (False: integrate every run to rest or the
         time limit).
+    names : dict, optional
+        The caller's name of ``frequency_ratio``, ``realisation`` and the inputs of the time span in error
+        messages (``{"frequency_ratio": "--frequency-ratio"}``, :func:`rockstudy.analysis.scenario.span_names`).
 
     Returns
     -------
@@ -252,9 +255,9 @@ def threshold(scenario: Scenario, frequency_ratio: float, *, realisation: int = 
         When an argument is out of its declared range.
     """
     _check_call(scenario, grid)
-    checked = check_arguments("threshold", {"frequency_ratio": frequency_ratio, "realisation": realisation})
+    checked = check_arguments("threshold", {"frequency_ratio": frequency_ratio, "realisation": realisation}, names)
     frequency_ratio, realisation = checked["frequency_ratio"], checked["realisation"]
-    scenario.check_span([frequency_ratio])
+    scenario.check_span([frequency_ratio], **span_names(names))
     values = grid.values()
     case = scenario.kernel_case(frequency_ratio, realisation, energy_bound=energy_bound)
     if engine == "fast":

@@ -1,6 +1,7 @@
 """The options the simulating commands share (block, anchorage, control, noise, grids, ``--config``), with the
 library's defaults, and their checks: each option is checked once, by the library object it sets, which names
-the option in its message (``Anchorage(..., names=OPTION_NAMES)``); the few that set no object against their
+the option in its message (``Anchorage(..., names=OPTION_NAMES)``), or by the library function or method it
+is passed to (``scenario.motion(..., names=RUN_OPTIONS)``); the few that reach neither against their
 declarations (:data:`rockstudy.studies.config_model.OPTIONS`); the relations between options by the library
 (:mod:`rockstudy.core.validation`, :meth:`Scenario.check_span`).
 
@@ -33,7 +34,8 @@ OPTION_NAMES = {"kappa_max": "--kappa-max", "kappa_min": "--kappa-min", "damping
 library's checks name it in their messages."""
 
 def _number(name):
-    """A finite number (NaN and inf refused); ranges are checked by :func:`_check_common` and friends."""
+    """A finite number (NaN and inf refused); its range is checked by the library object or function it is
+    passed to."""
     def conv(text):
         try:
             value = float(text)
@@ -130,23 +132,14 @@ def device_and_end_options(p: argparse.ArgumentParser, motion: str) -> None:
     _numeric(p, "--free-time", DEFAULT_FREE_TIME, f"free motion allowed after {motion} [s]")
 
 
-FIELD_OPTIONS = ("--frequency-ratio", "--realisation")
-"""Options no library object takes at construction (a run's frequency and noise realisation), checked against
-their declarations by :func:`_check_common`; every other option is checked once, by the library object it
-sets (:data:`OPTION_NAMES`, :data:`SCENARIO_OPTIONS`, :data:`GRID_OPTIONS`), naming the option."""
+RUN_OPTIONS = {"frequency_ratio": "--frequency-ratio", "amplitude_ratio": "--amplitude-ratio",
+               "realisation": "--realisation", "free_time": "--free-time", "sampling_time": "--sampling-time",
+               "step": "--noise-step", "span": "--noise-span"}
+"""The option that sets each argument of one run (:meth:`Scenario.motion`,
+:func:`~rockstudy.analysis.spectra.threshold`) and each input of its time span: their checks name it."""
 
 SCENARIO_OPTIONS = {"noise_level": "--noise-level", "seed": "--seed", "free_time": "--free-time"}
 """The option that sets each number of :class:`~rockstudy.analysis.scenario.Scenario`: its check names it."""
-
-
-def _check_common(args, single_frequency=True) -> None:
-    """``--frequency-ratio`` and ``--realisation`` against their declarations
-    (:data:`rockstudy.studies.config_model.OPTIONS`), before the scenario's time span uses them; raises
-    :class:`validation.InputError` naming the option."""
-    names = (("--frequency-ratio",) if single_frequency else ()) + (
-        ("--realisation",) if hasattr(args, "realisation") else ())
-    for name in names:
-        config_model.check_option(name, getattr(args, name[2:].replace("-", "_"), None))
 
 
 def _scenario(args, parser, sensor_step=None, record=False):
@@ -370,10 +363,12 @@ def check_no_record_options(args, parser) -> None:
 
 
 def _check_record_options(args, parser) -> None:
-    """The options every ``--record`` command shares: no noise level, a known ``--record-unit``."""
+    """The options every ``--record`` command shares: no noise level or realisation, a known ``--record-unit``."""
     from rockstudy.model.records import unit_factor
     if args.noise_level != 0:
         parser.error("argument --noise-level: noise contaminates the analytic excitations; not with --record")
+    if args.realisation != 0:
+        parser.error("argument --realisation: noise realisations are of the analytic excitations; not with --record")
     if args.record_unit is not None:
         try:
             unit_factor(args.record_unit)

@@ -6,10 +6,9 @@ import math
 
 from rockstudy.cli import COMMANDS
 from rockstudy.cli.options import (
-    _check_common,
+    RUN_OPTIONS,
     _check_outputs,
     _check_record_options,
-    _check_time_span,
     _common,
     _grid,
     _grid_args,
@@ -70,12 +69,9 @@ def _cmd_simulate(args, parser):
     if args.record is not None:
         return _cmd_simulate_record(args, parser)
     check_no_record_options(args, parser)
-    _check_common(args)
-    config_model.check_option("--amplitude-ratio", args.amplitude_ratio)
     scenario = _scenario(args, parser)
-    _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
     _check_outputs(args, parser)
-    motion, rec = scenario.motion(args.frequency_ratio, args.amplitude_ratio, args.realisation)
+    motion, rec = scenario.motion(args.frequency_ratio, args.amplitude_ratio, args.realisation, names=RUN_OPTIONS)
     out = {}
     try:
         res = scenario.simulate_motion(motion, engine=args.engine, record_history=bool(args.output or args.plot))
@@ -108,7 +104,6 @@ def _cmd_simulate(args, parser):
 def _cmd_simulate_record(args, parser):
     """``simulate --record FILE``: one run under a recorded (or synthetic) ground motion."""
     _check_record_options(args, parser)
-    _check_common(args, single_frequency=False)
     config_model.check_option("--record-scale", args.record_scale)
     scenario = _scenario(args, parser, record=True)
     _check_outputs(args, parser)
@@ -175,7 +170,6 @@ def _cmd_threshold_record(args, parser):
     from rockstudy.analysis.record_scan import RecordRun, record_threshold
     from rockstudy.model.records import STANDARD_GRAVITY
     _check_record_options(args, parser)
-    _check_common(args, single_frequency=False)
     scenario = _scenario(args, parser, record=True)
     grid, _ = _grid(args, parser)
     info, record = _read_record(args, parser)
@@ -207,12 +201,10 @@ def _cmd_threshold(args, parser):
         return _cmd_threshold_record(args, parser)
     check_no_record_options(args, parser)
     from rockstudy.analysis.spectra import threshold
-    _check_common(args)
     scenario = _scenario(args, parser)
     grid, _ = _grid(args, parser)
-    _check_time_span(scenario, [args.frequency_ratio], "--frequency-ratio")
     res = threshold(scenario, args.frequency_ratio, realisation=args.realisation, grid=grid,
-                    engine=args.engine).as_dict()
+                    engine=args.engine, names=RUN_OPTIONS).as_dict()
     uplift = 1.0 / scenario.unit_peak(args.frequency_ratio, args.realisation)
     start = float(grid.values()[0])
     complete = start <= uplift
