@@ -165,7 +165,7 @@ def check_workload(name: str, value, n_cases: int, sims_per_case: int, record_by
                           f"{budget / 2**30:.3g} GiB (a quarter of this machine's memory)")
 
 
-def check_block(block, name: str = "block") -> None:
+def check_block(block, name: str = "block", restitution_name: str | None = None) -> None:
     """Physical meaning of a block: Housner's restitution e = 1 - 1.5 sin^2(alpha) (Eq. 14) must lie in
     [0, 1], i.e. a slender block with H/B >= 1/sqrt(2); a squat block needs an explicit restitution.
 
@@ -176,13 +176,15 @@ def check_block(block, name: str = "block") -> None:
         ``housner_restitution``.
     name : str, optional
         The block's name in the message (default ``"block"``).
+    restitution_name : str, optional
+        The name of its restitution in the message (default ``"<name>.restitution"``).
     """
     if block.restitution is None and block.housner_restitution < -1e-12:  # e = 0 at H/B = 1/sqrt(2)
         raise InputError(
             f"{name}: width {block.width:g} m and height {block.height:g} m give alpha = "
             f"{math.degrees(block.alpha):.1f} deg and Housner's restitution e = 1 - 1.5 sin^2(alpha) = "
             f"{block.housner_restitution:.3g} < 0 (Eq. 14); the model needs a slender block (height/width >= "
-            f"{1 / math.sqrt(2):.3f}) or an explicit {name}.restitution in [0, 1]")
+            f"{1 / math.sqrt(2):.3f}) or an explicit {restitution_name or name + '.restitution'} in [0, 1]")
 
 
 def check_sizes(config, key: str = "", limit: int = MAX_LIST_ITEMS, limits: dict | None = None) -> None:

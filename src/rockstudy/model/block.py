@@ -9,7 +9,7 @@ inertia about a base corner; e = 1 - 3/2 sin^2(alpha) the coefficient of restitu
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import InitVar, asdict, dataclass
 
 from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.core.validation import check_block
@@ -39,6 +39,9 @@ class Block:
     restitution : float or None
         Coefficient of restitution e. ``None`` uses Housner's value, Eq. (14), which is >= 0 only
         for a slender block (height/width >= 1/sqrt(2)); a squatter block needs an explicit e. [-]
+    names : dict, optional
+        The caller's name of each field in error messages (``{"width": "--width"}``), and of the block itself
+        under ``"block"``; one missing from it is named ``Block.<field>``. Not stored.
 
     Raises
     ------
@@ -53,10 +56,12 @@ class Block:
     density: float = 2700.0
     gravity: float = GRAVITY
     restitution: float | None = None
+    names: InitVar[dict | None] = None
 
-    def __post_init__(self):
-        check_arguments("Block", self.__dict__)  # each field's type and range (core.quantities)
-        check_block(self, "Block")  # a squat block would get e < 0 from Eq. (14)
+    def __post_init__(self, names):
+        names = names or {}
+        check_arguments("Block", self.__dict__, names)  # each field's type and range (core.quantities)
+        check_block(self, names.get("block", "Block"), names.get("restitution"))  # e < 0 from Eq. (14)?
 
     # --- derived geometry -------------------------------------------------------
     @property

@@ -7,7 +7,6 @@ units of g.
 from __future__ import annotations
 
 from dataclasses import fields
-from types import SimpleNamespace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -65,19 +64,13 @@ def block_from_dict(spec: dict, names: dict | None = None) -> Block:
     if unknown:
         raise validation.InputError(f"block: unknown key(s) {sorted(unknown)}; allowed: preset or "
                                     f"{', '.join(BLOCK_FIELDS)}")
-    names = names or {}  # each value given, as Block checks it, then what is missing
-    check_arguments("Block", spec, {field: names.get(field, f"block.{field}") for field in spec})
+    names = {"block": "block", **{field: (names or {}).get(field, f"block.{field}") for field in BLOCK_FIELDS}}
     missing = {"width", "height", "depth"} - set(spec)
-    if missing:
+    if missing:  # each value given is named before what is missing (no block is made to check them)
+        check_arguments("Block", spec, names)
         raise validation.InputError(f"block: missing key(s) {sorted(missing)}; give a preset or width, height "
                                     "and depth")
-    restitution = spec.get("restitution")
-    shape = Block(**{**spec, "restitution": 0.0})  # the proportions, before Eq. 14 is applied
-    if restitution is None:  # a squat block would get e < 0 from Eq. (14)
-        validation.check_block(SimpleNamespace(width=shape.width, height=shape.height, alpha=shape.alpha,
-                                               restitution=None, housner_restitution=shape.housner_restitution),
-                               "block")
-    return Block(**spec)
+    return Block(**spec, names=names)  # checks each field once, naming it, then the proportions (Eq. 14)
 
 
 def scenario_from_dict(spec: dict) -> Scenario:
