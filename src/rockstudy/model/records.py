@@ -525,7 +525,7 @@ def _header_unit(path, number: int, text: str, columns: int) -> str | None:
 
 
 @declares(dt="column_dt")
-def read_record(path, unit: str | None = None, dt: float | None = None) -> Record:
+def read_record(path, unit: str | None = None, dt: float | None = None, *, names: dict | None = None) -> Record:
     """Read a record file: ``.AT2`` (PEER NGA, in g) by its suffix, one column when ``dt`` is
     given, any other as two columns.
 
@@ -539,6 +539,8 @@ def read_record(path, unit: str | None = None, dt: float | None = None) -> Recor
     dt : float, optional
         Time step of a one-column file (:func:`read_one_column`). [s] An ``.AT2`` file states
         its own step and refuses one.
+    names : dict, optional
+        The caller's name of ``dt`` in error messages (``{"dt": "--record-dt"}``).
 
     Returns
     -------
@@ -552,7 +554,7 @@ def read_record(path, unit: str | None = None, dt: float | None = None) -> Recor
         :class:`RecordFormatError` for a malformed file or more samples than
         :data:`~rockstudy.core.validation.MAX_RECORD_SAMPLES`.
     """
-    check_arguments("read_record", {"dt": dt})
+    check_arguments("read_record", {"dt": dt}, names)
     path = check_input_file("record file", path, MAX_RECORD_BYTES)
     if path.suffix.lower() in AT2_SUFFIXES:
         if dt is not None:

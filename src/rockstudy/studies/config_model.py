@@ -420,13 +420,13 @@ _MODEL_NAMES = {cls.__name__ for cls in (*Section.__subclasses__(), Noise)}
 """The sections' class names, which pydantic puts into the location of an error inside a union."""
 
 OPTIONS = {
-    "--realisations": Count, "--record-scale": Q("record_scale"), "--record-dt": Q("record_dt"),
-    "--a-max0": Q("a_max0_g"),
+    "--realisations": Count, "--record-scale": Q("record_scale"), "--a-max0": Q("a_max0_g"),
 }
-"""The command line's numeric options that reach no library check naming them (the number of realisations, a
-record's scale and step, a_max,0), each declared like the config key it stands for; the CLI checks them with
-:func:`check_option`. Every other option is checked by the object, function or method it is passed to, which
-names the option (``Anchorage(..., names=...)``, ``Scenario.motion(..., names=...)``)."""
+"""The command line's numeric options that reach no library check naming them before any work (the number of
+realisations, a record's scale, a_max,0 before the spectra are read), each declared like the config key it
+stands for; the CLI checks them with :func:`check_option`. Every other option is checked by the object,
+function or method it is passed to, which names the option (``Anchorage(..., names=...)``,
+``Scenario.motion(..., names=...)``, ``read_record(..., names=...)``)."""
 
 # ----------------------------------------------------------------------------------------------- checks
 
