@@ -79,8 +79,9 @@ DIMENSIONS = ["--width", "0.4", "--height", "1.6", "--depth", "0.4"]
 
 
 def _past_the_ends(quantity):
-    """Values just outside the declared range (the open ends themselves), as the command line writes them."""
-    q = quantities.QUANTITIES[quantity]
+    """Values just outside the declared range (the open ends themselves), as the command line writes them;
+    ``quantity`` is a key of QUANTITIES or a Quantity."""
+    q = quantity if isinstance(quantity, quantities.Quantity) else quantities.QUANTITIES[quantity]
     out = []
     if q.low is not None:
         out.append(q.low if q.low_open else q.low - max(abs(q.low), 1.0))
@@ -242,3 +243,78 @@ def test_a_record_step_is_checked_once(one_column, monkeypatch, capsys):
     assert json.loads(capsys.readouterr().out)["record_dt_s"] == 0.01
     assert checked.count("--record-dt") == 1
     assert "--record-dt" not in [args[0] for args, _ in by_option]
+
+
+# --- risk and fragility: each option checked once, by the library, before any file is read -----------------
+
+def _checks_and_reads(monkeypatch, module, name):
+    """Log each Quantity.check (the name it gives, the module that calls it) and each call of ``module.name`` (a
+    reader), in order."""
+    import sys
+    log = []
+    real_check, real_read = quantities.Quantity.check, getattr(module, name)
+
+    def check(self, label, value):
+        log.append((label, sys._getframe(1).f_globals["__name__"]))
+        return real_check(self, label, value)
+
+    def read(*args, **kwargs):
+        log.append(("READ", name))
+        return real_read(*args, **kwargs)
+    monkeypatch.setattr(quantities.Quantity, "check", check)
+    monkeypatch.setattr(module, name, read)
+    return log
+
+
+def _drop(line, option):
+    """``line`` without ``option`` and its value."""
+    if option not in line:
+        return line
+    i = line.index(option)
+    return line[:i] + line[i + 2:]
+
+
+
+def _fragility_cases():
+    from rockstudy.analysis import fragility  # noqa: F401 -- declares suite_fragility_dataset
+    from rockstudy.cli.risk import FRAGILITY_OPTIONS
+    from rockstudy.core.quantities import ARGUMENTS
+    declared = ARGUMENTS["suite_fragility_dataset"]
+    assert set(FRAGILITY_OPTIONS) == set(declared)
+    return [(option, declared[arg]) for arg, option in FRAGILITY_OPTIONS.items()]
+
+
+FRAGILITY_CASES = _fragility_cases()
+FRAGILITY = ["fragility", "--strategy", "FS", "--suite", "p695-far-field", "--max-records", "1", "--levels-start",
+             "1", "--levels-stop", "2", "--levels-step", "1", "--threshold-resolution", "0.5", "--bootstrap", "0"]
+
+
+@pytest.mark.parametrize("option,quantity", FRAGILITY_CASES, ids=[c[0] for c in FRAGILITY_CASES])
+def test_a_bad_fragility_option_is_refused_once_before_the_records(option, quantity, tmp_path, monkeypatch, capsys):
+    from rockstudy.model import record_suites
+    log = _checks_and_reads(monkeypatch, record_suites, "load_suite")
+    values = _past_the_ends(quantity)
+    assert values, quantity
+    for value in values:
+        with pytest.raises(SystemExit) as exc:
+            main([*_drop(FRAGILITY, option), "--output", str(tmp_path / "f.nc"), f"{option}={value}"])
+        assert exc.value.code == 2
+        err = capsys.readouterr().err
+        lines = err.strip().splitlines()
+        assert [x for x in lines if "error" in x] == [lines[0]], err
+        assert len(lines) <= 3 and lines[0].startswith(f"rockstudy: error: {option} = "), err
+        assert "suite_fragility_dataset" not in err and "Traceback" not in err, err
+    assert ("READ", "load_suite") not in log
+    assert {m for label, m in log if label == option} == {"rockstudy.core.quantities"}, log  # check_arguments
+    assert not (tmp_path / "f.nc").exists()
+
+
+def test_fragility_checks_each_option_once_by_the_library_before_the_records(tmp_path, monkeypatch, capsys):
+    from rockstudy.model import record_suites
+    log = _checks_and_reads(monkeypatch, record_suites, "load_suite")
+    main([*FRAGILITY, "--free-time", "2", "--seed", "3", "--output", str(tmp_path / "f.nc")])
+    assert json.loads(capsys.readouterr().out)["n_records"] == 1
+    read = log.index(("READ", "load_suite"))
+    for option, _ in FRAGILITY_CASES:
+        (i,) = [i for i, (label, _) in enumerate(log) if label == option]
+        assert i < read and log[i][1] == "rockstudy.core.quantities", (option, log[i])  # by check_arguments

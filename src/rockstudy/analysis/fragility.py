@@ -311,7 +311,7 @@ OTHER_MEASURE = {"pga_ratio": "pgv_ratio", "pgv_ratio": "pga_ratio"}
 def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entries, levels, *,
                             suite: str, measure: str = "pga_ratio", resolution: float = 0.01, n_boot: int = 200,
                             seed: int = 0, overturn_criterion: str = "flat",
-                            free_time: float = DEFAULT_FREE_TIME) -> xr.Dataset:
+                            free_time: float = DEFAULT_FREE_TIME, names: dict | None = None) -> xr.Dataset:
     """Fragility of each strategy over a record suite, and the threshold of every record.
 
     The stripes run on the compiled engine (:func:`rockstudy.analysis.record_scan.stripes_and_thresholds`);
@@ -327,8 +327,9 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
         The block and its restrainers.
     controls : sequence of Control
         The strategies, FS among them.
-    entries : sequence of (RecordInfo, Record)
-        From :mod:`rockstudy.model.record_suites`.
+    entries : sequence of (RecordInfo, Record), or a callable returning one
+        From :mod:`rockstudy.model.record_suites`; a callable (``lambda: load_suite(name)``) is called after
+        the numeric arguments are checked, so a bad argument is refused before any record is read.
     levels : array_like
         Intensity levels of the stripes, in ``measure``. [IM]
     suite : str
@@ -337,6 +338,9 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
         Resolution of the records' thresholds. [IM]
     measure, n_boot, seed, overturn_criterion, free_time : str, int, int, str, float
         As for :func:`fragility_dataset`.
+    names : dict, optional
+        The caller's name of ``resolution``, ``n_boot``, ``seed`` and ``free_time`` in error messages
+        (``{"n_boot": "--bootstrap"}``).
 
     Returns
     -------
@@ -348,7 +352,9 @@ def suite_fragility_dataset(block: Block, anchorage: Anchorage, controls, entrie
         coordinates (suite, id, event, station, year, magnitude, distance, site class, PGA, PGV, pulse).
     """
     check_arguments("suite_fragility_dataset", {"resolution": resolution, "n_boot": n_boot, "seed": seed,
-                                                "free_time": free_time})
+                                                "free_time": free_time}, names)
+    if callable(entries):
+        entries = entries()
     _check_fragility_inputs(controls, entries, levels, records_name="entries")
     if measure not in INTENSITY_MEASURES:
         raise ValueError(f"intensity measure must be one of {', '.join(INTENSITY_MEASURES)}, got {measure!r}")

@@ -37,6 +37,10 @@ BLOCK_DIMENSIONS = {"width": "base width 2b [m]", "height": "height 2h [m]", "de
                     "density": "density [kg/m^3] (default 2700)",
                     "restitution": "coefficient of restitution e [-] (default: Housner's Eq. 14)"}
 """Block options besides the preset ``--block``."""
+FRAGILITY_OPTIONS = {"resolution": "--threshold-resolution", "n_boot": "--bootstrap", "seed": "--seed",
+                     "free_time": "--free-time"}
+"""The option that sets each argument of :func:`~rockstudy.analysis.fragility.suite_fragility_dataset`: its
+check names it."""
 
 
 def register(sub) -> None:
@@ -140,32 +144,30 @@ def run_fragility(args, parser) -> None:
         validation.check_output_path("--output", args.output, formats=("nc",))
         anchorage = Anchorage(args.kappa_max, args.kappa_min, args.damping_ratio, names=options.OPTION_NAMES)
         block = _block(args)
-        QUANTITIES["free_time"].check("--free-time", args.free_time)
         levels = parameters.intensity_levels({"start": args.levels_start, "stop": args.levels_stop,
                                               "step": args.levels_step}, "--levels")
-        QUANTITIES["intensity_resolution"].check("--threshold-resolution", args.threshold_resolution)
-        QUANTITIES["bootstrap"].check("--bootstrap", args.bootstrap)
-        QUANTITIES["seed"].check("--seed", args.seed)
         if args.max_records is not None:
             QUANTITIES["suite_records"].check("--max-records", args.max_records)
-        entries = record_suites.load_suite(args.suite)[:args.max_records]
-    except (ValueError, record_suites.RecordSuiteError) as exc:
-        _fail(parser, exc)
-    strategies = ["FS"] if args.strategy == "FS" else ["FS", args.strategy]
-    try:
+        strategies = ["FS"] if args.strategy == "FS" else ["FS", args.strategy]
         controls = [Control(s, sampling_time=args.sampling_time, delay=args.delay, names=options.OPTION_NAMES)
                     for s in strategies]
     except ValueError as exc:
         _fail(parser, exc)
-    ds = suite_fragility_dataset(block, anchorage, controls, entries, levels, suite=args.suite,
-                                 measure=args.intensity_measure, resolution=args.threshold_resolution,
-                                 n_boot=args.bootstrap, seed=args.seed, overturn_criterion=args.overturn_criterion,
-                                 free_time=args.free_time)
+
+    def entries():  # read by suite_fragility_dataset after it has checked its options
+        return record_suites.load_suite(args.suite)[:args.max_records]
+    try:
+        ds = suite_fragility_dataset(block, anchorage, controls, entries, levels, suite=args.suite,
+                                     measure=args.intensity_measure, resolution=args.threshold_resolution,
+                                     n_boot=args.bootstrap, seed=args.seed, overturn_criterion=args.overturn_criterion,
+                                     free_time=args.free_time, names=FRAGILITY_OPTIONS)
+    except (validation.InputError, record_suites.RecordSuiteError) as exc:
+        _fail(parser, exc)
     options.write_output(ds, args.output)
     d = ds.sel(strategy=args.strategy)
     unit = ds["fragility_median_physical"].attrs["units"]
     key = "median_g" if unit in (STANDARD_GRAVITY_UNITS, "g") else "median_pgv_m_per_s"
-    print_json({"strategy": args.strategy, "suite": args.suite, "n_records": len(entries),
+    print_json({"strategy": args.strategy, "suite": args.suite, "n_records": ds.sizes["record"],
                       key: _value(d.fragility_median_physical), f"{key}_low": _value(d.median_low_physical),
                       f"{key}_high": _value(d.median_high_physical), "dispersion": _value(d.fragility_dispersion),
                       "fit": str(d.fit_status.values), "intensity_measure": args.intensity_measure,
