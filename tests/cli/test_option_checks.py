@@ -266,6 +266,19 @@ def _checks_and_reads(monkeypatch, module, name):
     return log
 
 
+def _risk_cases():
+    """(option, quantity, command line without the option) of every number of ``rockstudy risk``, in each mode
+    that uses it; the hazard file does not exist, so a check after reading it would name the file instead."""
+    from rockstudy.cli.risk import RISK_OPTIONS
+    frag, hazard = ["--median", "0.5", "--dispersion", "0.4"], ["--hazard", "no-such-hazard.txt"]
+    rate, probability = ["--dispersion", "0.4", "--target-rate", "1e-4"], ["--dispersion", "0.4",
+                                                                          "--target-probability", "0.01"]
+    modes = {"median_g": [frag], "dispersion": [frag, rate], "years": [frag, probability, rate],
+             "target_rate": [rate], "target_probability": [probability]}
+    assert set(modes) == set(RISK_OPTIONS)
+    return [(option, key, line, hazard) for key, option in RISK_OPTIONS.items() for line in modes[key]]
+
+
 def _drop(line, option):
     """``line`` without ``option`` and its value."""
     if option not in line:
@@ -273,6 +286,66 @@ def _drop(line, option):
     i = line.index(option)
     return line[:i] + line[i + 2:]
 
+
+RISK_CASES = _risk_cases()
+
+
+@pytest.mark.parametrize("option,key,line,hazard", RISK_CASES, ids=[f"{c[0]}{i}" for i, c in enumerate(RISK_CASES)])
+def test_a_bad_risk_option_is_refused_once_before_the_hazard_file(option, key, line, hazard, monkeypatch, capsys):
+    from rockstudy.analysis import hazard as hazard_module
+    from rockstudy.core.risk_inputs import RISK_INPUTS
+    log = _checks_and_reads(monkeypatch, hazard_module, "read_hazard_sites")
+    values = _past_the_ends(RISK_INPUTS[key])
+    assert len(values) == 2, key
+    for value in values:
+        with pytest.raises(SystemExit) as exc:
+            main(["risk", *_drop(line, option), *hazard, f"{option}={value}"])
+        assert exc.value.code == 2
+        err = capsys.readouterr().err
+        lines = err.strip().splitlines()
+        assert [x for x in lines if "error" in x] == [lines[0]], err
+        assert len(lines) <= 3 and lines[0].startswith(f"rockstudy: error: {option} = "), err
+        assert key not in err.replace(option, "") and "Traceback" not in err and "no-such" not in err, err
+    assert ("READ", "read_hazard_sites") not in log
+    callers = [m for label, m in log if label == option]
+    assert len(callers) == 2 and all(m.startswith("rockstudy.analysis.") for m in callers), log  # the library
+
+
+def _risk_run(args, log, capsys):
+    main(["risk", *args])
+    out = json.loads(capsys.readouterr().out)
+    checked = [label for label, _ in log if label != "READ"]
+    return out, checked, log.index(("READ", "read_hazard_sites"))
+
+
+@pytest.fixture
+def power_law_hazard(tmp_path):
+    import numpy as np
+    x = np.geomspace(0.001, 5.0, 50)
+    path = tmp_path / "site.txt"
+    path.write_text("".join(f"{float(a)!r}, {float(1e-4 * a ** -2.5)!r}\n" for a in x))
+    return str(path)
+
+
+def test_risk_checks_each_option_once_by_the_library_before_reading(power_law_hazard, monkeypatch, capsys):
+    from rockstudy.analysis import hazard as hazard_module
+    log = _checks_and_reads(monkeypatch, hazard_module, "read_hazard_sites")
+    out, checked, read = _risk_run(["--median", "0.6", "--dispersion", "0.4", "--years", "30", "--hazard",
+                                    power_law_hazard], log, capsys)
+    assert out["years"] == 30 and out["median_g"] == 0.6
+    for option in ("--median", "--dispersion", "--years"):
+        (i,) = [i for i, (label, _) in enumerate(log) if label == option]
+        assert i < read and log[i][1].startswith("rockstudy.analysis."), (option, log[i])
+    assert not {"median_g", "dispersion", "years"} & set(checked), checked  # not again under the library's names
+    for target in (["--target-rate", "1e-3"], ["--target-probability", "0.05"]):
+        log.clear()
+        out, checked, read = _risk_run(["--dispersion", "0.4", "--years", "30", "--hazard", power_law_hazard,
+                                        *target], log, capsys)
+        assert out["years"] == 30 and out["median_g"] > 0
+        for option in ("--dispersion", "--years", target[0]):
+            (i,) = [i for i, (label, _) in enumerate(log) if label == option]
+            assert i < read and log[i][1].startswith("rockstudy.analysis."), (option, log[i])
+        assert not {"years", "target_rate", "target_probability"} & set(checked), checked
 
 
 def _fragility_cases():

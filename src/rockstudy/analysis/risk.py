@@ -47,7 +47,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import InitVar, dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -96,15 +96,19 @@ class LognormalFragility:
         β, the standard deviation of ln PGA at overturning (0: a step at θ). [-]
     label : str
         What the fragility is of (object, device, record set).
+    names : dict, optional
+        The caller's name of ``median_g`` and ``dispersion`` in messages (``{"median_g": "--median"}``); not stored.
     """
 
     median_g: float
     dispersion: float
     label: str = ""
+    names: InitVar[dict | None] = None
 
-    def __post_init__(self):
-        RISK_INPUTS["median_g"].check("median_g", self.median_g)
-        RISK_INPUTS["dispersion"].check("dispersion", self.dispersion)
+    def __post_init__(self, names):
+        names = names or {}
+        RISK_INPUTS["median_g"].check(names.get("median_g", "median_g"), self.median_g)
+        RISK_INPUTS["dispersion"].check(names.get("dispersion", "dispersion"), self.dispersion)
 
     def probability(self, pga_g) -> np.ndarray:
         """P(overturn | PGA = x). [-]
@@ -211,7 +215,7 @@ class RiskResult:
         return probability_in_years(self.annual_rate, years)
 
 
-def probability_in_years(annual_rate: float, years: float = DEFAULT_YEARS) -> float:
+def probability_in_years(annual_rate: float, years: float = DEFAULT_YEARS, *, names: dict | None = None) -> float:
     """1 − exp(−λT), the Poisson probability of at least one occurrence in T years (Eq. R2). [-]
 
     Parameters
@@ -220,12 +224,14 @@ def probability_in_years(annual_rate: float, years: float = DEFAULT_YEARS) -> fl
         λ, the annual rate of occurrence. [1/yr]
     years : float, default 50
         Exposure time T. [yr]
+    names : dict, optional
+        The caller's name of ``years`` in error messages (``{"years": "--years"}``).
     """
-    years = RISK_INPUTS["years"].check("years", years)
-    return -math.expm1(-annual_rate * years)
+    years = RISK_INPUTS["years"].check((names or {}).get("years", "years"), years)
+    return _poisson_probability(annual_rate, years)
 
 
-def rate_for_probability(probability: float, years: float = DEFAULT_YEARS) -> float:
+def rate_for_probability(probability: float, years: float = DEFAULT_YEARS, *, names: dict | None = None) -> float:
     """The annual rate whose probability in ``years`` is ``probability``: −ln(1 − p)/T (Eq. R2). [1/yr]
 
     Parameters
@@ -234,10 +240,39 @@ def rate_for_probability(probability: float, years: float = DEFAULT_YEARS) -> fl
         p, the probability of at least one occurrence in ``years``, in (0, 1). [-]
     years : float, default 50
         Exposure time T. [yr]
+    names : dict, optional
+        The caller's name of ``target_probability`` and ``years`` in error messages.
     """
-    probability = RISK_INPUTS["target_probability"].check("target_probability", probability)
-    years = RISK_INPUTS["years"].check("years", years)
+    names = names or {}
+    probability = RISK_INPUTS["target_probability"].check(names.get("target_probability", "target_probability"),
+                                                          probability)
+    years = RISK_INPUTS["years"].check(names.get("years", "years"), years)
     return -math.log1p(-probability) / years
+
+
+def check_target(dispersion: float, target_rate: float | None = None, target_probability: float | None = None,
+                 years: float = DEFAULT_YEARS, names: dict | None = None) -> tuple[float, float, float]:
+    """Check a target of :func:`target_median` (one of ``target_rate`` and ``target_probability``, with ``years``)
+    and its ``dispersion``; return (β, target λ [1/yr], its probability in T years).
+
+    Parameters
+    ----------
+    dispersion, target_rate, target_probability, years, names : float, float, float, float, dict
+        As for :func:`target_median` (``names``: the caller's name of each, ``{"years": "--years"}``).
+    """
+    names = names or {}
+    if (target_rate is None) == (target_probability is None):
+        raise validation.InputError("give one target: target_rate or target_probability (with years)")
+    dispersion = RISK_INPUTS["dispersion"].check(names.get("dispersion", "dispersion"), dispersion)
+    if target_probability is not None:
+        rate = rate_for_probability(target_probability, years, names=names)
+        return dispersion, rate, _poisson_probability(rate, years)
+    rate = RISK_INPUTS["target_rate"].check(names.get("target_rate", "target_rate"), target_rate)
+    return dispersion, rate, probability_in_years(rate, years, names=names)
+
+
+def _poisson_probability(annual_rate: float, years: float) -> float:
+    return -math.expm1(-annual_rate * years)
 
 
 def _log_phi_difference(lo, hi):
@@ -367,7 +402,8 @@ class TargetMedian:
 
 def target_median(hazard: HazardCurve, dispersion: float, *, target_rate: float | None = None,
                   target_probability: float | None = None, years: float = DEFAULT_YEARS,
-                  extension: str = DEFAULT_EXTENSION, allow_extrapolation: bool = False) -> TargetMedian:
+                  extension: str = DEFAULT_EXTENSION, allow_extrapolation: bool = False,
+                  names: dict | None = None) -> TargetMedian:
     """The fragility median θ at which the rate of overturning λ (Eq. R1) equals a target, and whether it lies
     within the hazard curve's PGA range.
 
@@ -388,6 +424,8 @@ def target_median(hazard: HazardCurve, dispersion: float, *, target_rate: float 
     allow_extrapolation : bool, default False
         A θ outside the curve's PGA range rests on the curve's extension (or its absence): refused unless
         allowed, and then answered with ``extrapolated`` and a :class:`HazardExtrapolationWarning` saying how far.
+    names : dict, optional
+        The caller's name of each numeric argument in error messages (:func:`check_target`).
 
     Raises
     ------
@@ -395,13 +433,19 @@ def target_median(hazard: HazardCurve, dispersion: float, *, target_rate: float 
         (:class:`~rockstudy.core.validation.InputError`) when no median meets the target, or θ lies outside the
         curve and ``allow_extrapolation`` is False.
     """
-    if (target_rate is None) == (target_probability is None):
-        raise validation.InputError("give one target: target_rate or target_probability (with years)")
-    if target_probability is not None:
-        target_rate = rate_for_probability(target_probability, years)
-    target: float = RISK_INPUTS["target_rate"].check("target_rate", target_rate)
-    dispersion = RISK_INPUTS["dispersion"].check("dispersion", dispersion)
+    dispersion, target, _ = check_target(dispersion, target_rate, target_probability, years, names)
+    return median_meeting(hazard, dispersion, target, extension=extension, allow_extrapolation=allow_extrapolation)
 
+
+def median_meeting(hazard: HazardCurve, dispersion: float, target: float, *, extension: str = DEFAULT_EXTENSION,
+                   allow_extrapolation: bool = False) -> TargetMedian:
+    """:func:`target_median` of a dispersion and a target rate already checked (:func:`check_target`).
+
+    Parameters
+    ----------
+    hazard, dispersion, target, extension, allow_extrapolation : HazardCurve, float, float, str, bool
+        As for :func:`target_median`; ``target`` is the target annual rate of overturning. [1/yr]
+    """
     def excess(log_median):  # ln λ(θ) − ln target: falls as θ rises
         fragility = LognormalFragility(math.exp(log_median), dispersion)
         try:
@@ -442,19 +486,7 @@ def median_for_target(hazard: HazardCurve, dispersion: float, *, target_rate: fl
 
     Parameters
     ----------
-    hazard : HazardCurve
-        λ_IM of the site.
-    dispersion : float
-        β of the fragility. [-]
-    target_rate : float, optional
-        Target λ. [1/yr]
-    target_probability : float, optional
-        Target probability in ``years`` instead (e.g. 0.01 in 50 years), turned into a rate by Eq. R2. [-]
-    years : float
-        Exposure time of ``target_probability``. [yr]
-    extension : {"loglog", "none"}
-        As for :func:`annual_rate`.
-    allow_extrapolation : bool, default False
+    hazard, dispersion, target_rate, target_probability, years, extension, allow_extrapolation : object
         As for :func:`target_median`.
 
     Returns

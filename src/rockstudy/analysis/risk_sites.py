@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import math
 import warnings
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -24,7 +25,9 @@ from rockstudy.analysis.risk import (
     LognormalFragility,
     RiskRangeError,
     annual_rate,
+    check_target,
     fragility_from_dataset,
+    median_meeting,
     scenario_probability,
     threshold_fit,
 )
@@ -59,15 +62,16 @@ def _site_label(name: str, site: HazardSite, n_sites: int) -> str:
 
 
 def risk_at_sites(fragilities: dict, sites, *, years: float = DEFAULT_YEARS, extension: str = DEFAULT_EXTENSION,
-                  band_edges_g=BAND_EDGES_G, warn: bool = True) -> xr.Dataset:
+                  band_edges_g=BAND_EDGES_G, warn: bool = True, names: dict | None = None) -> xr.Dataset:
     """The risk of overturning of one object's strategies at every site.
 
     Parameters
     ----------
     fragilities : dict of str to LognormalFragility or None
         The object's fragility by strategy (None: no fitted fragility, NaN results).
-    sites : dict of str to HazardSite or HazardCurve
-        The sites by name (a :class:`~rockstudy.analysis.hazard.HazardCurve` is a site without coordinates).
+    sites : dict of str to HazardSite or HazardCurve, or a callable returning one
+        The sites by name (a :class:`~rockstudy.analysis.hazard.HazardCurve` is a site without coordinates); a
+        callable (one that reads a hazard file) is called after ``years`` is checked.
     years : float, default 50
         Exposure time T of the probabilities. [yr]
     extension : {"loglog", "none"}
@@ -77,6 +81,8 @@ def risk_at_sites(fragilities: dict, sites, *, years: float = DEFAULT_YEARS, ext
     warn : bool, default True
         Warn (:class:`~rockstudy.analysis.risk.HazardExtensionWarning`, naming the site) when more than
         :data:`~rockstudy.analysis.risk.TAIL_WARNING_SHARE` of a rate comes from outside its curve.
+    names : dict, optional
+        The caller's name of ``years`` in error messages (``{"years": "--years"}``).
 
     Returns
     -------
@@ -90,16 +96,18 @@ def risk_at_sites(fragilities: dict, sites, *, years: float = DEFAULT_YEARS, ext
     ValueError
         (:class:`RiskRangeError`) when a rate or probability leaves its range, naming the fragility and site.
     """
-    years = RISK_INPUTS["years"].check("years", years)
+    years = RISK_INPUTS["years"].check((names or {}).get("years", "years"), years)
+    if callable(sites):
+        sites = sites()
     sites = {n: s if isinstance(s, HazardSite) else HazardSite(curve=s) for n, s in dict(sites).items()}
     if not sites:
         raise validation.InputError("give at least one site (hazard curve)")
-    strategies, names = list(fragilities), list(sites)
-    shape = (len(strategies), len(names))
+    strategies, labels = list(fragilities), list(sites)
+    shape = (len(strategies), len(labels))
     out = {k: np.full(shape, math.nan) for k in ("annual_rate", "rate_below", "rate_above", "tail_share")}
     n_bands = None if band_edges_g is None else len(band_edges_g) + 1
     bands = None if n_bands is None else np.full(shape + (n_bands,), math.nan)
-    for j, name in enumerate(names):
+    for j, name in enumerate(labels):
         curve = sites[name].curve
         for i, s in enumerate(strategies):
             if fragilities[s] is None:
@@ -116,14 +124,63 @@ def risk_at_sites(fragilities: dict, sites, *, years: float = DEFAULT_YEARS, ext
                               "extending its end segments: give the curve over a wider range of PGA",
                               HazardExtensionWarning, stacklevel=2)
     probability = -np.expm1(-out["annual_rate"] * years)
-    for j, name in enumerate(names):
+    for j, name in enumerate(labels):
         for i, s in enumerate(strategies):
             f = fragilities[s]
             if f is not None:
                 check_risk_numbers(out["annual_rate"][i, j], probability[i, j],
                                    f"the fragility of {s} (median {f.median_g:g} g, dispersion {f.dispersion:g}) at "
                                    f"{name} ({sites[name].curve.source or 'a hazard curve'})")
-    return _sites_dataset(strategies, names, sites, out, probability, bands, band_edges_g, years, extension)
+    return _sites_dataset(strategies, labels, sites, out, probability, bands, band_edges_g, years, extension)
+
+
+class SiteTargets(NamedTuple):
+    """The medians meeting one target at every site (:func:`targets_at_sites`)."""
+
+    medians: dict
+    """The :class:`~rockstudy.analysis.risk.TargetMedian` of each site, by name."""
+    target_rate: float
+    """The target annual rate of overturning. [1/yr]"""
+    target_probability: float
+    """Its probability in ``years`` (Eq. R2). [-]"""
+    years: float
+    """The exposure time. [yr]"""
+
+
+def targets_at_sites(sites, dispersion: float, *, target_rate: float | None = None,
+                     target_probability: float | None = None, years: float = DEFAULT_YEARS,
+                     extension: str = DEFAULT_EXTENSION, allow_extrapolation: bool = False,
+                     names: dict | None = None) -> SiteTargets:
+    """The fragility median meeting a target at each site (:func:`~rockstudy.analysis.risk.target_median`), the
+    target and the dispersion checked once, before the sites are read.
+
+    Parameters
+    ----------
+    sites : dict of str to HazardSite or HazardCurve, or a callable returning one
+        As for :func:`risk_at_sites`.
+    dispersion, target_rate, target_probability, years, extension, allow_extrapolation : float or str or bool
+        As for :func:`~rockstudy.analysis.risk.target_median`.
+    names : dict, optional
+        The caller's name of each numeric argument in error messages (``{"years": "--years"}``).
+
+    Raises
+    ------
+    ValueError
+        (:class:`~rockstudy.core.validation.InputError`) for a bad argument, or at a site where no median meets
+        the target (the message starts with the site's name).
+    """
+    dispersion, rate, probability = check_target(dispersion, target_rate, target_probability, years, names)
+    if callable(sites):
+        sites = sites()
+    medians = {}
+    for name, site in dict(sites).items():
+        curve = site.curve if isinstance(site, HazardSite) else site
+        try:
+            medians[name] = median_meeting(curve, dispersion, rate, extension=extension,
+                                           allow_extrapolation=allow_extrapolation)
+        except validation.InputError as exc:
+            raise validation.InputError(f"{name}: {exc}") from None
+    return SiteTargets(medians, rate, probability, float(years))
 
 
 def _sites_dataset(strategies, names, sites, out, probability, bands, band_edges_g, years, extension) -> xr.Dataset:

@@ -25,7 +25,7 @@ from rockstudy.analysis.hazard import EXTENSIONS
 from rockstudy.cli import options
 from rockstudy.core import validation
 from rockstudy.core.quantities import QUANTITIES
-from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, GMMS, HAZARD_UNITS, RISK_INPUTS
+from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, GMMS, HAZARD_UNITS
 from rockstudy.model.anchorage import Anchorage
 from rockstudy.model.block import BLOCK_PRESETS
 from rockstudy.model.control import STRATEGIES, Control
@@ -37,6 +37,9 @@ BLOCK_DIMENSIONS = {"width": "base width 2b [m]", "height": "height 2h [m]", "de
                     "density": "density [kg/m^3] (default 2700)",
                     "restitution": "coefficient of restitution e [-] (default: Housner's Eq. 14)"}
 """Block options besides the preset ``--block``."""
+RISK_OPTIONS = {"median_g": "--median", "dispersion": "--dispersion", "years": "--years",
+                "target_rate": "--target-rate", "target_probability": "--target-probability"}
+"""The option that sets each number of a fragility, an exposure time and a target: the library's checks name it."""
 FRAGILITY_OPTIONS = {"resolution": "--threshold-resolution", "n_boot": "--bootstrap", "seed": "--seed",
                      "free_time": "--free-time"}
 """The option that sets each argument of :func:`~rockstudy.analysis.fragility.suite_fragility_dataset`: its
@@ -233,8 +236,7 @@ def _fragility(args, parser):
         parser.error("give the fragility: --median and --dispersion, or --fragility and --strategy")
     if args.strategy is not None:
         parser.error("--strategy goes with --fragility")
-    return LognormalFragility(RISK_INPUTS["median_g"].check("--median", args.median),
-                              RISK_INPUTS["dispersion"].check("--dispersion", args.dispersion))
+    return LognormalFragility(args.median, args.dispersion, names=RISK_OPTIONS)
 
 
 def run_risk(args, parser) -> None:
@@ -284,7 +286,6 @@ def _one_or_many(rows: list[dict], common: dict) -> dict:
 
 def _risk(args, parser) -> dict:
     from rockstudy.analysis import risk
-    years = RISK_INPUTS["years"].check("--years", args.years)
     targets = [t for t in ("target_rate", "target_probability") if getattr(args, t) is not None]
     if (args.hazard is None) == (args.scenario is None):
         parser.error("give the site: --hazard FILE or --scenario KEY=VALUE,...")
@@ -295,7 +296,7 @@ def _risk(args, parser) -> dict:
     if args.allow_extrapolation and not targets:
         parser.error("--allow-extrapolation goes with --target-rate or --target-probability")
     if targets:
-        return _target(args, parser, targets, years)
+        return _target(args, parser, targets)
     if args.devices is not None:
         parser.error("--devices goes with --target-rate or --target-probability")
     fragility = _fragility(args, parser)
@@ -316,13 +317,19 @@ def _risk(args, parser) -> dict:
             edges = [float(v) for v in args.bands.split(",")]
         except ValueError:
             parser.error(f"argument --bands: {args.bands!r} is not a comma-separated list of PGA [g]")
-    return _hazard(args, fragility, edges, years, base)
+    return _hazard(args, fragility, edges, base)
 
 
-def _hazard(args, fragility, edges, years: float, base: dict) -> dict:
+def _hazard(args, fragility, edges, base: dict) -> dict:
     from rockstudy.analysis.risk_sites import risk_at_sites
-    sites = _sites(args)
-    ds = risk_at_sites({"object": fragility}, sites, years=years, extension=args.extension, band_edges_g=edges)
+    sites: dict = {}
+
+    def read_sites():  # read by risk_at_sites after it has checked --years
+        sites.update(_sites(args))
+        return sites
+    ds = risk_at_sites({"object": fragility}, read_sites, years=args.years, extension=args.extension,
+                       band_edges_g=edges, names=RISK_OPTIONS)
+    years = float(ds.attrs["years"])
     rows = []
     for name, site in sites.items():
         d = ds.sel(strategy="object", site=name)
@@ -337,38 +344,39 @@ def _hazard(args, fragility, edges, years: float, base: dict) -> dict:
     return _one_or_many(rows, {"years": years, **base, "hazard": args.hazard, "extension": args.extension})
 
 
-def _target(args, parser, targets, years: float) -> dict:
-    from rockstudy.analysis import risk
+def _target(args, parser, targets) -> dict:
     from rockstudy.analysis.risk_devices import devices_meeting
+    from rockstudy.analysis.risk_sites import targets_at_sites
     if len(targets) > 1:
         parser.error("give one target: --target-rate or --target-probability")
     if args.hazard is None:
         parser.error("a target needs --hazard (the median meeting it on the hazard curve)")
     if args.dispersion is None or args.median is not None or args.fragility is not None:
         parser.error("a target takes --dispersion only (the median is what it finds)")
-    sites = _sites(args)
-    dispersion = RISK_INPUTS["dispersion"].check("--dispersion", args.dispersion)
-    if args.target_rate is not None:
-        rate = RISK_INPUTS["target_rate"].check("--target-rate", args.target_rate)
-    else:
-        RISK_INPUTS["target_probability"].check("--target-probability", args.target_probability)
-        rate = risk.rate_for_probability(args.target_probability, years)
+    sites: dict = {}
+
+    def read_sites():  # read by targets_at_sites after it has checked the target, --years and --dispersion
+        sites.update(_sites(args))
+        return sites
+    try:
+        found = targets_at_sites(read_sites, args.dispersion, target_rate=args.target_rate,
+                                 target_probability=args.target_probability, years=args.years,
+                                 extension=args.extension, allow_extrapolation=args.allow_extrapolation,
+                                 names=RISK_OPTIONS)
+    except validation.InputError as exc:
+        raise validation.InputError(f"--hazard {exc}" if sites else str(exc)) from None
     devices = _read_devices(args, parser) if args.devices is not None else None
     rows = []
     for name, site in sites.items():
-        try:
-            found = risk.target_median(site.curve, dispersion, target_rate=rate, extension=args.extension,
-                                       allow_extrapolation=args.allow_extrapolation)
-        except validation.InputError as exc:
-            raise validation.InputError(f"--hazard {name}: {exc}") from None
-        row = {**_where(site), "median_g": found.median_g, "extrapolated": found.extrapolated}
-        if found.extrapolated:
-            row["decades_outside_curve"] = found.decades_outside
+        median = found.medians[name]
+        row = {**_where(site), "median_g": median.median_g, "extrapolated": median.extrapolated}
+        if median.extrapolated:
+            row["decades_outside_curve"] = median.decades_outside
         if devices is not None:
-            row["devices"] = devices_meeting(devices, found.median_g)
+            row["devices"] = devices_meeting(devices, median.median_g)
         rows.append(row)
-    return _one_or_many(rows, {"dispersion": dispersion, "target_rate": rate,
-                               "target_probability": risk.probability_in_years(rate, years), "years": years,
+    return _one_or_many(rows, {"dispersion": args.dispersion, "target_rate": found.target_rate,
+                               "target_probability": found.target_probability, "years": found.years,
                                "hazard": args.hazard, "extension": args.extension})
 
 
