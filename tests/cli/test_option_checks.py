@@ -391,3 +391,52 @@ def test_fragility_checks_each_option_once_by_the_library_before_the_records(tmp
     for option, _ in FRAGILITY_CASES:
         (i,) = [i for i, (label, _) in enumerate(log) if label == option]
         assert i < read and log[i][1] == "rockstudy.core.quantities", (option, log[i])  # by check_arguments
+
+
+# --- jos: --a-max0 checked once, by jos, before the spectra are read ----------------------------------------
+
+def _spectrum_file(path):
+    import numpy as np
+    import xarray as xr
+
+    from rockstudy.core import io
+    from rockstudy.model.block import BLOCK_PRESETS
+    from rockstudy.studies import datasets
+    ds = datasets.document_missing(xr.Dataset(
+        {"threshold": ("frequency_ratio", [np.nan, 2.0])}, coords={"frequency_ratio": [1.0, 2.0]},
+        attrs={**BLOCK_PRESETS["BLC06"].to_attrs(), "grid_amplitude_start": 0.9, "grid_amplitude_stop": 4.5,
+               "grid_amplitude_step": 0.6}))
+    io.write_netcdf(ds, path)
+    return str(path)
+
+
+def test_a_bad_a_max0_is_refused_once_before_the_spectra(monkeypatch, capsys):
+    from rockstudy.analysis import jos  # noqa: F401 -- declares jos
+    from rockstudy.core import io
+    from rockstudy.core.quantities import ARGUMENTS
+    log = _checks_and_reads(monkeypatch, io, "read_netcdf")
+    values = _past_the_ends(ARGUMENTS["jos"]["a_max0_g"])
+    assert len(values) == 2
+    for value in values:
+        with pytest.raises(SystemExit) as exc:
+            main(["jos", "--reference", "no-such-ref.nc", "--system", "no-such-sys.nc", f"--a-max0={value}"])
+        assert exc.value.code == 2
+        err = capsys.readouterr().err
+        lines = err.strip().splitlines()
+        assert len(lines) <= 3 and lines[0].startswith("rockstudy: error: --a-max0 = "), err
+        assert "no-such" not in err and "Traceback" not in err, err
+    assert ("READ", "read_netcdf") not in log
+    assert [m for label, m in log if label == "--a-max0"] == ["rockstudy.core.quantities"] * 2, log
+
+
+def test_jos_checks_a_max0_once_before_reading(tmp_path, monkeypatch, capsys):
+    from rockstudy.core import io
+    from rockstudy.studies import config_model
+    path = _spectrum_file(tmp_path / "a.nc")
+    by_option = _count(monkeypatch, config_model, "check_option")
+    log = _checks_and_reads(monkeypatch, io, "read_netcdf")
+    main(["jos", "--reference", path, "--system", path, "--a-max0", "0.2"])
+    assert json.loads(capsys.readouterr().out)["a_max0_g"] == 0.2
+    (i,) = [i for i, (label, _) in enumerate(log) if label == "--a-max0"]
+    assert i < log.index(("READ", "read_netcdf")) and log[i][1] == "rockstudy.core.quantities", log
+    assert by_option == []

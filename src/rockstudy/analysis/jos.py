@@ -78,16 +78,16 @@ class JosResult:
 
 
 @declares(a_max0_g="a_max0_g")
-def jos(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float = DEFAULT_A_MAX0, *,
+def jos(system, reference, a_max0_g: float = DEFAULT_A_MAX0, *,
         a_max0_name: str = "a_max0_g") -> JosResult:
     """Utility index J_OS of the spectrum ``system`` against the spectrum ``reference`` (Eq. 21).
 
     Parameters
     ----------
-    system, reference : xarray.Dataset
+    system, reference : xarray.Dataset, or callables returning one
         Overturning spectra (:func:`rockstudy.spectrum` or ``rockstudy spectrum``): a ``threshold`` over
         ``frequency_ratio`` and the amplitude scan's attributes. Where no frequency counts (N* = 0) J_OS
-        is NaN.
+        is NaN. Callables (readers of files) are called after ``a_max0_g`` is checked, ``reference`` first.
     a_max0_g : float
         Protection level a_max,0. [g]
     a_max0_name : str
@@ -104,6 +104,10 @@ def jos(system: xr.Dataset, reference: xr.Dataset, a_max0_g: float = DEFAULT_A_M
         spectrum's amplitude scan.
     """
     check_arguments("jos", {"a_max0_g": a_max0_g}, {"a_max0_g": a_max0_name})
+    if callable(reference):
+        reference = reference()
+    if callable(system):
+        system = system()
     if system.sizes["frequency_ratio"] != reference.sizes["frequency_ratio"] or not np.allclose(
             system["frequency_ratio"], reference["frequency_ratio"]):
         raise ValueError("J_OS needs the system and the reference on the same frequencies")

@@ -106,22 +106,11 @@ def _cmd_spectrum(args, parser):
                 "simulations": int(ds.n_simulations.sum()), "compute_time_s": ds.attrs["compute_time_s"]})
 
 
-def _cmd_jos(args, parser):
+def _check_pair(ref, sys_, args, parser) -> None:
+    """Refuse spectra on different frequency grids or made under different settings (unless allowed)."""
     import numpy as np
 
-    from rockstudy.analysis.jos import jos
-    from rockstudy.core.io import read_netcdf
-    from rockstudy.studies.tables import check_spectrum_file, spectrum_mismatches
-    config_model.check_option("--a-max0", args.a_max0)
-    datasets = {}
-    for name, path in (("--reference", args.reference), ("--system", args.system)):
-        validation.check_input_file(name, path, validation.MAX_DATASET_BYTES)
-        try:
-            datasets[name] = read_netcdf(path)
-        except (OSError, ValueError, RuntimeError) as exc:
-            parser.error(f"argument {name}: cannot read {path!r} as a netCDF file: {exc}")
-        check_spectrum_file(datasets[name], f"argument {name}: {path!r}")
-    ref, sys_ = datasets["--reference"], datasets["--system"]
+    from rockstudy.studies.tables import spectrum_mismatches
     if ref.sizes["frequency_ratio"] != sys_.sizes["frequency_ratio"] or not np.allclose(
             ref.frequency_ratio.values, sys_.frequency_ratio.values):
         parser.error("--reference and --system have different frequency grids; compute them on the same grid")
@@ -131,8 +120,27 @@ def _cmd_jos(args, parser):
             parser.error(f"--reference and --system were made under different settings: {attr} is {a!r} in "
                          f"--system and {b!r} in --reference; J_OS compares strategies under one setting (pass "
                          f"--allow-mismatch {attr} to compare them anyway)")
+
+
+def _cmd_jos(args, parser):
+    from rockstudy.analysis.jos import jos
+    from rockstudy.core.io import read_netcdf
+    from rockstudy.studies.tables import check_spectrum_file
+    datasets = {}
+
+    def read(name, path):  # called by jos after it has checked --a-max0
+        validation.check_input_file(name, path, validation.MAX_DATASET_BYTES)
+        try:
+            datasets[name] = read_netcdf(path)
+        except (OSError, ValueError, RuntimeError) as exc:
+            parser.error(f"argument {name}: cannot read {path!r} as a netCDF file: {exc}")
+        check_spectrum_file(datasets[name], f"argument {name}: {path!r}")
+        if name == "--system":
+            _check_pair(datasets["--reference"], datasets["--system"], args, parser)
+        return datasets[name]
     try:
-        result = jos(sys_, ref, args.a_max0, a_max0_name="--a-max0")
+        result = jos(lambda: read("--system", args.system), lambda: read("--reference", args.reference),
+                     args.a_max0, a_max0_name="--a-max0")
         j, n, a_max0 = result.j_os, result.n_star, result.a_max0_ratio
     except ValueError as exc:
         parser.error(str(exc))

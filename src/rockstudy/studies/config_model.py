@@ -420,10 +420,10 @@ _MODEL_NAMES = {cls.__name__ for cls in (*Section.__subclasses__(), Noise)}
 """The sections' class names, which pydantic puts into the location of an error inside a union."""
 
 OPTIONS = {
-    "--realisations": Count, "--record-scale": Q("record_scale"), "--a-max0": Q("a_max0_g"),
+    "--realisations": Count, "--record-scale": Q("record_scale"),
 }
 """The command line's numeric options that reach no library check naming them before any work (the number of
-realisations, a record's scale, a_max,0 before the spectra are read), each declared like the config key it
+realisations, a record's scale before the record is read), each declared like the config key it
 stands for; the CLI checks them with :func:`check_option`. Every other option is checked by the object,
 function or method it is passed to, which names the option (``Anchorage(..., names=...)``,
 ``Scenario.motion(..., names=...)``, ``read_record(..., names=...)``)."""
