@@ -1,10 +1,11 @@
-"""The engine's compilation, measured: what the workflow's rule ``compile_engine`` compiles (its script,
-called with a stand-in for Snakemake's object and one numba thread, as the rule runs it), into an empty
-numba cache, with the CPU time of each compiled function.
+"""The engine's compilation, measured: what the workflow's rules ``compile_engine`` (the threshold scans)
+and ``compile_engine_more`` (the rest, after it) compile — their script, called with a stand-in for
+Snakemake's object and one numba thread, as the rules run it — into an empty numba cache, with the CPU time
+of each compiled function.
 
     python benchmarks/compile_time.py [--config config.yaml] [--top 15] [--cache DIR]
 
-Prints the total CPU and wall time of the compilation and, for the ``--top`` most expensive compiled
+Prints the CPU and wall time of each part and, for the ``--top`` most expensive compiled
 functions, the CPU time spent compiling each one alone (``own``: without the functions it calls, which are
 compiled first) and with them (``with callees``). ``--cache`` keeps the cache in ``DIR`` (emptied
 first) instead of a temporary folder. The machine is shared: compare two versions back to back (another
@@ -74,20 +75,20 @@ def main(argv=None) -> int:
     spec = importlib.util.spec_from_file_location("compile_engine", ROOT / "workflow/scripts/compile_engine.py")
     script = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(script)
-    with tempfile.TemporaryDirectory() as tmp:
-        scenario = expectations.scenario_spec(config, "CS01", level, 0.0, 0.0)
-        stand_in = SimpleNamespace(log=[f"{tmp}/compile.log"], output=[f"{tmp}/compile.done"], threads=1,
-                                   params=SimpleNamespace(scenario=scenario, library="benchmark"))
-        listener = compile_times()
-        cpu, wall = time.process_time(), time.perf_counter()
-        with event.install_listener("numba:compile", listener):
+    scenario = expectations.scenario_spec(config, "CS01", level, 0.0, 0.0)
+    listener = compile_times()
+    with tempfile.TemporaryDirectory() as tmp, event.install_listener("numba:compile", listener):
+        for part, rule in (("scan", "compile_engine"), ("more", "compile_engine_more")):
+            stand_in = SimpleNamespace(log=[f"{tmp}/{part}.log"], output=[f"{tmp}/{part}.done"], threads=1,
+                                       params=SimpleNamespace(scenario=scenario, library="benchmark", part=part))
+            cpu, wall = time.process_time(), time.perf_counter()
             script.main(stand_in)
-        cpu, wall = time.process_time() - cpu, time.perf_counter() - wall
+            print(f"{rule} ({part}) on {'an empty' if part == 'scan' else 'that'} cache: "
+                  f"{time.process_time() - cpu:.1f} s CPU, {time.perf_counter() - wall:.1f} s wall", flush=True)
     n_files = len(list(cache.rglob("*.nbc")))
     if args.cache is None:
         shutil.rmtree(cache, ignore_errors=True)
-    print(f"compile_engine on an empty cache: {cpu:.1f} s CPU, {wall:.1f} s wall; "
-          f"{len(listener.own)} functions compiled, {n_files} compiled objects cached")
+    print(f"{len(listener.own)} functions compiled, {n_files} compiled objects cached")
     print(f"{'function':32s} {'own':>7s} {'with callees':>13s}  [s CPU]")
     for name in sorted(listener.own, key=listener.own.get, reverse=True)[:args.top]:
         print(f"{name:32s} {listener.own[name]:7.2f} {listener.inclusive[name]:13.2f}")
