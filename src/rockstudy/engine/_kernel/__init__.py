@@ -16,8 +16,8 @@ in numba, with two steppers and one event search, in small parts:
   energy bounds, the sampled controller's queue;
 * :mod:`.engine`  — the driving loop (paper §3) over the state record and the run's constants:
   ``next_known_time``, ``ground_phase`` (REST/HOLD), ``known_time_events``, ``apex``, ``integrate``
-  (the step loop), ``search_events`` (the event search of one step; ``locate_events`` where it may
-  hold one), ``state_event`` (the maps), ``drive`` and ``simulate_kernel``;
+  (the step loop), ``search_events`` (the event search of one step), ``state_event`` (the maps),
+  ``drive`` and ``simulate_kernel``;
 * :mod:`.scan`    — outcomes, the one threshold scan (a state machine both engines drive), batches.
 
 Steppers: while a record without vertical motion lasts, Ẍg is linear between its knots and the

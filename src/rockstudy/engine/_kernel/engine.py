@@ -686,25 +686,6 @@ def segment_events(S, C, P):
 
 @njit(cache=True, inline="always")
 def search_events(seg, P, rec, K, Q, t, hh, y0, y1, n0, n1, hint, x_hint, max_abs):
-    """The event search of one accepted step from (θ, θ̇) = (y0, y1) at t to (n0, n1) at t + hh: the
-    result of :func:`locate_events`, whose docstring says what it looks for and returns.
-
-    Most steps hold no event, and a few comparisons of the step's ends show it: each test here is the
-    negation of one of :func:`locate_events`'s tests that lead to a location, so when all hold it would
-    find nothing and return (2, False, ``max_abs``). Inlined into the step loop, they spare it the call;
-    :func:`locate_events` is compiled once on its own (inlined too, it doubled the step loop's compile).
-    """
-    side, use_thd_event, use_xg_event, th_over, th_ku, th_du, have_q = seg
-    peak = side * n0
-    if peak > 0.0 and not (side * y1 > 0.0 and side * n1 <= 0.0) and peak - th_over < 0.0 \
-            and peak - th_ku < 0.0 and peak - th_du < 0.0 and not (use_thd_event and hint != 0.0 and hint * n1 <= 0.0) \
-            and not (use_xg_event and x_hint != 0.0 and x_hint * sensed_acceleration(t + hh, P, rec) <= 0.0):
-        return 2.0, False, max_abs
-    return locate_events(seg, P, rec, K, Q, t, hh, y0, y1, n0, n1, hint, x_hint, max_abs)
-
-
-@njit(cache=True, **NO_REFCOUNT)
-def locate_events(seg, P, rec, K, Q, t, hh, y0, y1, n0, n1, hint, x_hint, max_abs):
     """The event search of one accepted step from (θ, θ̇) = (y0, y1) at t to (n0, n1) at t + hh (its
     stages in ``K``), for the events of the segment ``seg`` (:func:`segment_events`): the earliest state
     event on (t, t + hh] — an impact (side·θ reaches 0), the overturning rotation, a working element's
