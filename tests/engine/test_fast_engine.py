@@ -350,7 +350,8 @@ def test_functions_compiled_without_reference_counting_count_none():
     from rockstudy.core._inline import NO_REFCOUNT
     from rockstudy.engine._kernel import dopri, engine, events, ground, taylor
 
-    for fn in (engine.integrate, engine.drive, taylor.step, dopri.rhs, dopri.dense_coefficients,
+    for fn in (engine.integrate, engine.drive, taylor.step, dopri.step, dopri.rhs,
+               dopri.dense_coefficients,
                ground.ground_acceleration, ground.sensed_acceleration, events.scan_exit,
                events.locate_sensed_poly):
         assert all(fn.targetoptions.get(k) == v for k, v in NO_REFCOUNT.items()), fn.__name__

@@ -2,14 +2,17 @@
 # histories.
 
 
+# The engine compiled into numba's cache in two parts: the threshold scans first (the spectra wait for
+# them alone), then the rest of what the simulation jobs call, beside the first spectra.
 rule compile_engine:
     output:
-        f"{OUT}/logs/compile_engine.done",
+        COMPILED_SCAN,
     log:
         f"{OUT}/logs/compile_engine.log",
     params:
         scenario=scenario("CS01", (NOISY or [FREE])[0]),
         library=LIBRARY,
+        part="scan",
     conda:
         "../envs/rockstudy.yaml"
     threads: 1
@@ -18,6 +21,19 @@ rule compile_engine:
         runtime=10,
     script:
         "../scripts/compile_engine.py"
+
+
+use rule compile_engine as compile_engine_more with:
+    input:
+        ancient(COMPILED_SCAN),
+    output:
+        COMPILED,
+    log:
+        f"{OUT}/logs/compile_engine_more.log",
+    params:
+        scenario=scenario("CS01", (NOISY or [FREE])[0]),
+        library=LIBRARY,
+        part="more",
 
 
 rule noise:
@@ -58,7 +74,7 @@ SCAN_PARAMS = dict(
 rule spectrum:
     input:
         noise=f"{OUT}/noise/{{level}}.nc",
-        compiled=ancient(COMPILED),
+        compiled=ancient(COMPILED_SCAN),
     output:
         f"{OUT}/spectra/{{strategy}}_{{level}}.nc",
     log:

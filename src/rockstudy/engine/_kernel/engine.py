@@ -310,6 +310,12 @@ def setup(P, vert, want_history, want_log):
     return C
 
 
+_NO = np.zeros(2, dtype=np.bool_)
+"""(want_history, want_log) of :func:`driven_bound_data`'s call of :func:`setup`: read from an array, they
+are typed bool as in :func:`run_kernel`'s call, so ``setup`` is compiled once, not once more for
+Literal[bool](False)."""
+
+
 @njit(cache=True)
 def driven_bound_data(P, rec, vert):
     """The data of the early stop during the excitation (``B_*`` slots), the same for every amplitude of
@@ -317,7 +323,7 @@ def driven_bound_data(P, rec, vert):
     integral of |record| from each knot to the end of the excitation (linear pieces bounded by the mean
     of their ends' magnitudes) and the largest |record| from each knot on. Two slots (and no stop) when the
     run cannot stop early."""
-    C = setup(P, vert, False, False)
+    C = setup(P, vert, _NO[0], _NO[1])
     kind = int(C[C_DRIVEN])
     n = 0
     if kind != maps.DRIVEN_NONE and int(P[I_KIND]) == RECORD:
@@ -1160,7 +1166,7 @@ def simulate_kernel(P, rec, vert, want_history, want_log):
     return run_kernel(P, rec, vert, driven_bound_data(P, rec, vert), want_history, want_log)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def run_kernel(P, rec, vert, B, want_history, want_log):
     """:func:`simulate_kernel` with the early stop's data ``B`` (:func:`driven_bound_data`) given, so
     that the runs of a threshold scan share it."""

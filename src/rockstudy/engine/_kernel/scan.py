@@ -119,7 +119,7 @@ def outcome_kernel(P, rec, vert, amplitude_ratio, unit_peak):
     return case_outcome(P, rec, vert, driven_bound_data(P, rec, vert), amplitude_ratio, unit_peak)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def case_outcome(P, rec, vert, B, amplitude_ratio, unit_peak):
     """:func:`outcome_kernel` with the early stop's data ``B`` of the case
     (:func:`rockstudy.engine._kernel.engine.driven_bound_data`), shared by its amplitudes."""
@@ -135,7 +135,7 @@ def case_outcome(P, rec, vert, B, amplitude_ratio, unit_peak):
     return SAFE
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def run_scan(P, rec, vert, grid, resolution, unit_peak, lower, state, counts):
     """Advance ``state`` with the outcomes of runs of ``P`` until the scan is done; ``counts`` +=
     (simulations, undetermined runs). With ``resolution`` = inf the scan stops at the first grid

@@ -1,0 +1,99 @@
+"""The engine's compilation, measured: what the workflow's rules ``compile_engine`` (the threshold scans)
+and ``compile_engine_more`` (the rest, after it) compile — their script, called with a stand-in for
+Snakemake's object and one numba thread, as the rules run it — into an empty numba cache, with the CPU time
+of each compiled function.
+
+    python benchmarks/compile_time.py [--config config.yaml] [--top 15] [--cache DIR]
+
+Prints the CPU and wall time of each part and, for the ``--top`` most expensive compiled
+functions, the CPU time spent compiling each one alone (``own``: without the functions it calls, which are
+compiled first) and with them (``with callees``). ``--cache`` keeps the cache in ``DIR`` (emptied
+first) instead of a temporary folder. The machine is shared: compare two versions back to back (another
+version's ``src`` first on ``PYTHONPATH``), not with figures from another session.
+"""
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import os
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+from types import SimpleNamespace
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def parse(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--config", type=Path, default=ROOT / "config.yaml")
+    ap.add_argument("--top", type=int, default=15, help="compiled functions listed (default 15)")
+    ap.add_argument("--cache", type=Path, default=None,
+                    help="numba cache folder, emptied first (default: a temporary one)")
+    return ap.parse_args(argv)
+
+
+def compile_times():
+    """A listener to numba's "numba:compile" events: CPU time per compiled function, own and inclusive."""
+    from numba.core.event import Listener
+
+    class CompileTimes(Listener):
+        def __init__(self):
+            self.stack, self.own, self.inclusive = [], {}, {}
+
+        def on_start(self, event):
+            self.stack.append([event.data["dispatcher"].py_func.__qualname__, time.process_time(), 0.0])
+
+        def on_end(self, event):
+            name, start, callees = self.stack.pop()
+            spent = time.process_time() - start
+            self.inclusive[name] = self.inclusive.get(name, 0.0) + spent
+            self.own[name] = self.own.get(name, 0.0) + spent - callees
+            if self.stack:
+                self.stack[-1][2] += spent
+
+    return CompileTimes()
+
+
+def main(argv=None) -> int:
+    args = parse(argv)
+    cache = args.cache or Path(tempfile.mkdtemp(prefix="rockstudy-numba-"))
+    shutil.rmtree(cache, ignore_errors=True)
+    cache.mkdir(parents=True)
+    os.environ["NUMBA_CACHE_DIR"] = str(cache)  # before numba is imported
+    import yaml
+    from numba.core import event
+
+    from rockstudy.studies import expectations, parameters
+
+    config = yaml.safe_load(args.config.read_text(encoding="utf-8"))
+    levels = config["noise_levels"]
+    free = parameters.noise_free_level(levels)
+    level = next((name for name in levels if name != free), free)  # as the rule: the first noisy level
+    spec = importlib.util.spec_from_file_location("compile_engine", ROOT / "workflow/scripts/compile_engine.py")
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    scenario = expectations.scenario_spec(config, "CS01", level, 0.0, 0.0)
+    listener = compile_times()
+    with tempfile.TemporaryDirectory() as tmp, event.install_listener("numba:compile", listener):
+        for part, rule in (("scan", "compile_engine"), ("more", "compile_engine_more")):
+            stand_in = SimpleNamespace(log=[f"{tmp}/{part}.log"], output=[f"{tmp}/{part}.done"], threads=1,
+                                       params=SimpleNamespace(scenario=scenario, library="benchmark", part=part))
+            cpu, wall = time.process_time(), time.perf_counter()
+            script.main(stand_in)
+            print(f"{rule} ({part}) on {'an empty' if part == 'scan' else 'that'} cache: "
+                  f"{time.process_time() - cpu:.1f} s CPU, {time.perf_counter() - wall:.1f} s wall", flush=True)
+    n_files = len(list(cache.rglob("*.nbc")))
+    if args.cache is None:
+        shutil.rmtree(cache, ignore_errors=True)
+    print(f"{len(listener.own)} functions compiled, {n_files} compiled objects cached")
+    print(f"{'function':32s} {'own':>7s} {'with callees':>13s}  [s CPU]")
+    for name in sorted(listener.own, key=listener.own.get, reverse=True)[:args.top]:
+        print(f"{name:32s} {listener.own[name]:7.2f} {listener.inclusive[name]:13.2f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
