@@ -120,3 +120,27 @@ def test_the_checker_sees_core_importing_the_config_model(tmp_path):
     found = imports(bad, {"rockstudy.studies.config_model", "rockstudy.analysis.risk_sites"})
     assert [layer(t) for t, _ in found] == [LAYERS["studies"], LAYERS["analysis"]]
     assert all(layer(t) > LAYERS["core"] for t, _ in found)
+
+
+MAX_MODULE_LINES = 600
+"""Longest module outside the compiled kernel (``engine/_kernel``), in lines. [-]"""
+MAX_FUNCTION_LINES = 120
+"""Longest function or method outside the compiled kernel, decorators excluded, in lines. [-]"""
+
+
+def test_modules_and_functions_stay_in_size():
+    """Outside the compiled kernel no module passes 600 lines and no function 120: a module that grows
+    past it holds two concerns, to be split (the kernel's driver and step loop stay whole for numba)."""
+    too_long = []
+    for path in sorted(ROOT.rglob("*.py")):
+        if "_kernel" in path.relative_to(ROOT).parts:
+            continue
+        text = path.read_text(encoding="utf-8")
+        if len(text.splitlines()) > MAX_MODULE_LINES:
+            too_long.append(f"{module_name(path)}: {len(text.splitlines())} lines")
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                lines = node.end_lineno - node.lineno + 1
+                if lines > MAX_FUNCTION_LINES:
+                    too_long.append(f"{module_name(path)}.{node.name}: {lines} lines")
+    assert not too_long, "over the size limits (module 600, function 120 lines):\n" + "\n".join(too_long)

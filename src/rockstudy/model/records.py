@@ -4,9 +4,8 @@ A :class:`Record` is a horizontal ground acceleration sampled at a uniform step,
 :meth:`Record.motion` turns it into the :class:`~rockstudy.model.excitation.GroundMotion` the
 integrators consume (linear interpolation between samples, like the noisy records of §5).
 
-This module is the record-file counterpart of :mod:`rockstudy.core.io` (which holds the netCDF
-I/O): every record file is read and written here. Malformed files are refused with a
-:class:`RecordFormatError` naming the file, the line and what was expected there.
+Every record file is read and written here (netCDF files in :mod:`rockstudy.core.io`); a malformed
+file is refused with a :class:`RecordFormatError` naming the file, the line and what was expected.
 
 Formats
 -------
@@ -18,9 +17,8 @@ per line.
 Two-column text or CSV: time [s] and acceleration, separated by commas, semicolons, tabs or
 blanks; blank lines and lines starting with ``#`` are skipped; one header line (the first
 line that is not a comment) may name the columns, e.g. ``time [s], acceleration [g]``, and
-its bracketed unit is used when no unit is given. When it brackets a unit for each column,
-the first is the time unit (s, ms or min; any other is refused). Times must start anywhere and increase by
-one constant step (the record's time origin is its first sample).
+its bracketed unit is used when no unit is given; with a unit for each column, the first is the time
+unit (s, ms or min). Times may start anywhere (the first sample is the record's origin), one step apart.
 
 One column with a given step ``dt`` (the file OpenSees reads with ``timeSeries Path -dt``): the
 accelerations at t = 0, dt, 2·dt, ... in order, any number per line, with the same comment and
