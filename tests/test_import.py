@@ -24,6 +24,25 @@ def test_modules_of_jobs_that_simulate_nothing_do_not_load_numba(imports):
     assert "numba" not in run(f"{imports}; {LOADED}")
 
 
+def test_a_jobs_parameters_unpickle_without_the_tables_dependencies():
+    """Every job unpickles its parameters, some of them classes of :mod:`rockstudy.report.parameters`: that
+    loads neither scipy, xarray nor the report's table modules (half a second a job when it did)."""
+    code = ("import pickle, sys; from rockstudy.report.parameters import SourceFingerprint; "
+            "pickle.loads(pickle.dumps(SourceFingerprint('abc', 'core'))); "
+            "print(sorted(m for m in ('scipy', 'xarray', 'rockstudy.report.risk_table', 'rockstudy.report.overview')"
+            " if m in sys.modules))")
+    assert run(code) == "[]"
+
+
+def test_every_name_of_the_report_package_is_there():
+    from rockstudy import report
+    namespace = {}
+    exec("from rockstudy.report import *", namespace)
+    assert set(report.__all__) <= set(namespace) and set(report.__all__) <= set(dir(report))
+    with pytest.raises(AttributeError, match="no attribute 'nonesuch'"):
+        report.nonesuch  # noqa: B018
+
+
 @pytest.mark.parametrize("order", ["import rockstudy, numba", "import numba, rockstudy"])
 def test_numba_caches_in_the_source_trees_folder_whoever_imports_numba_first(order):
     code = (f"{order}; from rockstudy.model import anchorage; "

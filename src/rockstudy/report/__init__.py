@@ -13,62 +13,48 @@ page, a CSV only as a download. One module per concern:
 - :mod:`~rockstudy.report.parameters`: workflow parameters as the report shows them (source fingerprints,
   checked attributes, labels).
 
-Every public name is importable from ``rockstudy.report`` itself.
+Every public name is importable from ``rockstudy.report`` itself; a submodule is imported when one of its
+names is first asked for, so that a job which only unpickles its parameters (:mod:`~rockstudy.report.parameters`)
+does not load the tables' dependencies (scipy).
 """
-from rockstudy.report.fragility_tables import (
-    RUN_NUMBERS,
-    fragility_markdown,
-    run_numbers_csv,
-    suite_summary_markdown,
-    threshold_markdown,
-)
-from rockstudy.report.overview import (
-    INLINE,
-    VERDICT_OF_FLAG,
-    beyond_overview_html,
-    claims_compact_html,
-    claims_html,
-    claims_summary,
-    overview_html,
-    table1_beside_paper_html,
-    table1_compact_html,
-)
-from rockstudy.report.pages import (
-    REFERENCE_WORDS,
-    STYLE,
-    SWEEP_WORDS,
-    VERDICT_CLASS,
-    VERDICT_MARK,
-    WIDE_TABLE_COLUMNS,
-    document,
-    in_paper_words,
-    markdown_html,
-    markdown_page,
-    scrolling,
-    settings_text,
-    transposed_wide_tables,
-    verdict_html,
-)
-from rockstudy.report.parameters import (
-    ExpectedAttributes,
-    SourceFingerprint,
-    labels,
-)
-from rockstudy.report.risk_table import (
-    NO_FIT_NOTES,
-    NO_FIT_WORDS,
-    SUPERSCRIPTS,
-    change_over_fs,
-    no_median_words,
-    risk_markdown,
-)
+from __future__ import annotations
 
-__all__ = [
-    "beyond_overview_html", "change_over_fs", "claims_compact_html", "claims_html", "claims_summary", "document",
-    "ExpectedAttributes", "fragility_markdown", "in_paper_words", "INLINE", "labels", "markdown_html",
-    "markdown_page", "NO_FIT_NOTES", "NO_FIT_WORDS", "no_median_words", "overview_html", "REFERENCE_WORDS",
-    "risk_markdown", "RUN_NUMBERS", "run_numbers_csv", "scrolling", "settings_text", "SourceFingerprint", "STYLE",
-    "suite_summary_markdown", "SUPERSCRIPTS", "SWEEP_WORDS", "table1_beside_paper_html", "table1_compact_html",
-    "threshold_markdown", "transposed_wide_tables", "VERDICT_CLASS", "verdict_html", "VERDICT_MARK",
-    "VERDICT_OF_FLAG", "WIDE_TABLE_COLUMNS",
-]
+import importlib
+
+_HOMES = {
+    "fragility_tables": (
+        "RUN_NUMBERS", "fragility_markdown", "run_numbers_csv", "suite_summary_markdown", "threshold_markdown",
+    ),
+    "overview": (
+        "INLINE", "VERDICT_OF_FLAG", "beyond_overview_html", "claims_compact_html", "claims_html",
+        "claims_summary", "overview_html", "table1_beside_paper_html", "table1_compact_html",
+    ),
+    "pages": (
+        "REFERENCE_WORDS", "STYLE", "SWEEP_WORDS", "VERDICT_CLASS", "VERDICT_MARK", "WIDE_TABLE_COLUMNS",
+        "document", "in_paper_words", "markdown_html", "markdown_page", "scrolling", "settings_text",
+        "transposed_wide_tables", "verdict_html",
+    ),
+    "parameters": (
+        "ExpectedAttributes", "SourceFingerprint", "labels",
+    ),
+    "risk_table": (
+        "NO_FIT_NOTES", "NO_FIT_WORDS", "SUPERSCRIPTS", "change_over_fs", "no_median_words", "risk_markdown",
+    ),
+}
+"""The submodule of each public name."""
+_HOME_OF = {name: module for module, names in _HOMES.items() for name in names}
+
+__all__ = sorted(_HOME_OF, key=str.lower)
+
+
+def __getattr__(name: str):
+    """A public name, from its submodule (imported on first use)."""
+    if name not in _HOME_OF:
+        raise AttributeError(f"module 'rockstudy.report' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"rockstudy.report.{_HOME_OF[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
