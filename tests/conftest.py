@@ -15,6 +15,21 @@ def anchorage():
     return Anchorage()
 
 
+@pytest.fixture
+def quantity_checks(monkeypatch):
+    """The names under which every declared quantity is checked (each ``core.quantities.Quantity.check``
+    call, in order), to count how often a value is checked and under which name."""
+    from rockstudy.core import quantities
+    calls = []
+    real = quantities.Quantity.check
+
+    def counted(self, name, value):
+        calls.append(name)
+        return real(self, name, value)
+    monkeypatch.setattr(quantities.Quantity, "check", counted)
+    return calls
+
+
 SLOW = (
     "tests/test_tiny_study.py",
     "tests/test_workflow.py",

@@ -21,16 +21,10 @@ def _count(monkeypatch, module, name):
     return calls
 
 
-def test_spectrum_checks_the_amplitude_grid_once(tmp_path, monkeypatch, capsys):
+def test_spectrum_checks_the_amplitude_grid_once(tmp_path, monkeypatch, capsys, quantity_checks):
     grids = _count(monkeypatch, validation, "check_amplitude_grid")
     frequencies = _count(monkeypatch, validation, "check_grid")
-    fields = []
-    real = quantities.Quantity.check
-
-    def counted(self, name, value):
-        fields.append(name)
-        return real(self, name, value)
-    monkeypatch.setattr(quantities.Quantity, "check", counted)
+    fields = quantity_checks
     main(["spectrum", "--strategy", "FS", "--output", str(tmp_path / "s.nc")] + TINY)
     assert json.loads(capsys.readouterr().out)["frequencies"] == 2
     grids = [call for call in grids if call[0] == (0.9, 1.5, 0.3, 0.3)]  # not the defaults made at import
@@ -154,14 +148,8 @@ def test_a_bad_run_option_is_refused_once_naming_it(command, owner, arg, option,
     assert by_option == []  # the CLI did not check it first
 
 
-def test_simulate_checks_each_object_option_once(monkeypatch, capsys):
-    checked = []
-    real = quantities.Quantity.check
-
-    def counted(self, name, value):
-        checked.append(name)
-        return real(self, name, value)
-    monkeypatch.setattr(quantities.Quantity, "check", counted)
+def test_simulate_checks_each_object_option_once(monkeypatch, capsys, quantity_checks):
+    checked = quantity_checks
     from rockstudy.studies import config_model
     by_option = _count(monkeypatch, config_model, "check_option")
     given = {"--noise-level": "0.05", "--seed": "7", "--free-time": "2", "--noise-step": "0.005",
@@ -184,14 +172,8 @@ def test_simulate_checks_each_object_option_once(monkeypatch, capsys):
     assert not again, sorted(again)
 
 
-def test_threshold_checks_each_run_option_once(monkeypatch, capsys):
-    checked = []
-    real = quantities.Quantity.check
-
-    def counted(self, name, value):
-        checked.append(name)
-        return real(self, name, value)
-    monkeypatch.setattr(quantities.Quantity, "check", counted)
+def test_threshold_checks_each_run_option_once(monkeypatch, capsys, quantity_checks):
+    checked = quantity_checks
     from rockstudy.studies import config_model
     by_option = _count(monkeypatch, config_model, "check_option")
     main(["threshold", "--strategy", "FS", "--frequency-ratio", "2", "--noise-level", "0.05", "--realisation", "1",
@@ -229,14 +211,8 @@ def test_a_bad_record_step_is_refused_once_naming_it(command, one_column, monkey
     assert [args[0] for args, _ in by_option if args[0] == "--record-dt"] == []
 
 
-def test_a_record_step_is_checked_once(one_column, monkeypatch, capsys):
-    checked = []
-    real = quantities.Quantity.check
-
-    def counted(self, name, value):
-        checked.append(name)
-        return real(self, name, value)
-    monkeypatch.setattr(quantities.Quantity, "check", counted)
+def test_a_record_step_is_checked_once(one_column, monkeypatch, capsys, quantity_checks):
+    checked = quantity_checks
     from rockstudy.studies import config_model
     by_option = _count(monkeypatch, config_model, "check_option")
     main(["simulate", "--record", one_column, "--record-unit", "g", "--record-dt", "0.01"])

@@ -1,21 +1,14 @@
 """block_from_dict checks each field of a block once, naming it by its key or by the caller's option."""
 import pytest
 
-from rockstudy.core import quantities, validation
+from rockstudy.core import validation
 from rockstudy.studies.parameters import BLOCK_FIELDS, block_from_dict
 
 
 @pytest.fixture
-def checked(monkeypatch):
+def checked(quantity_checks):
     """The names of every Quantity.check call."""
-    calls = []
-    real = quantities.Quantity.check
-
-    def counted(self, name, value):
-        calls.append(name)
-        return real(self, name, value)
-    monkeypatch.setattr(quantities.Quantity, "check", counted)
-    return calls
+    return quantity_checks
 
 
 @pytest.mark.parametrize("spec", [{"width": 0.4, "height": 1.6, "depth": 0.4},
