@@ -215,24 +215,31 @@ def test_energy_bound_never_changes_an_outcome(blc06):
     assert n_stopped_sampled > n_cases // 40  # ... under sampled control too
 
 
+def _random_noisy_case(rng, block, i):
+    """(anchorage, motion) of a random run on a noisy record (realisation ``i``) of random frequency, noise
+    level, device and amplitude, drawn from ``rng``."""
+    from rockstudy.model.noise import noisy_record, record_motion
+
+    fr = float(rng.uniform(0.5, 5.0))
+    rec = noisy_record("modulated", fr * block.p, float(rng.choice([0.01, 0.05, 0.1])), i, 7)
+    kmax = float(rng.uniform(0.1, 3.0))
+    anchorage = Anchorage(kappa_max=kmax, kappa_min=float(rng.uniform(0, kmax)),
+                          damping_ratio=float(rng.uniform(0, 0.1)))
+    return anchorage, record_motion(rec, float(rng.uniform(1.0, 4.0)) * block.uplift_acceleration, fr * block.p)
+
+
 def test_quiet_knots_at_rest_pass_as_the_driver_would(blc06):
     """At rest under a record the knots pass in one tight loop (outcome runs only); a run with its
     history on takes every knot through the driver's loop. Both must be the very same run, to the
     bit: ending, end time, impacts, largest rotation, fracture times."""
     from rockstudy.engine import _kernel as kn
     from rockstudy.engine.simulate import pack_parameters
-    from rockstudy.model.noise import noisy_record, record_motion
 
     rng = np.random.default_rng(11)
     n_rest_knots = 0
     for i in range(120):
         strategy = ("FS", "PASSIVE", "CS01", "CS02")[i % 4]
-        fr = float(rng.uniform(0.5, 5.0))
-        rec = noisy_record("modulated", fr * blc06.p, float(rng.choice([0.01, 0.05, 0.1])), i, 7)
-        kmax = float(rng.uniform(0.1, 3.0))
-        anchorage = Anchorage(kappa_max=kmax, kappa_min=float(rng.uniform(0, kmax)),
-                              damping_ratio=float(rng.uniform(0, 0.1)))
-        motion = record_motion(rec, float(rng.uniform(1.0, 4.0)) * blc06.uplift_acceleration, fr * blc06.p)
+        anchorage, motion = _random_noisy_case(rng, blc06, i)
         P = pack_parameters(blc06, anchorage, Control(strategy), motion, free_time=5.0, energy_bound=False)
         quiet = kn.simulate_kernel(P, motion.record, motion.vertical, False, False)
         driver = kn.simulate_kernel(P, motion.record, motion.vertical, True, False)
@@ -252,7 +259,6 @@ def test_controller_samples_in_the_step_loop_as_the_driver_would(blc06):
     and delays from none to several samples."""
     from rockstudy.engine import _kernel as kn
     from rockstudy.engine.simulate import pack_parameters
-    from rockstudy.model.noise import noisy_record, record_motion
 
     rng = np.random.default_rng(12)
     samples_rocking = 0
@@ -260,12 +266,7 @@ def test_controller_samples_in_the_step_loop_as_the_driver_would(blc06):
         strategy = ("FS", "PASSIVE", "CS01", "CS02")[i % 4]
         ts = (0.0025, 0.003, 0.01, 0.1)[(i // 4) % 4]
         delay = float(rng.choice([0.0, 0.0025, 0.06]))
-        fr = float(rng.uniform(0.5, 5.0))
-        rec = noisy_record("modulated", fr * blc06.p, float(rng.choice([0.01, 0.05, 0.1])), i, 7)
-        kmax = float(rng.uniform(0.1, 3.0))
-        anchorage = Anchorage(kappa_max=kmax, kappa_min=float(rng.uniform(0, kmax)),
-                              damping_ratio=float(rng.uniform(0, 0.1)))
-        motion = record_motion(rec, float(rng.uniform(1.0, 4.0)) * blc06.uplift_acceleration, fr * blc06.p)
+        anchorage, motion = _random_noisy_case(rng, blc06, i)
         control = Control(strategy, sampling_time=ts, delay=delay)
         P = pack_parameters(blc06, anchorage, control, motion, free_time=5.0, energy_bound=False)
         quiet = kn.simulate_kernel(P, motion.record, motion.vertical, False, True)
