@@ -157,3 +157,42 @@ def test_a_swapped_chunk_stops_the_gather_naming_the_file_and_attribute(tmp_path
     assert res.returncode != 0
     assert f"{swapped}: control_strategy is 'CS01', expected 'FS'" in log, log[-3000:]
     assert not (out / "spectra" / "FS_R005.nc").exists()
+
+
+RULE_HEADER = re.compile(r"^\s*(?:rule(?: (\w+))?|use rule (\w+) as (\w+) with):", re.M)
+
+
+def rule_blocks() -> dict:
+    """{rule: (its text, the rule it is derived from or None)} of every rule in workflow/rules/*.smk and the
+    Snakefile, the text running from its header to the next rule's."""
+    blocks = {}
+    for path in [ROOT / "Snakefile", *sorted((ROOT / "workflow" / "rules").glob("*.smk"))]:
+        text = path.read_text(encoding="utf-8")
+        heads = list(RULE_HEADER.finditer(text))
+        for k, m in enumerate(heads):
+            end = heads[k + 1].start() if k + 1 < len(heads) else len(text)
+            name = m.group(1) or m.group(3) or f"{path.name}:{text.count(chr(10), 0, m.start()) + 1}"  # rule: name:
+            blocks[name] = (text[m.start():end], m.group(2))
+    return blocks
+
+
+def test_every_rule_writing_with_the_report_code_reruns_when_it_changes():
+    """A rule whose script writes tables or pages with rockstudy.report carries the report package's
+    fingerprint (``REPORT_CODE``) among its params, so that a change to that code rewrites what it wrote."""
+    scripts = {p.name for p in (ROOT / "workflow" / "scripts").glob("*.py")
+               if re.search(r"rockstudy\.report|from rockstudy import report", p.read_text(encoding="utf-8"))}
+    blocks = rule_blocks()
+    checked, missing = 0, []
+    for name, (text, parent) in blocks.items():
+        own = re.search(r'script:\s*\n\s*"\.\./scripts/(\w+\.py)"', text)
+        script = own.group(1) if own else None
+        if script is None and parent in blocks:
+            inherited = re.search(r'script:\s*\n\s*"\.\./scripts/(\w+\.py)"', blocks[parent][0])
+            script = inherited.group(1) if inherited else None
+        if script not in scripts:
+            continue
+        checked += 1
+        params = text if "params:" in text or parent is None else blocks[parent][0]
+        if "REPORT_CODE" not in params:
+            missing.append(f"{name} ({script})")
+    assert checked >= 7 and not missing, f"{checked} rules checked; without REPORT_CODE: {missing}"

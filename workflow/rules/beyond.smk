@@ -134,6 +134,7 @@ if BEYOND:
             bootstrap=FRAG["bootstrap"],
             seed=FRAG["seed"],
             library=LIBRARY,
+            pages=REPORT_CODE,  # the tables it writes
         conda:
             "../envs/rockstudy.yaml"
         threads: 1
@@ -155,6 +156,7 @@ if BEYOND:
             expect=expected([f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS],
                             [EXPECT.fragility(name) for name in RECORD_SETS]),
             library=BOOKKEEPING,
+            pages=REPORT_CODE,  # the tables it writes
         conda:
             "../envs/rockstudy.yaml"
         threads: 1

@@ -21,6 +21,7 @@ rule docs:
     params:
         expect=expected([f"{OUT}/fragility/{name}.nc" for name in RECORD_SETS] if BEYOND else [],
                         [EXPECT.fragility(name) for name in RECORD_SETS] if BEYOND else []),
+        pages=REPORT_CODE,  # the numbers it writes
     localrule: True
     conda:
         "../envs/rockstudy.yaml"

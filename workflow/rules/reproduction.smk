@@ -50,6 +50,7 @@ rule claims:
                            [EXPECT.table1(), EXPECT.timing_table("sampling"), EXPECT.timing_table("delay")]),
                 **CONVERGENCE, **expected(spectrum_files(FIG6_PANELS, LEVELS), spectra_expected(FIG6_PANELS, LEVELS))}),
         bookkeeping=BOOKKEEPING,
+        pages=REPORT_CODE,  # the checklist it writes
         noise_levels=LEVELS,
         a_max0=config["a_max0"],
         reading=config["noise"],

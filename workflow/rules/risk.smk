@@ -48,6 +48,7 @@ if RISK and BEYOND:
             hazard_units=RISK.get("hazard_units") or {},
             outside_gmm_range=bool(RISK.get("outside_gmm_range")),
             library=BOOKKEEPING,
+            pages=REPORT_CODE,  # the tables it writes
         conda:
             "../envs/rockstudy.yaml"
         threads: 1
