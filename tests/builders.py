@@ -23,3 +23,15 @@ def fake_spectrum(strategy, level, thresholds, realisations=None, sampling_time=
                   **settings)
     ones = np.ones_like(thr)
     return spectrum_dataset(sc, freqs, ks, thr, thr - 0.01, ones.astype(int), ones, ones, grid or AmplitudeGrid())
+
+
+def two_fragilities():
+    """The fitted fragilities of FS and CS01 (medians 0.5 and 0.8 g with their intervals, β = 0.4) as a
+    fragility dataset holds them, for the risk's tests."""
+    import xarray as xr
+    return xr.Dataset({"fragility_median_physical": ("strategy", [0.5, 0.8], {"units": "g"}),
+                       "median_low_physical": ("strategy", [0.4, 0.7], {"units": "g"}),
+                       "median_high_physical": ("strategy", [0.6, 0.9], {"units": "g"}),
+                       "fragility_median": ("strategy", [2.0, 3.2], {"units": "1"}),
+                       "fragility_dispersion": ("strategy", [0.4, 0.4])},
+                      coords={"strategy": ["FS", "CS01"]}, attrs={"record_suite": "test"})

@@ -8,6 +8,7 @@ import pytest
 import xarray as xr
 from scipy import integrate, stats
 
+from builders import two_fragilities
 from rockstudy.analysis.hazard import HazardCurve
 from rockstudy.analysis.risk import (
     HazardExtensionWarning,
@@ -141,12 +142,7 @@ def test_risk_dataset_and_table(tmp_path):
     pytest.importorskip("pygmm")
     from rockstudy.analysis.risk_sites import risk_dataset
     from rockstudy.report import risk_markdown
-    fragility = xr.Dataset({"fragility_median_physical": ("strategy", [0.5, 0.8], {"units": "g"}),
-                            "median_low_physical": ("strategy", [0.4, 0.7], {"units": "g"}),
-                            "median_high_physical": ("strategy", [0.6, 0.9], {"units": "g"}),
-                            "fragility_median": ("strategy", [2.0, 3.2], {"units": "1"}),
-                            "fragility_dispersion": ("strategy", [0.4, 0.4])},
-                           coords={"strategy": ["FS", "CS01"]}, attrs={"record_suite": "test"})
+    fragility = two_fragilities()
     ds = risk_dataset(fragility, scenarios={"M7": {"mag": 7, "dist_rup": 10, "v_s30": 400}},
                       hazard_curves={"site": power_law()}, years=50)
     rate = ds.annual_rate.sel(hazard="site").values

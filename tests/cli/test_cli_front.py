@@ -144,12 +144,18 @@ def test_simulate_prints_a_compact_summary_and_keeps_the_events_in_the_output(tm
         assert float(ds["impact_time"][-1]) == out["last_impact_s"]
 
 
-def test_one_column_record_with_dt_gives_the_same_run_as_two_columns(tmp_path, capsys):
-    t = np.arange(0, 6.0, 0.005)
-    a = 0.3 * np.sin(2 * np.pi * 1.0 * t) * np.exp(-((t - 2.5) / 1.2) ** 2)  # in g
+def _one_and_two_columns(tmp_path, t, a):
+    """The record ``a`` [g] at times ``t`` written as one column (q.txt, its step given apart) and as two."""
     one, two = tmp_path / "q.txt", tmp_path / "q.csv"
     one.write_text("\n".join(f"{x:.12e}" for x in a) + "\n")
     two.write_text("time [s], acceleration [g]\n" + "".join(f"{ti:.3f}, {x:.12e}\n" for ti, x in zip(t, a)))
+    return one, two
+
+
+def test_one_column_record_with_dt_gives_the_same_run_as_two_columns(tmp_path, capsys):
+    t = np.arange(0, 6.0, 0.005)
+    a = 0.3 * np.sin(2 * np.pi * 1.0 * t) * np.exp(-((t - 2.5) / 1.2) ** 2)  # in g
+    one, two = _one_and_two_columns(tmp_path, t, a)
     a1 = run(["simulate", "--strategy", "CS01", "--record", str(one), "--record-unit", "g", "--record-dt", "0.005"],
              capsys)
     a2 = run(["simulate", "--strategy", "CS01", "--record", str(two)], capsys)
@@ -164,9 +170,7 @@ def test_one_column_record_with_dt_gives_the_same_run_as_two_columns(tmp_path, c
 def test_threshold_reads_a_one_column_record_as_simulate_does(tmp_path, capsys):
     t = np.arange(0, 4.0, 0.005)
     a = 0.4 * np.sin(2 * np.pi * 1.2 * t) * np.exp(-((t - 1.5) / 0.8) ** 2)  # in g
-    one, two = tmp_path / "q.txt", tmp_path / "q.csv"
-    one.write_text("\n".join(f"{x:.12e}" for x in a) + "\n")
-    two.write_text("time [s], acceleration [g]\n" + "".join(f"{ti:.3f}, {x:.12e}\n" for ti, x in zip(t, a)))
+    one, two = _one_and_two_columns(tmp_path, t, a)
     scan = ["threshold", "--strategy", "FS", "--max-amplitude-ratio", "3", "--amplitude-step", "0.5",
             "--resolution", "0.05"]
     a1 = run(scan + ["--record", str(one), "--record-unit", "g", "--record-dt", "0.005"], capsys)

@@ -10,7 +10,7 @@ import xarray as xr  # noqa: E402
 from matplotlib.text import Text  # noqa: E402
 from test_plotting import with_map  # noqa: E402
 
-from builders import BLC06, fake_spectrum  # noqa: E402
+from builders import BLC06, fake_spectrum, two_fragilities  # noqa: E402
 from rockstudy import plotting  # noqa: E402
 from rockstudy.analysis.spectra import Scenario  # noqa: E402
 from rockstudy.model.control import Control  # noqa: E402
@@ -218,12 +218,7 @@ def test_the_risk_figure_with_a_hazard_curve_is_as_wide_as_without():
     from rockstudy.analysis.hazard import HazardCurve
     from rockstudy.analysis.risk_sites import risk_dataset
     from rockstudy.plotting.risk import figure_risk
-    fragility = xr.Dataset({"fragility_median_physical": ("strategy", [0.5, 0.8], {"units": "g"}),
-                            "median_low_physical": ("strategy", [0.4, 0.7], {"units": "g"}),
-                            "median_high_physical": ("strategy", [0.6, 0.9], {"units": "g"}),
-                            "fragility_median": ("strategy", [2.0, 3.2], {"units": "1"}),
-                            "fragility_dispersion": ("strategy", [0.4, 0.4])},
-                           coords={"strategy": ["FS", "CS01"]}, attrs={"record_suite": "test"})
+    fragility = two_fragilities()
     x = np.geomspace(0.001, 20.0, 100)
     scenario = {"M7": {"mag": 7, "dist_rup": 10, "v_s30": 400}}
     with_hazard = figure_risk(risk_dataset(fragility, scenarios=scenario,
