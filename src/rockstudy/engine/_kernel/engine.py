@@ -168,13 +168,13 @@ LOG_RESERVE = 2
 """Free slots each event log keeps at the top of the driver's loop (one pass adds at most two)."""
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _hist_full(H, n):
     """True when the history array has no more room than the driver's reserve."""
     return n + HISTORY_RESERVE >= H.shape[0]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _log_full(arr, n):
     return n + LOG_RESERVE > arr.shape[0]
 
@@ -188,7 +188,7 @@ def _grow_log(arr, n):
     return new
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _write_log(arr, n, v):
     arr[n] = v
     return n + 1
@@ -204,7 +204,7 @@ def _grow_hist(H, n):
     return new
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _write_hist(H, n, t, th, thd, kap, xg):
     """Row ``n`` of the history (the caller has made room)."""
     H[n, 0] = t
@@ -222,18 +222,18 @@ def _next_knot(t, dt):
 
 
 # ---- small readers of the state ---------------------------------------------------------
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _flag(x):
     return 1.0 if x else 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _working(S):
     """Index of the working-side corner elements (LEFT for θ > 0, RIGHT for θ < 0)."""
     return LEFT if S[R_SIDE] > 0 else RIGHT
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _device(S, C):
     """κ of the device state in use (before the working spring's fracture function). [-]"""
     return C[C_KMAX] if S[R_KAP_ON] != 0.0 else C[C_KMIN]
@@ -245,13 +245,13 @@ def _xg(S, P, rec):
     return ground_acceleration(S[R_T], P, rec) if S[R_H_ON] != 0.0 else 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _sensed(S, P, rec):
     """Ẍg as the controller senses it at the state's time while the excitation lasts, else 0. [m/s^2]"""
     return sensed_acceleration(S[R_T], P, rec) if S[R_H_ON] != 0.0 else 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _turn(S, turn):
     """Apply a CS01 apex decision that leaves θ̇ = 0: K_max and outward, or K_min and back."""
     S[R_KAP_ON] = _flag(turn == maps.TURN_OUT)
@@ -391,7 +391,7 @@ def initial_state(P, C, rec):
 
 
 # ---- the parts of the loop ------------------------------------------------------------------
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def next_known_time(S, C, P, vert, queue_times):
     """The next known-time event after the state's time: the end of the excitation, a record knot,
     a controller sample or an actuation instant, or the end of the run. [s]"""
@@ -532,7 +532,7 @@ def below_overturning_energy(S, C, P):
     return maps.cannot_overturn(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], C[C_KMIN] * S[R_SPRING + _working(S)])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _knot_before(t, P, B):
     """Index of the record knot one before the one at or before t, within the record of ``B``."""
     return min(max(int(t / P[I_RDT]) - 1, 0), (B.shape[0] - B_TAIL) // 2 - 1)
@@ -608,7 +608,7 @@ def apex(S, C, P, rec, vert):
     return NOTHING
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _events_used(S, C, P):
     """(CS01-type switch at θ̇ = 0, CS02 switch at Ẍg = 0) located in this state."""
     switching = C[C_SWITCHING] != 0.0
@@ -617,7 +617,7 @@ def _events_used(S, C, P):
     return switching and (strategy == CS01 or not h_on), switching and strategy == CS02 and h_on
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _grown_step(hh, err):
     """The trial step after an accepted step of size ``hh`` with scaled error ``err`` <= 1:
     0.9·err^(-1/5) times ``hh``, at most 10 times. [s]"""
@@ -625,7 +625,7 @@ def _grown_step(hh, err):
     return hh * min(10.0, 0.9 * guarded_pow(err, -0.2)) if err > GROWTH_CAP_ERROR else hh * 10.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _grows_past(hh, err, d):
     """True only when ``_grown_step(hh, err) >= d`` for certain, decided without the power.
 
@@ -666,7 +666,7 @@ def _locate_on(hi, Q, a_th, a_thd, c):
     return locate_poly(hi, *event_poly(Q, a_th, a_thd, c))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _locate_sensed_on(hi, Q, x_hint, t, hh, P, rec):
     """:func:`_locate_on` for the CS02 switch (θ terms none, the sensed Ẍg's sign ``x_hint``)."""
     return locate_sensed_poly(hi, *event_poly(Q, 0.0, 0.0, 0.0), x_hint, t, hh, P, rec)
@@ -774,7 +774,7 @@ def search_events(seg, P, rec, K, Q, t, hh, y0, y1, n0, n1, hint, x_hint, max_ab
     return best, negligible, max_abs
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _event_point(best, negligible, t, hh, n0, n1, Q):
     """(t, θ, θ̇) at the located event, fraction ``best`` of the step: the step's end itself when
     best = 1, back on the ground (θ = θ̇ = 0) after a negligible excursion."""
@@ -1071,7 +1071,7 @@ def _log_event(what, S, impacts, uplifts, rests, N):
         N[N_RESTS] = _write_log(rests, N[N_RESTS], S[R_T])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _room_full(C, H, impacts, uplifts, rests, N):
     """True when the history or an event log the run writes has no more room than its reserve."""
     if C[C_HISTORY] != 0.0 and _hist_full(H, N[N_HISTORY]):
@@ -1080,7 +1080,7 @@ def _room_full(C, H, impacts, uplifts, rests, N):
                                 or _log_full(rests, N[N_RESTS]))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _history_row(S, C, P, rec, H, N):
     """A row of the history at the state (the caller has made room)."""
     N[N_HISTORY] = _write_hist(H, N[N_HISTORY], S[R_T], S[R_TH], S[R_THD], _device(S, C), _xg(S, P, rec))

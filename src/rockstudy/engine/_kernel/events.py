@@ -81,7 +81,7 @@ def _illinois(hi, fhi, flo, g0, g1, g2, g3, g4, g5, g6, a_x, t, hh, P, rec):
     return hi
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _quadratic_start(hi, g0, g1, fhi):
     """The first root in (0, hi] of the parabola through g(0) = g0 > 0 with slope g1 there and
     g(hi) = fhi <= 0: where :func:`locate_poly`'s Newton search starts (-1 when there is none).
