@@ -107,9 +107,7 @@ class FragilityFit:
         level : float, default 0.95
             Confidence level of the interval, in (0, 1). [-]
         """
-        from scipy import stats  # imported on use: the command line's parsers load this module
-
-        z = stats.norm.ppf(0.5 + level / 2)
+        z = special.ndtri(0.5 + level / 2)
         return (self.median * math.exp(-z * self.log_median_se), self.median * math.exp(z * self.log_median_se))
 
     def probability(self, x) -> np.ndarray:
@@ -120,11 +118,9 @@ class FragilityFit:
         x : float or array_like
             Intensity measure levels, > 0. [IM]
         """
-        from scipy import stats
-
         x = np.asarray(x, dtype=float)
         with np.errstate(divide="ignore"):
-            return stats.norm.cdf(np.log(x / self.median) / self.dispersion)
+            return special.ndtr(np.log(x / self.median) / self.dispersion)
 
 
 def negative_log_likelihood(params, im, n_total, n_overturned) -> float:

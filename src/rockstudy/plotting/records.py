@@ -47,8 +47,8 @@ def plot_fragility(ax, ds, strategy: str, **kwargs):
     median, beta = float(d["fragility_median"]), float(d["fragility_dispersion"])
     fine = np.linspace(x.min(), x.max(), 400)
     if np.isfinite(median) and beta > 0:
-        from scipy.stats import norm
-        curve = norm.cdf(np.log(fine / median) / beta)
+        from scipy.special import ndtr  # the standard normal CDF (scipy.stats takes 0.8 s to import)
+        curve = ndtr(np.log(fine / median) / beta)
     else:
         curve = np.where(fine >= median, 1.0, 0.0) if np.isfinite(median) else np.full_like(fine, np.nan)
     line = ax.plot(fine, curve, color=colour, label=f"{strategy}: θ = {median:.2f}, β = {beta:.2f}", **kwargs)[0]

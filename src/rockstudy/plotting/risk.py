@@ -44,7 +44,7 @@ def plot_risk_fragilities(ax, risk):
         ``fragility_dispersion`` [-] over ``strategy``; with scenarios, ``median_pga`` [g] and ``ln_std_pga`` [-]
         over ``scenario``.
     """
-    from scipy.stats import norm
+    from scipy.special import ndtr  # the standard normal CDF (scipy.stats takes 0.8 s to import)
     medians = risk["fragility_median"].values
     top = 3.0 * float(np.nanmax(medians)) if np.any(np.isfinite(medians)) else 3.0
     x = np.linspace(top / 400, top, 400)
@@ -52,7 +52,7 @@ def plot_risk_fragilities(ax, risk):
     for s, median, beta in zip(risk["strategy"].values, medians, risk["fragility_dispersion"].values):
         if not np.isfinite(median):
             continue
-        y = norm.cdf(np.log(x / median) / beta) if beta > 0 else (x >= median).astype(float)
+        y = ndtr(np.log(x / median) / beta) if beta > 0 else (x >= median).astype(float)
         lines.append(ax.plot(x, y, color=STRATEGY_COLOURS.get(str(s)),
                              label=f"{s}: θ = {median:.2f} g, β = {beta:.2f}")[0])
     for j, name in enumerate(risk["scenario"].values if "scenario" in risk.coords else []):
