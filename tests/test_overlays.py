@@ -56,14 +56,16 @@ def test_command_line_block_replaces_the_preset(tmp_path):
 @needs_snakemake
 def test_command_line_noise_levels_replace_the_levels(tmp_path):
     """`--config noise_levels={...}` replaces config.yaml's four levels: two levels, two noise jobs and a
-    spectrum per level and strategy, none of the levels left out."""
+    spectrum per level and strategy (one job per strategy), none of the levels left out."""
     config = yaml.safe_load((ROOT / "config.yaml").read_text())
     assert set(config["noise_levels"]) > {"R000", "R005"}
     res, given = dry_run(tmp_path, "--config", "noise_levels={R000: 0.0, R005: 0.05}", "results_dir=out")
     assert res.returncode == 0, res.stderr[-2000:]
     assert given["noise_levels"] == {"R000": 0.0, "R005": 0.05}
     jobs = job_counts(res.stdout)
-    assert jobs["noise"] == 2 and jobs["spectrum"] == 2 * len(config["strategies"])
+    assert jobs["noise"] == 2 and jobs["spectrum"] == len(config["strategies"])
+    for strategy in config["strategies"]:
+        assert f"out/spectra/{strategy}_R000.nc, out/spectra/{strategy}_R005.nc\n" in res.stdout
     for level in set(config["noise_levels"]) - {"R000", "R005"}:
         assert f"out/noise/{level}.nc" not in res.stdout
 

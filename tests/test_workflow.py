@@ -28,14 +28,20 @@ def job_counts(stdout: str) -> dict:
 
 
 def test_default_study_writes_every_spectrum_in_its_simulation_job(tmp_path):
-    """realisations_per_job >= realisations (config.yaml): one job per spectrum, no chunk and no gather job."""
+    """realisations_per_job >= realisations (config.yaml): one job per strategy writes its spectra at every
+    noise level, no chunk and no gather job."""
     config = yaml.safe_load((ROOT / "config.yaml").read_text())
     assert config["realisations_per_job"] >= config["realisations"]
     res = dry_run(config, tmp_path, "--config", "results_dir=out")
     assert res.returncode == 0, res.stderr + res.stdout
     jobs = job_counts(res.stdout)
     n_levels, n_strategies = len(config["noise_levels"]), len(config["strategies"])
-    assert jobs["spectrum"] == n_levels * n_strategies
+    assert jobs["spectrum"] == n_strategies
+    job = re.search(r"rule spectrum:\n\s+input: [^\n]*\n\s+output: ([^\n]*)\n", res.stdout)
+    assert job
+    strategy = job.group(1).split(", ")[0].split("/")[-1].split("_")[0]
+    assert sorted(job.group(1).split(", ")) == sorted(f"out/spectra/{strategy}_{level}.nc" for level in config["noise_levels"])
+    assert n_levels > 1
     # a strategy's timing sweep is one job, writing a spectrum per sampling time (per delay)
     assert jobs["spectrum_sampling"] == len(config["sampling_sweep"]["strategies"])
     assert jobs["spectrum_delay"] == len(config["delay_sweep"]["strategies"])

@@ -85,6 +85,16 @@ def get_scenario(wildcards):
                     getattr(wildcards, "delay", 0.0))
 
 
+def get_level_scenarios(wildcards):
+    """The scenarios of a strategy's spectra at the noise levels of one job each (rule spectrum)."""
+    return [scenario(wildcards.strategy, level) for level in WHOLE_LEVELS]
+
+
+def get_level_realisations(wildcards):
+    """Every realisation of each of those levels, in the same order (one, 0, without noise)."""
+    return [[k for chunk in chunks(level) for k in chunk] for level in WHOLE_LEVELS]
+
+
 def get_sampling_scenarios(wildcards):
     """The scenarios of a strategy's sampling sweep, one per configured sampling time (rule spectrum_sampling)."""
     return [scenario(wildcards.strategy, wildcards.level, ts) for ts in SAMPLING["sampling_times"]]
@@ -179,6 +189,11 @@ TABLES = [f"{OUT}/tables/{t}.{e}" for t in ("table1", "timing_sampling", "timing
 def expect_noise(wildcards, input):
     """The job's noise file: its level's realisations (rules spectrum*, probability_surface)."""
     return expected([input.noise], [EXPECT.noise(wildcards.level)])
+
+
+def expect_noise_levels(wildcards, input):
+    """The noise file of each level of a strategy's spectra job, in order (rule spectrum)."""
+    return expected(list(input.noise), [EXPECT.noise(level) for level in WHOLE_LEVELS])
 
 
 def expect_chunks(wildcards, input):

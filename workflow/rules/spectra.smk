@@ -71,38 +71,44 @@ SCAN_PARAMS = dict(
 )
 
 
+# A strategy's spectra at every noise level whose realisations fit one job (WHOLE_LEVELS: always the
+# noise-free one), one job per strategy writing them one after the other in one process: each job's
+# start-up (about 1 s of imports and compiled-code loading) is paid once per strategy, not once per
+# spectrum. Each spectrum is written whole, as gathering its one chunk would write it.
 rule spectrum:
     input:
-        noise=f"{OUT}/noise/{{level}}.nc",
+        noise=[f"{OUT}/noise/{level}.nc" for level in WHOLE_LEVELS],
         compiled=ancient(COMPILED_SCAN),
     output:
-        f"{OUT}/spectra/{{strategy}}_{{level}}.nc",
+        [f"{OUT}/spectra/{{strategy}}_{level}.nc" for level in WHOLE_LEVELS],
     log:
-        f"{OUT}/logs/spectra/{{strategy}}_{{level}}.log",
+        f"{OUT}/logs/spectra/{{strategy}}.log",
     group:
         "spectra"
-    wildcard_constraints:
-        level=one_of(WHOLE_LEVELS),
     params:
-        expect=expect_noise,
-        scenario=get_scenario,
-        realisations=get_realisations,
-        whole=True,  # the whole spectrum, as gathering its one chunk would write it
+        expect=expect_noise_levels,
+        scenario=get_level_scenarios,
+        realisations=get_level_realisations,
+        whole=True,
         **SCAN_PARAMS,
     conda:
         "../envs/rockstudy.yaml"
     threads: 1
     resources:
         mem_mb=SIM_MEM_MB,
-        runtime=CHUNK_RUNTIME,
+        runtime=CHUNK_RUNTIME * len(WHOLE_LEVELS),
     script:
         "../scripts/spectrum.py"
 
 
 # The timing sweeps (Figs. 7-8): one job writes a strategy's whole sweep, a spectrum per sampling time
-# (per delay), one after the other in one process (each job's start-up, about 2 s of imports and
-# compiled-code loading, is paid once per sweep instead of once per spectrum).
+# (per delay), one after the other in one process, as the rule above does over the noise levels.
 use rule spectrum as spectrum_sampling with:
+    input:
+        noise=f"{OUT}/noise/{{level}}.nc",
+        compiled=ancient(COMPILED_SCAN),
+    wildcard_constraints:
+        level=one_of(WHOLE_LEVELS),
     output:
         [f"{OUT}/timing/sampling/{{strategy}}_{{level}}_Ts{ts:g}.nc" for ts in SAMPLING["sampling_times"]],
     log:
@@ -119,6 +125,11 @@ use rule spectrum as spectrum_sampling with:
 
 
 use rule spectrum as spectrum_delay with:
+    input:
+        noise=f"{OUT}/noise/{{level}}.nc",
+        compiled=ancient(COMPILED_SCAN),
+    wildcard_constraints:
+        level=one_of(WHOLE_LEVELS),
     output:
         [f"{OUT}/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{d:g}.nc" for d in DELAY["delays"]],
     log:
@@ -142,6 +153,9 @@ if CHUNKED_LEVELS:
         gather_delay,
 
     use rule spectrum as spectrum_chunk with:
+        input:
+            noise=f"{OUT}/noise/{{level}}.nc",
+            compiled=ancient(COMPILED_SCAN),
         output:
             f"{OUT}/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.nc",
         log:
