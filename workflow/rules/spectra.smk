@@ -7,6 +7,7 @@
 rule compile_engine:
     output:
         COMPILED_SCAN,
+    priority: 100  # first: every spectrum waits for it, while the jobs that need no compiled code do not
     log:
         f"{OUT}/logs/compile_engine.log",
     params:
