@@ -105,6 +105,20 @@ def test_readme_commands_are_what_ci_runs():
     assert install in ci and lint_and_test in ci
 
 
+@pytest.mark.parametrize("failing", ["ruff", "mypy", "pytest"])
+def test_ci_stops_when_the_lint_or_the_tests_fail(tmp_path, failing):
+    """.ci/run's lint-and-test line, with each of its three commands failing in turn, ends the script
+    with an error (under `set -e` a failure inside an && list alone would not: the run went on, green)."""
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+    line = next(ln for ln in ci.splitlines() if ln.startswith("ruff check . && python -m mypy"))
+    stubs = {"ruff": "ruff() { return 0; }", "mypy": "mypy() { return 0; }", "pytest": "pytest() { return 0; }"}
+    stubs[failing] = f"{failing}() {{ return 1; }}"
+    script = "\n".join(["set -euo pipefail", *stubs.values(), "python() { shift; \"$@\"; }",
+                        line, "echo went-on"])
+    res = subprocess.run(["bash", "-c", script], capture_output=True, text=True, cwd=tmp_path)
+    assert res.returncode != 0 and "went-on" not in res.stdout, (line, res.stdout, res.stderr)
+
+
 def test_readme_cli_examples_parse():
     """The README's `rockstudy` lines are valid command lines (parsed, not run: they are full-size)."""
     from rockstudy import cli

@@ -40,7 +40,8 @@ def test_default_study_writes_every_spectrum_in_its_simulation_job(tmp_path):
     job = re.search(r"rule spectrum:\n\s+input: [^\n]*\n\s+output: ([^\n]*)\n", res.stdout)
     assert job
     strategy = job.group(1).split(", ")[0].split("/")[-1].split("_")[0]
-    assert sorted(job.group(1).split(", ")) == sorted(f"out/spectra/{strategy}_{level}.nc" for level in config["noise_levels"])
+    files = sorted(f"out/spectra/{strategy}_{level}.nc" for level in config["noise_levels"])
+    assert sorted(job.group(1).split(", ")) == files
     assert n_levels > 1
     # a strategy's timing sweep is one job, writing a spectrum per sampling time (per delay)
     assert jobs["spectrum_sampling"] == len(config["sampling_sweep"]["strategies"])
