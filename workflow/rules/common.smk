@@ -91,8 +91,8 @@ def get_level_scenarios(wildcards):
 
 
 def get_level_realisations(wildcards):
-    """Every realisation of each of those levels, in the same order (one, 0, without noise)."""
-    return [[k for chunk in chunks(level) for k in chunk] for level in WHOLE_LEVELS]
+    """Every realisation of each of those levels, in the same order: each level's one chunk."""
+    return [list(chunks(level)[0]) for level in WHOLE_LEVELS]
 
 
 def get_sampling_scenarios(wildcards):
