@@ -373,6 +373,37 @@ def test_functions_compiled_without_reference_counting_count_none():
     assert counts(njit(body)) > 0
 
 
+def test_every_compiled_function_of_the_engine_divides_without_a_zero_test():
+    """Every compiled function of the engine and the model is made by ``core._inline.njit``, with numba's
+    ``error_model="numpy"``: a division tests no divisor for zero (the step loop's divisions, about 1 % of
+    a run). A function decorated with ``numba.njit`` itself fails here. The error model decides only what a
+    division by zero gives (±inf or NaN instead of ZeroDivisionError): shown on a compiled division."""
+    import importlib
+    import pkgutil
+
+    import numba
+    from numba.core.registry import CPUDispatcher
+
+    from rockstudy.core._inline import njit
+    from rockstudy.engine import _kernel
+
+    modules = [importlib.import_module(f"rockstudy.engine._kernel.{m.name}")
+               for m in pkgutil.iter_modules(_kernel.__path__)]
+    modules += [importlib.import_module(f"rockstudy.model.{m}")
+                for m in ("anchorage", "control", "equation_of_motion", "excitation")]
+    found = {f"{mod.__name__}.{name}": fn for mod in modules for name, fn in vars(mod).items()
+             if isinstance(fn, CPUDispatcher) and fn.py_func.__module__ == mod.__name__}
+    assert len(found) > 40
+    assert not [name for name, fn in found.items() if fn.targetoptions.get("error_model") != "numpy"]
+
+    def ratio(a, b):
+        return a / b
+
+    assert njit(ratio)(1.0, 0.0) == math.inf
+    assert math.isnan(njit(ratio)(0.0, 0.0))
+    with pytest.raises(ZeroDivisionError):
+        numba.njit(ratio)(1.0, 0.0)
+
 def test_guarded_pow_is_cs_pow_bit_for_bit_and_not_llvms_intrinsic():
     """``core._inline.guarded_pow`` (the step-size power of the step loop) gives the bits of ``**`` in
     compiled code and in plain Python, and compiles to a call of C's ``pow``, not to the

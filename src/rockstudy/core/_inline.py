@@ -9,10 +9,23 @@ inlines them only into the functions named.
 """
 from __future__ import annotations
 
+import numba
 from llvmlite import ir
 from numba import types
 from numba.core import cgutils
 from numba.extending import intrinsic, overload
+
+
+def njit(*args, **options):
+    """numba's ``njit`` with ``error_model="numpy"``, the decorator of every compiled function of the engine.
+
+    numba's default error model (``"python"``) tests every floating-point division for a zero divisor, to
+    raise ``ZeroDivisionError``; ``"numpy"`` divides as IEEE 754 does (±inf or NaN), with no test and no
+    branch. No run of the engine divides by zero (every divisor is guarded where it can vanish), so the
+    results are bitwise the same; the step loop runs about 1 % faster.
+    """
+    options.setdefault("error_model", "numpy")
+    return numba.njit(*args, **options)
 
 
 def inline_into(*callers: str):

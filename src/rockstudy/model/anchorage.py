@@ -12,8 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import InitVar, dataclass
 
-from numba import njit
-
+from rockstudy.core._inline import njit
 from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.core.validation import field_names
 from rockstudy.model.block import Block

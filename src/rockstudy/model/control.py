@@ -25,8 +25,7 @@ from __future__ import annotations
 
 from dataclasses import InitVar, dataclass
 
-from numba import njit
-
+from rockstudy.core._inline import njit
 from rockstudy.core.limits import STRATEGIES
 from rockstudy.core.quantities import check_arguments, declares
 from rockstudy.core.validation import field_names

@@ -15,9 +15,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
-from rockstudy.core._inline import inline_into
+from rockstudy.core._inline import inline_into, njit
 
 
 @njit(cache=True, inline=inline_into("acceleration"))

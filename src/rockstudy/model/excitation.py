@@ -11,9 +11,8 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from numba import njit
 
-from rockstudy.core._inline import inline_into
+from rockstudy.core._inline import inline_into, njit
 from rockstudy.core.limits import EXCITATIONS, MAX_GROUND_ACCELERATION
 from rockstudy.core.quantities import SIZES, check_arguments, declares
 from rockstudy.core.validation import (

@@ -5,9 +5,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
-from rockstudy.core._inline import NO_REFCOUNT, inline_into
+from rockstudy.core._inline import NO_REFCOUNT, inline_into, njit
 from rockstudy.engine._kernel.ground import ground_acceleration, vertical_acceleration
 from rockstudy.engine._kernel.layout import I_COSA, I_G, I_P, I_SINA
 from rockstudy.model.equation_of_motion import angular_acceleration

@@ -26,9 +26,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
-from rockstudy.core._inline import NO_REFCOUNT, guarded_pow, inline_into
+from rockstudy.core._inline import NO_REFCOUNT, guarded_pow, inline_into, njit
 from rockstudy.core.constants import (
     FIRST_STEP,
     IMPACT_TOLERANCE,

@@ -10,9 +10,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
-from rockstudy.core._inline import NO_REFCOUNT, inline_into
+from rockstudy.core._inline import NO_REFCOUNT, inline_into, njit
 from rockstudy.core.constants import LOCATE_TOLERANCE
 from rockstudy.engine._kernel.dopri import acceleration
 from rockstudy.engine._kernel.ground import ground_acceleration, sensed_acceleration, vertical_acceleration

@@ -6,9 +6,7 @@ sensed samples after them, from index ``P[I_SOFF]`` on (an analytic excitation h
 samples, so its sensed samples start at 0)."""
 from __future__ import annotations
 
-from numba import njit
-
-from rockstudy.core._inline import NO_REFCOUNT, inline_into
+from rockstudy.core._inline import NO_REFCOUNT, inline_into, njit
 from rockstudy.engine._kernel.layout import I_AMP, I_DUR, I_KIND, I_OMEGA, I_RDT, I_SDT, I_SENSE, I_SOFF, I_VDT
 from rockstudy.model.excitation import (
     MODULATED,

@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from rockstudy.core._inline import njit
 from rockstudy.core.constants import ENERGY_MARGIN, ROTATION_TOLERANCE
 from rockstudy.engine._kernel.dopri import acceleration
 from rockstudy.engine._kernel.layout import LEFT

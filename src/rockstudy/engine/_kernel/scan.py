@@ -14,8 +14,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
+from rockstudy.core._inline import njit
 from rockstudy.engine._kernel.engine import driven_bound_data, run_kernel
 from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_G, ST_ELIMIT, ST_OVER
 from rockstudy.engine.outcome import NO_UPLIFT, OVERTURNED_AFTER_IMPACT, OVERTURNED_WITHOUT_IMPACT, SAFE, UNDETERMINED

@@ -12,9 +12,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
-from rockstudy.core._inline import NO_REFCOUNT, inline_into
+from rockstudy.core._inline import NO_REFCOUNT, inline_into, njit
 
 ORDER = 6
 """Degree of the θ polynomial (θ̇'s is one less); the last term is the error estimate."""
