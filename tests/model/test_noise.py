@@ -9,7 +9,9 @@ from rockstudy.model.excitation import GroundMotion, excitation_duration, modula
 from rockstudy.model.noise import (
     NOISE_DT,
     NOISE_LEVELS,
+    RECENT_RECORDS,
     NoisyRecord,
+    RecentRecords,
     baseline_samples,
     contaminate,
     energy,
@@ -130,7 +132,9 @@ def test_noisy_records_are_the_same_bits_whatever_the_blas_threads():
 
 def test_same_key_same_record_different_realisation_differs():
     a = noisy_record("modulated", OMEGA, 0.05, 4, SEED)
+    RECENT_RECORDS.clear()  # made again, not reused
     b = noisy_record("modulated", OMEGA, 0.05, 4, SEED)
+    assert b is not a
     c = noisy_record("modulated", OMEGA, 0.05, 5, SEED)
     d = noisy_record("modulated", OMEGA, 0.10, 4, SEED)
     e = noisy_record("modulated", OMEGA, 0.05, 4, SEED + 1)
@@ -142,6 +146,7 @@ def test_same_key_same_record_different_realisation_differs():
 def test_realisation_independent_of_order():
     level = NOISE_LEVELS["R010"]
     alone = noisy_record("modulated", OMEGA, level, 3, SEED).values
+    RECENT_RECORDS.clear()  # made again below, not reused
     # another job: other levels and realisations first, in reverse order
     loop = {}
     for lv in (0.05, level):
@@ -152,6 +157,37 @@ def test_realisation_independent_of_order():
     x = noise_generator(SEED, level, 3).standard_normal(5)
     noise_generator(SEED, level, 2).standard_normal(100)
     assert np.array_equal(noise_generator(SEED, level, 3).standard_normal(5), x)
+
+
+def test_recent_records_are_reused_the_same_bits_and_bounded():
+    """A record asked for again is the one made before (same object), equal bit for bit to one made anew;
+    the kept samples never exceed the limit, the oldest go first, and a record above it is not kept."""
+    RECENT_RECORDS.clear()
+    a = noisy_record("modulated", OMEGA, 0.05, 7, SEED)
+    assert noisy_record("modulated", OMEGA, 0.05, 7, SEED) is a
+    assert noisy_record("modulated", OMEGA, 0.05, 7, SEED, NoiseReading(span=1.0)) is not a  # another reading
+    RECENT_RECORDS.clear()
+    fresh = noisy_record("modulated", OMEGA, 0.05, 7, SEED)
+    assert fresh is not a and np.array_equal(fresh.values, a.values) and fresh.energy_ratio == a.energy_ratio
+    size = a.values.nbytes
+    cache = RecentRecords(2 * size)
+    made = []
+
+    def maker(k):
+        def make():
+            made.append(k)
+            return noisy_record("modulated", OMEGA, 0.05, k, SEED)
+        return make
+
+    for k in (1, 2, 1, 3, 1):  # 3 pushes out 2 (1 was used since), then 1 is still there
+        cache.get(k, maker(k))
+        assert cache.nbytes <= cache.limit
+    assert made == [1, 2, 3] and len(cache) == 2
+    cache.get(2, maker(2))
+    assert made == [1, 2, 3, 2]
+    small = RecentRecords(size - 1)
+    small.get(1, maker(1))
+    assert len(small) == 0 and small.nbytes == 0
 
 
 def test_level_zero_is_baseline():
