@@ -48,7 +48,9 @@ def save_figure(fig, *paths) -> list[Path]:
         The files written.
     """
     written = []
-    fig.canvas.draw()  # the text as it is laid out (a legend, tick labels), before it is measured
+    # the text as it is laid out (a legend, tick labels), before it is measured: laid out and drawn with
+    # no pixels made (the files are drawn anew by savefig)
+    fig.draw_without_rendering()
     smallest = smallest_text_px(fig)
     for path in map(Path, paths):
         fmt = path.suffix.lstrip(".").lower()
