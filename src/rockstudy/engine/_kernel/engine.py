@@ -244,6 +244,12 @@ def _xg(S, P, rec):
     return ground_acceleration(S[R_T], P, rec) if S[R_H_ON] != 0.0 else 0.0
 
 
+@njit(cache=True, **NO_REFCOUNT)
+def _ground_at(t, P, rec):
+    """:func:`ground_acceleration` as a call, where it is seldom read (a history row, a segment's start). [m/s^2]"""
+    return ground_acceleration(t, P, rec)
+
+
 @njit(cache=True)
 def _sensed(S, P, rec):
     """Ẍg as the controller senses it at the state's time while the excitation lasts, else 0. [m/s^2]"""
@@ -665,6 +671,13 @@ def _locate_on(hi, Q, a_th, a_thd, c):
     return locate_poly(hi, *event_poly(Q, a_th, a_thd, c))
 
 
+@njit(cache=True, **NO_REFCOUNT)
+def _locate_cold(hi, Q, a_th, a_thd, c):
+    """:func:`_locate_on` as a call, for the event searches that seldom locate (a rotation threshold, the
+    CS01 switch away from an apex): one compiled copy instead of one inlined at each."""
+    return _locate_on(hi, Q, a_th, a_thd, c)
+
+
 @njit(cache=True)
 def _locate_sensed_on(hi, Q, x_hint, t, hh, P, rec):
     """:func:`_locate_on` for the CS02 switch (θ terms none, the sensed Ẍg's sign ``x_hint``)."""
@@ -744,14 +757,14 @@ def search_events(seg, P, rec, K, Q, t, hh, y0, y1, n0, n1, hint, x_hint, max_ab
         best = _locate_on(1.0, Q, side, 0.0, 0.0)
     if not negligible and peak - th_over >= 0.0 and side * y0 - th_over < 0.0:
         have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-        s = _locate_on(min(best, sig_peak), Q, -side, 0.0, th_over)
+        s = _locate_cold(min(best, sig_peak), Q, -side, 0.0, th_over)
         if s >= 0.0:
             best = s
     for k in range(2):  # the working side's intact elements (th_ku, th_du = inf: none that can break)
         thu = th_ku if k == 0 else th_du
         if not negligible and side * y0 - thu < 0.0 and peak - thu >= 0.0:
             have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-            s = _locate_on(min(best, sig_peak), Q, -side, 0.0, thu)
+            s = _locate_cold(min(best, sig_peak), Q, -side, 0.0, thu)
             if s >= 0.0:
                 best = s
     if not negligible and use_thd_event and hint != 0.0 and hint * n1 <= 0.0:
@@ -761,7 +774,7 @@ def search_events(seg, P, rec, K, Q, t, hh, y0, y1, n0, n1, hint, x_hint, max_ab
             s = sa_ if sa_ <= min(best, 1.0) else -1.0
         else:
             have_q = _coefficients_once(have_q, hh, y0, y1, K, Q)
-            s = _locate_on(min(best, 1.0), Q, 0.0, hint, 0.0)
+            s = _locate_cold(min(best, 1.0), Q, 0.0, hint, 0.0)
         if s >= 0.0:
             best = s
     if not negligible and use_xg_event and x_hint != 0.0:
@@ -809,7 +822,7 @@ def _open_steps(S, C, P, rec, vert, H, N, kap_eff, cd_eff, use_taylor):
             else 0.0
         if want_history:
             N[N_HISTORY] = _write_hist(H, N[N_HISTORY], t, th, thd, _device(S, C),
-                                       ground_acceleration(t, P, rec) if h_on else 0.0)
+                                       _ground_at(t, P, rec) if h_on else 0.0)
     x_hint, hint, h = _segment_start(t, th, thd, f0, S[R_SIDE], _events_used(S, C, P)[1], S[R_X_HINT], S[R_HINT],
                                      S[R_H], P, rec)
     return True, f0, x_hint, hint, h
@@ -907,7 +920,7 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, queue_values, H, N)
             if hh <= 0.0:
                 break
             if use_taylor:
-                x0 = x_end if t == x_at else ground_acceleration(t, P, rec)
+                x0 = x_end if t == x_at else _ground_at(t, P, rec)
                 x_at = t + hh
                 x_end = ground_acceleration(x_at, P, rec)
                 n0, n1, err, f_end = taylor.step(hh, th, thd, side, kap_eff, cd_eff, x0 * inv_g,
@@ -944,7 +957,7 @@ def integrate(S, C, P, rec, vert, K, Q, t_next, queue_times, queue_values, H, N)
             if abs(th) > max_abs:
                 max_abs = abs(th)
             if want_history:
-                nh = _write_hist(H, nh, t, th, thd, kap_dev, ground_acceleration(t, P, rec) if h_on else 0.0)
+                nh = _write_hist(H, nh, t, th, thd, kap_dev, _ground_at(t, P, rec) if h_on else 0.0)
             lazy, h_hh, h_err = True, hh, err
             if hint == 0.0 and thd != 0.0:
                 hint = sign(thd)

@@ -39,7 +39,7 @@ def ground_acceleration(t, P, rec):
     return amp  # rectangular pulse on [0, dur]
 
 
-@njit(cache=True, inline=inline_into("integrate", "_segment_start", "_illinois"),
+@njit(cache=True, inline=inline_into("_illinois"),
       **NO_REFCOUNT)
 def sensed_acceleration(t, P, rec):
     """Ẍg(t) as the controller reads it: the driving Ẍg without a sensor, else the sensed samples
