@@ -5,13 +5,13 @@ import numpy as np
 import pytest
 
 from fresh_python import run
+from rockstudy.core.recent import Recent
 from rockstudy.model.excitation import GroundMotion, excitation_duration, modulated
 from rockstudy.model.noise import (
     NOISE_DT,
     NOISE_LEVELS,
     RECENT_RECORDS,
     NoisyRecord,
-    RecentRecords,
     baseline_samples,
     contaminate,
     energy,
@@ -170,7 +170,7 @@ def test_recent_records_are_reused_the_same_bits_and_bounded():
     fresh = noisy_record("modulated", OMEGA, 0.05, 7, SEED)
     assert fresh is not a and np.array_equal(fresh.values, a.values) and fresh.energy_ratio == a.energy_ratio
     size = a.values.nbytes
-    cache = RecentRecords(2 * size)
+    cache = Recent(2 * size, size=lambda record: record.values.nbytes)
     made = []
 
     def maker(k):
@@ -185,7 +185,7 @@ def test_recent_records_are_reused_the_same_bits_and_bounded():
     assert made == [1, 2, 3] and len(cache) == 2
     cache.get(2, maker(2))
     assert made == [1, 2, 3, 2]
-    small = RecentRecords(size - 1)
+    small = Recent(size - 1, size=lambda record: record.values.nbytes)
     small.get(1, maker(1))
     assert len(small) == 0 and small.nbytes == 0
 

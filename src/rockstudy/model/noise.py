@@ -32,10 +32,8 @@ job computes it and in whatever order; every reading of a level uses the same dr
 """
 from __future__ import annotations
 
-import collections
 import functools
 import math
-import threading
 from dataclasses import InitVar, dataclass
 
 import numpy as np
@@ -44,6 +42,7 @@ from rockstudy.core import validation
 from rockstudy.core.constants import NOISE_DT
 from rockstudy.core.limits import LEVEL_MEANINGS, RESCALES
 from rockstudy.core.quantities import QUANTITIES, check_arguments, declares
+from rockstudy.core.recent import Recent
 from rockstudy.model.excitation import GroundMotion, analytic, excitation_duration, sample_count
 
 NOISE_LEVELS = {"R000": 0.0, "R001": 0.01, "R005": 0.05, "R010": 0.10}
@@ -539,60 +538,12 @@ def noisy_record(kind: str, omega: float, level: float, realisation: int, seed: 
     return RECENT_RECORDS.get((kind, float(omega), float(level), int(realisation), int(seed), reading), make)
 
 
-class RecentRecords:
-    """The noisy records made last in a process, kept for reuse up to ``limit`` bytes of samples (the oldest
-    dropped first): the spectra of a sweep over sampling times, delays or strategies read the same records,
-    which are then made once. A :class:`NoisyRecord` is frozen and its samples read-only, so sharing it is
-    safe; a record is the same bits whether made or reused.
-
-    Parameters
-    ----------
-    limit : int
-        Largest total size of the kept records' samples; a record larger than it is not kept. [bytes]
-    """
-
-    def __init__(self, limit: int):
-        self.limit = int(limit)
-        self._items: collections.OrderedDict = collections.OrderedDict()
-        self._bytes = 0
-        self._lock = threading.Lock()
-
-    @property
-    def nbytes(self) -> int:
-        """Total size of the kept records' samples. [bytes]"""
-        return self._bytes
-
-    def __len__(self) -> int:
-        return len(self._items)
-
-    def clear(self) -> None:
-        """Forget every kept record."""
-        with self._lock:
-            self._items.clear()
-            self._bytes = 0
-
-    def get(self, key, make):
-        """The record kept under ``key``, else ``make()``, kept under ``key`` if it fits."""
-        with self._lock:
-            found = self._items.get(key)
-            if found is not None:
-                self._items.move_to_end(key)
-                return found
-        record = make()
-        size = record.values.nbytes
-        with self._lock:
-            if size <= self.limit and key not in self._items:
-                self._items[key] = record
-                self._bytes += size
-                while self._bytes > self.limit:
-                    _, old = self._items.popitem(last=False)
-                    self._bytes -= old.values.nbytes
-        return record
-
-
-RECENT_RECORDS = RecentRecords(128 * 2**20)
+RECENT_RECORDS = Recent(128 * 2**20, size=lambda record: record.values.nbytes)
 """The noisy records :func:`noisy_record` reuses in this process, up to 128 MiB of samples (the 1,920 records of
-a default spectrum at 5 % noise are 41 MiB). ``RECENT_RECORDS.clear()`` frees them."""
+a default spectrum at 5 % noise are 41 MiB): a record depends only on its arguments, and the spectra of a sweep
+over sampling times, delays or strategies read the same records, which are then made once. A
+:class:`NoisyRecord` is frozen and its samples read-only, so sharing it is safe; a record is the same bits
+whether made or reused. ``RECENT_RECORDS.clear()`` frees them."""
 
 
 def noisy_motion(kind: str, omega: float, amplitude: float, level: float, realisation: int, seed: int,
