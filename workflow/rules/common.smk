@@ -17,6 +17,7 @@ BOOKKEEPING = report_pages.SourceFingerprint(BOOKKEEPING, "core, analysis, studi
 PLOTTING = report_pages.SourceFingerprint(PLOTTING, "plotting")
 REPORT_CODE = report_pages.SourceFingerprint(fingerprints.source_fingerprint("report"), "report")  # the HTML pages
 COMPILED_SCAN = f"{OUT}/logs/compile_engine.done"  # the threshold scans compiled into numba's cache (compile_engine)
+COMPILED_PARTS = f"{OUT}/logs/compile_engine_parts.done"  # their parts besides the step loop, compiled beside it
 COMPILED = f"{OUT}/logs/compile_engine_more.done"  # and everything else the simulation jobs call (compile_engine_more)
 SAMPLING = config["sampling_sweep"]
 DELAY = config["delay_sweep"]

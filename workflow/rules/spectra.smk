@@ -2,8 +2,9 @@
 # histories.
 
 
-# The engine compiled into numba's cache in two parts: the threshold scans first (the spectra wait for
-# them alone), then the rest of what the simulation jobs call, beside the first spectra.
+# The engine compiled into numba's cache in three parts: the threshold scans (the spectra wait for them
+# alone) and, beside them, the scans' parts outside the step loop, which the scans then load; then the
+# rest of what the simulation jobs call, beside the first spectra.
 rule compile_engine:
     output:
         COMPILED_SCAN,
@@ -24,9 +25,21 @@ rule compile_engine:
         "../scripts/compile_engine.py"
 
 
+use rule compile_engine as compile_engine_parts with:
+    output:
+        COMPILED_PARTS,
+    log:
+        f"{OUT}/logs/compile_engine_parts.log",
+    params:
+        scenario=scenario("CS01", (NOISY or [FREE])[0]),
+        library=LIBRARY,
+        part="parts",
+
+
 use rule compile_engine as compile_engine_more with:
     input:
         ancient(COMPILED_SCAN),
+        ancient(COMPILED_PARTS),
     output:
         COMPILED,
     log:
