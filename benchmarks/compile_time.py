@@ -1,7 +1,8 @@
-"""The engine's compilation, measured: what the workflow's rules ``compile_engine`` (the threshold scans)
-and ``compile_engine_more`` (the rest, after it) compile — their script, called with a stand-in for
-Snakemake's object and one numba thread, as the rules run it — into an empty numba cache, with the CPU time
-of each compiled function.
+"""The engine's compilation, measured: what the workflow's rules ``compile_engine_parts`` (the threshold
+scans' parts besides the step loop, which the workflow runs beside the next), ``compile_engine`` (the step
+loop and the threshold scans, loading those parts) and ``compile_engine_more`` (the rest, after it) compile —
+their script, called with a stand-in for Snakemake's object and one numba thread, as the rules run it, one
+after the other here — into an empty numba cache, with the CPU time of each compiled function.
 
     python benchmarks/compile_time.py [--config config.yaml] [--top 15] [--cache DIR]
 
@@ -78,12 +79,12 @@ def main(argv=None) -> int:
     scenario = expectations.scenario_spec(config, "CS01", level, 0.0, 0.0)
     listener = compile_times()
     with tempfile.TemporaryDirectory() as tmp, event.install_listener("numba:compile", listener):
-        for part, rule in (("scan", "compile_engine"), ("more", "compile_engine_more")):
+        for part, rule in (("parts", "compile_engine_parts"), ("scan", "compile_engine"), ("more", "compile_engine_more")):
             stand_in = SimpleNamespace(log=[f"{tmp}/{part}.log"], output=[f"{tmp}/{part}.done"], threads=1,
                                        params=SimpleNamespace(scenario=scenario, library="benchmark", part=part))
             cpu, wall = time.process_time(), time.perf_counter()
             script.main(stand_in)
-            print(f"{rule} ({part}) on {'an empty' if part == 'scan' else 'that'} cache: "
+            print(f"{rule} ({part}) on {'an empty' if part == 'parts' else 'that'} cache: "
                   f"{time.process_time() - cpu:.1f} s CPU, {time.perf_counter() - wall:.1f} s wall", flush=True)
     n_files = len(list(cache.rglob("*.nbc")))
     if args.cache is None:
