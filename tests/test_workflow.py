@@ -57,6 +57,24 @@ def test_default_study_writes_every_spectrum_in_its_simulation_job(tmp_path):
     assert "spectra/chunks/" not in res.stdout
 
 
+def test_the_compile_starts_first_then_the_longest_scans(tmp_path):
+    """Snakemake priorities: both compile jobs of the threshold scans before anything else, then the scan jobs
+    by how many noisy spectra each computes (the longest first: the last jobs leave no core idle long)."""
+    config = yaml.safe_load((ROOT / "config.yaml").read_text())
+    res = dry_run(config, tmp_path, "--config", "results_dir=out")
+    assert res.returncode == 0, res.stderr + res.stdout
+    priority = {}
+    for rule, value in re.findall(r"rule (\w+):\n(?:\s+\w+: [^\n]*\n)*?\s+priority: (\d+)\n", res.stdout):
+        priority.setdefault(rule, set()).add(int(value))
+    assert priority["compile_engine"] == priority["compile_engine_parts"] == {100}
+    noisy = len(config["noise_levels"]) - 1
+    sampling, delays = len(config["sampling_sweep"]["sampling_times"]), len(config["delay_sweep"]["delays"])
+    assert (priority["spectrum_sampling"], priority["spectrum"], priority["spectrum_delay"]) == (
+        {1 + sampling}, {1 + noisy}, {1 + delays})
+    assert sampling > noisy > delays
+    assert all(p <= {0} for rule, p in priority.items() if rule.startswith(("figure_", "table")))
+
+
 def test_chunked_study_gathers_the_noisy_spectra(tmp_path):
     """realisations_per_job < realisations: the noisy spectra in chunks, gathered; the noise-free one (one
     realisation) still written by its job."""

@@ -97,6 +97,7 @@ rule spectrum:
         [f"{OUT}/spectra/{{strategy}}_{level}.nc" for level in WHOLE_LEVELS],
     log:
         f"{OUT}/logs/spectra/{{strategy}}.log",
+    priority: scan_priority(len([level for level in WHOLE_LEVELS if level != FREE]))
     group:
         "spectra"
     params:
@@ -127,6 +128,7 @@ use rule spectrum as spectrum_sampling with:
         [f"{OUT}/timing/sampling/{{strategy}}_{{level}}_Ts{ts:g}.nc" for ts in SAMPLING["sampling_times"]],
     log:
         f"{OUT}/logs/timing/sampling/{{strategy}}_{{level}}.log",
+    priority: scan_priority(len(SAMPLING["sampling_times"]))
     params:
         expect=expect_noise,
         scenario=get_sampling_scenarios,
@@ -148,6 +150,7 @@ use rule spectrum as spectrum_delay with:
         [f"{OUT}/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}_d{d:g}.nc" for d in DELAY["delays"]],
     log:
         f"{OUT}/logs/timing/delay/{{strategy}}_{{level}}_Ts{{ts}}.log",
+    priority: scan_priority(len(DELAY["delays"]))
     params:
         expect=expect_noise,
         scenario=get_delay_scenarios,
