@@ -79,7 +79,8 @@ def main(argv=None) -> int:
     scenario = expectations.scenario_spec(config, "CS01", level, 0.0, 0.0)
     listener = compile_times()
     with tempfile.TemporaryDirectory() as tmp, event.install_listener("numba:compile", listener):
-        for part, rule in (("parts", "compile_engine_parts"), ("scan", "compile_engine"), ("more", "compile_engine_more")):
+        rules = (("parts", "compile_engine_parts"), ("scan", "compile_engine"), ("more", "compile_engine_more"))
+        for part, rule in rules:
             stand_in = SimpleNamespace(log=[f"{tmp}/{part}.log"], output=[f"{tmp}/{part}.done"], threads=1,
                                        params=SimpleNamespace(scenario=scenario, library="benchmark", part=part))
             cpu, wall = time.process_time(), time.perf_counter()
