@@ -71,6 +71,7 @@ def chunks(level):
 # noise-free level) is written whole by that job (rule spectrum); the others are simulated in chunks and
 # gathered (rules spectrum_chunk, gather_*). Which rules exist is decided here, from the config.
 WHOLE_LEVELS = [level for level in LEVELS if len(chunks(level)) == 1]
+CHUNKED_LEVELS = [level for level in LEVELS if level not in WHOLE_LEVELS]
 
 
 def scan_priority(n_noisy_spectra):
@@ -78,7 +79,6 @@ def scan_priority(n_noisy_spectra):
     longest jobs start first, so that the last ones running do not leave a core idle while the others wait
     (longest first); below the compile's 100."""
     return 1 + n_noisy_spectra
-CHUNKED_LEVELS = [level for level in LEVELS if level not in WHOLE_LEVELS]
 
 
 def one_of(names):

@@ -5,6 +5,10 @@
 # The engine compiled into numba's cache in three parts: the threshold scans (the spectra wait for them
 # alone) and, beside them, the scans' parts outside the step loop, which the scans then load; then the
 # rest of what the simulation jobs call, beside the first spectra.
+COMPILE_PARAMS = dict(scenario=scenario("CS01", (NOISY or [FREE])[0]), library=LIBRARY)
+"""What every compile job runs on (its part is its own): the first noisy level's CS01 scenario."""
+
+
 rule compile_engine:
     output:
         COMPILED_SCAN,
@@ -12,8 +16,7 @@ rule compile_engine:
     log:
         f"{OUT}/logs/compile_engine.log",
     params:
-        scenario=scenario("CS01", (NOISY or [FREE])[0]),
-        library=LIBRARY,
+        **COMPILE_PARAMS,
         part="scan",
     conda:
         "../envs/rockstudy.yaml"
@@ -31,8 +34,7 @@ use rule compile_engine as compile_engine_parts with:
     log:
         f"{OUT}/logs/compile_engine_parts.log",
     params:
-        scenario=scenario("CS01", (NOISY or [FREE])[0]),
-        library=LIBRARY,
+        **COMPILE_PARAMS,
         part="parts",
 
 
@@ -45,8 +47,7 @@ use rule compile_engine as compile_engine_more with:
     log:
         f"{OUT}/logs/compile_engine_more.log",
     params:
-        scenario=scenario("CS01", (NOISY or [FREE])[0]),
-        library=LIBRARY,
+        **COMPILE_PARAMS,
         part="more",
 
 
@@ -85,6 +86,10 @@ SCAN_PARAMS = dict(
 )
 
 
+ONE_LEVEL_INPUT = dict(noise=f"{OUT}/noise/{{level}}.nc", compiled=ancient(COMPILED_SCAN))
+"""The inputs of a job that simulates at one noise level (the timing sweeps, the chunks)."""
+
+
 # A strategy's spectra at every noise level whose realisations fit one job (WHOLE_LEVELS: always the
 # noise-free one), one job per strategy writing them one after the other in one process: each job's
 # start-up (about 1 s of imports and compiled-code loading) is paid once per strategy, not once per
@@ -120,8 +125,7 @@ rule spectrum:
 # (per delay), one after the other in one process, as the rule above does over the noise levels.
 use rule spectrum as spectrum_sampling with:
     input:
-        noise=f"{OUT}/noise/{{level}}.nc",
-        compiled=ancient(COMPILED_SCAN),
+        **ONE_LEVEL_INPUT,
     wildcard_constraints:
         level=one_of(WHOLE_LEVELS),
     output:
@@ -142,8 +146,7 @@ use rule spectrum as spectrum_sampling with:
 
 use rule spectrum as spectrum_delay with:
     input:
-        noise=f"{OUT}/noise/{{level}}.nc",
-        compiled=ancient(COMPILED_SCAN),
+        **ONE_LEVEL_INPUT,
     wildcard_constraints:
         level=one_of(WHOLE_LEVELS),
     output:
@@ -171,8 +174,7 @@ if CHUNKED_LEVELS:
 
     use rule spectrum as spectrum_chunk with:
         input:
-            noise=f"{OUT}/noise/{{level}}.nc",
-            compiled=ancient(COMPILED_SCAN),
+            **ONE_LEVEL_INPUT,
         output:
             f"{OUT}/spectra/chunks/{{strategy}}_{{level}}_Ts{{ts}}_d{{delay}}_c{{chunk}}.nc",
         log:
