@@ -117,14 +117,18 @@ def test_switching_level_is_safe_after_the_excitation():
 def test_driven_stop_never_changes_an_outcome(blc06, records):
     """Random runs of every strategy, continuous and sampled with delay, on noisy records and Eq. 23: the
     run with the stop overturns exactly when the run without it does, at the same time, and is otherwise
-    the same run up to the stop; the stop acts, for sampled switching control too."""
+    the same run up to the stop; the stop acts, for sampled switching control too, and the switching
+    device's bound without the time left (the ``B_RATCHET`` levels) ends some runs sooner."""
     rng = np.random.default_rng(45)
     vert = np.zeros(0)
-    n_cases, n_stopped, n_stopped_pumping = 480, 0, 0
+    n_cases, n_stopped, n_stopped_pumping, n_ratchet = 480, 0, 0, 0
     for i in range(n_cases):
         P, rec = _case(blc06, rng, i, records)
         B = driven_bound_data(P, rec, vert)
         cut = run_kernel(P, rec, vert, B, False, False)
+        without_ratchet = B.copy()
+        without_ratchet[kn.B_RATCHET:kn.B_TAIL] = 0.0
+        n_ratchet += cut.end_time < run_kernel(P, rec, vert, without_ratchet, False, False).end_time
         full = run_kernel(P, rec, vert, _without_stop(B), False, False)
         assert (cut.status == kn.ST_OVER) == (full.status == kn.ST_OVER), i
         if cut.status == kn.ST_OVER:
@@ -137,7 +141,7 @@ def test_driven_stop_never_changes_an_outcome(blc06, records):
         else:
             assert (cut.status, cut.end_time, cut.n_impacts) == (full.status, full.end_time, full.n_impacts)
     assert n_stopped > n_cases // 6
-    assert n_stopped_pumping > 5
+    assert n_stopped_pumping > 5 and n_ratchet > 20
 
 
 def test_driven_stop_keeps_every_threshold(blc06, records):
@@ -159,3 +163,80 @@ def test_driven_stop_keeps_every_threshold(blc06, records):
                 done = scan_update(state, grid, 1e-3, 1.0 / peak, is_overturned(o))
             found.append((state[kn.S_HI], state[kn.S_LO]))
         assert np.array_equal(found[0], found[1], equal_nan=True), (i, found)
+
+
+def test_ratchet_levels_hold_their_claims():
+    """Every impact lowers Q on [0, Q̄] (Ψ(e²q) <= q) and not just above the largest level; c bounds
+    Ψ'(v) = 1 + κ_hi·sin θ_a/sin(α − θ_a) for every V₀ = v with Ψ(v) <= Q̄ (finite differences)."""
+    for alpha, e, kmax in ((0.245, 0.912, 1.0), (0.1, 0.985, 0.2), (0.3, 0.7, 3.0), (0.245, 0.912, 0.05)):
+        pairs = maps.ratchet_levels(alpha, e, kmax)
+        assert pairs.size == kn.B_TAIL - kn.B_RATCHET
+        pairs = pairs.reshape(-1, 2)
+        top = pairs[-1, 0]
+        assert 0.0 < top < 1.0 - math.cos(alpha) and np.all(np.diff(pairs[:, 0]) > 0)
+
+        def psi(v, alpha=alpha, kmax=kmax):
+            return v + kmax * (1.0 - np.cos(alpha - np.arccos(np.minimum(1.0, np.cos(alpha) + v))))
+
+        q = np.linspace(0.0, top, 2001)
+        assert np.all(psi(e * e * q) <= q)
+        assert psi(e * e * top * 1.001) > top * 1.001 * (1 - maps.DRIVEN_MARGIN) or top * 1.001 > (
+            1 - math.cos(alpha)) * (1 - maps.DRIVEN_MARGIN)
+        for level, c in pairs:
+            v = np.linspace(0.0, level, 4001)
+            v = v[psi(v) <= level]
+            slope = np.diff(psi(v)) / np.diff(v)
+            assert np.all(slope <= c * (1 + 1e-9)) and slope[-1] > c * (1 - 1e-2)
+
+
+def _input_so_far(t, P, rec):
+    """p/√2·∫₀ᵗ |Ẍg/g| dτ exactly, Ẍg linear between the record's knots (the kernel's input)."""
+    dt, n = P[kn.I_RDT], int(P[kn.I_SOFF]) if P[kn.I_SENSE] != 0.0 else rec.shape[0]
+    r = np.append(rec[:n], 0.0) * abs(P[kn.I_AMP])
+    knots = np.arange(r.size) * dt
+
+    def piece(a, b, h):  # ∫ over h of |a + (b − a)·s/h| ds
+        if a * b >= 0.0:
+            return 0.5 * h * (abs(a) + abs(b))
+        return 0.5 * h * (a * a + b * b) / (abs(a) + abs(b))
+
+    cum = np.concatenate([[0.0], np.cumsum([piece(r[k], r[k + 1], dt) for k in range(r.size - 1)])])
+    out = np.empty_like(t)
+    for j, tj in enumerate(np.minimum(t, P[kn.I_DUR])):
+        k = min(int(tj / dt), r.size - 2)
+        x = tj - knots[k]
+        out[j] = cum[k] + piece(r[k], r[k] + (r[k + 1] - r[k]) * x / dt, x)
+    return P[kn.I_P] / math.sqrt(2.0) * out / P[kn.I_G]
+
+
+def test_ratchet_quantity_rises_only_by_the_input(blc06, records):
+    """The claim behind the switching device's bound without the time left: along a run (sampled or delayed
+    CS01/CS02 and continuous CS02, any κ_max, e, ξ, fracture), √Q − c·∫p/√2·|Ẍg/g| dt never rises while
+    Q <= Q̄, through every impact, uplift and rest; Q = V₀ + κ_max·S(θ) returning, Ψ(V₀) otherwise."""
+    rng = np.random.default_rng(17)
+    vert = np.zeros(0)
+    checked = 0
+    for i in range(400):
+        P, rec = _case(blc06, rng, i, records)
+        strategy = STRATEGIES[i % 4]
+        if i % 3 == 0 or strategy not in ("CS01", "CS02") or (P[kn.I_TS] == 0.0 and strategy == "CS01"):
+            continue
+        B = driven_bound_data(P, rec, vert)
+        kmax = float(P[kn.I_KMAX])
+        level, c = B[kn.B_RATCHET + 10], B[kn.B_RATCHET + 11]
+        H = kn.simulate_kernel(P, rec, vert, True, False).history
+        t, th, thd = H[:, 0], H[:, 1], H[:, 2]
+        alpha, p = P[kn.I_ALPHA], P[kn.I_P]
+        assert np.allclose(np.abs(H[t < P[kn.I_DUR], 4]), np.abs(np.interp(
+            t[t < P[kn.I_DUR]], np.arange(int(P[kn.I_SOFF]) if P[kn.I_SENSE] else rec.size) * P[kn.I_RDT],
+            rec[:int(P[kn.I_SOFF]) if P[kn.I_SENSE] else rec.size] * P[kn.I_AMP])), rtol=1e-9, atol=1e-9)
+        v = thd ** 2 / (2 * p * p) + np.cos(alpha - np.abs(th)) - np.cos(alpha)
+        peak = alpha - np.arccos(np.minimum(1.0, np.cos(alpha) + v))
+        q = v + kmax * (1.0 - np.cos(np.where(th * thd < 0.0, th, peak)))
+        keep = np.abs(th) > 1e-12  # at θ = 0 the row before an impact is returning, the row after outward
+        d = np.sqrt(np.maximum(q, 0.0)) - c * _input_so_far(t, P, rec)
+        d, below = d[keep], ((q <= level) & (np.abs(th) <= alpha))[keep]
+        pair = below[1:] & below[:-1]
+        assert np.all(np.diff(d)[pair] <= 1e-7), (i, np.max(np.diff(d)[pair]))
+        checked += int(pair.sum() > 100)
+    assert checked > 30

@@ -206,7 +206,7 @@ def switching_level(alpha, e, kappa_high, kappa_low, sampled):
 
 
 @njit(cache=True)
-def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, pump):
+def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, pump, kappa_high, ratchet):
     """True when a block still under excitation provably never reaches |θ| = α, whatever the
     excitation still to come does within its impulse (docs/engine.md, "Early stops").
 
@@ -225,7 +225,8 @@ def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, p
     kind : int
         DRIVEN_STEADY: V = V₀ + κ_lo·f·S(θ) (``kappa_low`` = κ_lo·f), which the device never raises,
         must stay below (1 − cos α)(1 − margin), ``level``; DRIVEN_SWITCHING: V₀ grows also by the
-        device's pumping, ``pump``, and must stay below ``level`` (:func:`switching_level`).
+        device's pumping, ``pump``, and must stay below ``level`` (:func:`switching_level`), or Q, which
+        only the input raises, below one of the ``ratchet`` levels.
     kappa_low : float
         κ_lo·f of the working spring. [-]
     level : float
@@ -233,6 +234,11 @@ def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, p
     pump : float
         DRIVEN_SWITCHING: the growth of √V₀ the device can cause over the rest of the excitation,
         p/√2·κ_max·sin θ_a(level) times the time left. [-]
+    kappa_high : float
+        DRIVEN_SWITCHING: κ_max, the largest stiffness the device can apply. [-]
+    ratchet : ndarray
+        DRIVEN_SWITCHING: pairs (Q̄, c) of the bound without the time left (:func:`ratchet_levels`);
+        the run is safe when (√Q + c·J)² < Q̄ for one of them. [-]
     """
     if abs(th) > alpha:
         return False
@@ -240,9 +246,66 @@ def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, p
     if kind == DRIVEN_STEADY:
         v += 2.0 * kappa_low * math.sin(0.5 * th) ** 2
         x = math.sqrt(max(v, 0.0)) + impulse
-    else:
-        x = math.sqrt(max(v, 0.0)) + impulse + pump
-    return x * x < level
+        return x * x < level
+    x = math.sqrt(max(v, 0.0)) + impulse + pump
+    if x * x < level:
+        return True
+    # Q: V₀ + κ_hi·S(θ) returning (θ·θ̇ < 0), else Ψ(V₀) = V₀ + κ_hi·S(θ_a(V₀)) (docs/engine.md)
+    q = v + 2.0 * kappa_high * math.sin(0.5 * (th if th * thd < 0.0 else peak_rotation(v, alpha))) ** 2
+    rq = math.sqrt(max(q, 0.0))
+    for i in range(ratchet.shape[0] // 2):
+        x = rq + ratchet[2 * i + 1] * impulse
+        if x * x < ratchet[2 * i]:
+            return True
+    return False
+
+
+RATCHET_FRACTIONS = np.array([0.25, 0.4, 0.55, 0.7, 0.85, 1.0])
+"""The levels Q̄ of :func:`ratchet_levels`, as fractions of the largest one. [-]"""
+
+
+@njit(cache=True)
+def _psi(v, alpha, kappa_high):
+    """Ψ(v) = v + κ_hi·S(θ_a(v)): V₀ plus the spring energy at the peak V₀ reaches. [-]"""
+    return v + 2.0 * kappa_high * math.sin(0.5 * peak_rotation(v, alpha)) ** 2
+
+
+@njit(cache=True)
+def _impact_contracts(q, alpha, e, kappa_high):
+    """Ψ(e²·q) <= q·(1 − margin), with q below (1 − cos α)(1 − margin): an impact lowers Q = q. [-]"""
+    return q <= (1.0 - math.cos(alpha)) * (1.0 - DRIVEN_MARGIN) and \
+        _psi(e * e * q, alpha, kappa_high) <= q * (1.0 - DRIVEN_MARGIN)
+
+
+@njit(cache=True)
+def ratchet_levels(alpha, e, kappa_high):
+    """The levels of the early stop of a switching device without the time left: pairs (Q̄, c) with
+    Q̄ a fraction (``RATCHET_FRACTIONS``) of the largest level at which every impact lowers
+    Q (:func:`_impact_contracts`, true on [0, Q̄]: Ψ(e²q)/q increases) and c = Ψ'(Ψ⁻¹(Q̄)) =
+    1 + κ_hi·sin θ_a/sin(α − θ_a), the most the input can raise √Q per unit of √V₀ it could raise
+    (docs/engine.md, "Early stops"). [-]"""
+    lo, hi = 0.0, 1.0 - math.cos(alpha)
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if _impact_contracts(mid, alpha, e, kappa_high):
+            lo = mid
+        else:
+            hi = mid
+    n = RATCHET_FRACTIONS.shape[0]
+    out = np.zeros(2 * n)
+    for i in range(n):
+        q = lo * RATCHET_FRACTIONS[i]
+        a, b = 0.0, q  # Ψ⁻¹(q) from above: Ψ(v) >= v, increasing
+        for _ in range(60):
+            mid = 0.5 * (a + b)
+            if _psi(mid, alpha, kappa_high) < q:
+                a = mid
+            else:
+                b = mid
+        theta = peak_rotation(b, alpha)
+        out[2 * i] = q
+        out[2 * i + 1] = 1.0 + kappa_high * math.sin(theta) / math.sin(alpha - theta)
+    return out
 
 
 # ---- the sampled controller: decisions wait in a ring buffer until they act -------------------
