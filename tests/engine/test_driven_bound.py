@@ -169,9 +169,11 @@ def test_ratchet_levels_hold_their_claims():
     """Every impact lowers Q on [0, Q̄] (Ψ(e²q) <= q) and not just above the largest level; c bounds
     Ψ'(v) = 1 + κ_hi·sin θ_a/sin(α − θ_a) for every V₀ = v with Ψ(v) <= Q̄ (finite differences)."""
     for alpha, e, kmax in ((0.245, 0.912, 1.0), (0.1, 0.985, 0.2), (0.3, 0.7, 3.0), (0.245, 0.912, 0.05)):
-        pairs = maps.ratchet_levels(alpha, e, kmax)
-        assert pairs.size == kn.B_TAIL - kn.B_RATCHET
-        pairs = pairs.reshape(-1, 2)
+        assert maps.RATCHET_FRACTIONS.size * 2 == kn.B_TAIL - kn.B_RATCHET
+        pairs = np.full(kn.B_TAIL + 1, np.nan)
+        maps.ratchet_levels(alpha, e, kmax, pairs, kn.B_RATCHET)
+        assert np.isnan(pairs[kn.B_RATCHET - 1]) and np.isnan(pairs[kn.B_TAIL])
+        pairs = pairs[kn.B_RATCHET:kn.B_TAIL].reshape(-1, 2)
         top = pairs[-1, 0]
         assert 0.0 < top < 1.0 - math.cos(alpha) and np.all(np.diff(pairs[:, 0]) > 0)
 

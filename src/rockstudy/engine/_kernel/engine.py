@@ -345,7 +345,7 @@ def driven_bound_data(P, rec, vert):
     B[B_SCALE] = P[I_P] / (math.sqrt(2.0) * P[I_G])
     if kind == maps.DRIVEN_SWITCHING:
         B[B_PUMP] = P[I_P] / math.sqrt(2.0) * C[C_KMAX] * math.sin(maps.peak_rotation(B[B_LEVEL], alpha))
-        B[B_RATCHET:B_TAIL] = maps.ratchet_levels(alpha, P[I_E], C[C_KMAX])
+        maps.ratchet_levels(alpha, P[I_E], C[C_KMAX], B, B_RATCHET)
     B[B_UPLIFT] = P[I_G] * math.tan(alpha)
     if n > 0:
         dt = P[I_RDT]
@@ -594,7 +594,7 @@ def below_driven_bound(S, C, P, B):
     impulse = B[B_SCALE] * abs(P[I_AMP]) * remaining_input(t, P, B)
     return maps.cannot_overturn_driven(S[R_TH], S[R_THD], P[I_P], P[I_ALPHA], impulse, int(C[C_DRIVEN]),
                                        C[C_KMIN] * S[R_SPRING + _working(S)], B[B_LEVEL],
-                                       B[B_PUMP] * (C[C_EXC_END] - t), C[C_KMAX], B[B_RATCHET:B_TAIL])
+                                       B[B_PUMP] * (C[C_EXC_END] - t), C[C_KMAX], B, B_RATCHET)
 
 
 @njit(cache=True, inline=inline_into("drive"))

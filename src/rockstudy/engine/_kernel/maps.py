@@ -206,7 +206,7 @@ def switching_level(alpha, e, kappa_high, kappa_low, sampled):
 
 
 @njit(cache=True)
-def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, pump, kappa_high, ratchet):
+def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, pump, kappa_high, ratchet, first):
     """True when a block still under excitation provably never reaches |θ| = α, whatever the
     excitation still to come does within its impulse (docs/engine.md, "Early stops").
 
@@ -236,9 +236,9 @@ def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, p
         p/√2·κ_max·sin θ_a(level) times the time left. [-]
     kappa_high : float
         DRIVEN_SWITCHING: κ_max, the largest stiffness the device can apply. [-]
-    ratchet : ndarray
-        DRIVEN_SWITCHING: pairs (Q̄, c) of the bound without the time left (:func:`ratchet_levels`);
-        the run is safe when (√Q + c·J)² < Q̄ for one of them. [-]
+    ratchet, first : ndarray, int
+        DRIVEN_SWITCHING: pairs (Q̄, c) of the bound without the time left (:func:`ratchet_levels`),
+        from ``ratchet[first]`` on; the run is safe when (√Q + c·J)² < Q̄ for one of them. [-]
     """
     if abs(th) > alpha:
         return False
@@ -253,9 +253,9 @@ def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, p
     # Q: V₀ + κ_hi·S(θ) returning (θ·θ̇ < 0), else Ψ(V₀) = V₀ + κ_hi·S(θ_a(V₀)) (docs/engine.md)
     q = v + 2.0 * kappa_high * math.sin(0.5 * (th if th * thd < 0.0 else peak_rotation(v, alpha))) ** 2
     rq = math.sqrt(max(q, 0.0))
-    for i in range(ratchet.shape[0] // 2):
-        x = rq + ratchet[2 * i + 1] * impulse
-        if x * x < ratchet[2 * i]:
+    for i in range(first, first + 2 * RATCHET_FRACTIONS.shape[0], 2):
+        x = rq + ratchet[i + 1] * impulse
+        if x * x < ratchet[i]:
             return True
     return False
 
@@ -278,12 +278,12 @@ def _impact_contracts(q, alpha, e, kappa_high):
 
 
 @njit(cache=True)
-def ratchet_levels(alpha, e, kappa_high):
+def ratchet_levels(alpha, e, kappa_high, out, first):
     """The levels of the early stop of a switching device without the time left: pairs (Q̄, c) with
     Q̄ a fraction (``RATCHET_FRACTIONS``) of the largest level at which every impact lowers
     Q (:func:`_impact_contracts`, true on [0, Q̄]: Ψ(e²q)/q increases) and c = Ψ'(Ψ⁻¹(Q̄)) =
     1 + κ_hi·sin θ_a/sin(α − θ_a), the most the input can raise √Q per unit of √V₀ it could raise
-    (docs/engine.md, "Early stops"). [-]"""
+    (docs/engine.md, "Early stops"), written to ``out`` from index ``first`` on. [-]"""
     lo, hi = 0.0, 1.0 - math.cos(alpha)
     for _ in range(60):
         mid = 0.5 * (lo + hi)
@@ -291,9 +291,7 @@ def ratchet_levels(alpha, e, kappa_high):
             lo = mid
         else:
             hi = mid
-    n = RATCHET_FRACTIONS.shape[0]
-    out = np.zeros(2 * n)
-    for i in range(n):
+    for i in range(RATCHET_FRACTIONS.shape[0]):
         q = lo * RATCHET_FRACTIONS[i]
         a, b = 0.0, q  # Ψ⁻¹(q) from above: Ψ(v) >= v, increasing
         for _ in range(60):
@@ -303,9 +301,8 @@ def ratchet_levels(alpha, e, kappa_high):
             else:
                 b = mid
         theta = peak_rotation(b, alpha)
-        out[2 * i] = q
-        out[2 * i + 1] = 1.0 + kappa_high * math.sin(theta) / math.sin(alpha - theta)
-    return out
+        out[first + 2 * i] = q
+        out[first + 2 * i + 1] = 1.0 + kappa_high * math.sin(theta) / math.sin(alpha - theta)
 
 
 # ---- the sampled controller: decisions wait in a ring buffer until they act -------------------
