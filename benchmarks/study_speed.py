@@ -3,13 +3,16 @@ the default study run in each, one after the other on this machine with the same
 numba cache, and the CPU and wall ratios, overall and per family of jobs, from the jobs' own logs.
 
     python benchmarks/study_speed.py [--before 2d3e047] [--after HEAD] [--jobs 2] [--workdir DIR]
-                                     [--target TARGET ...] [--keep] [--logs-only]
+                                     [--target TARGET ...] [--repeat N] [--keep] [--logs-only]
 
 Each job's log under ``results/logs/`` ends with its run time, CPU time and peak memory; the families
 are the compile (``compile_engine``), the noise records (``noise/``), the threshold scans (``spectra/``,
 ``timing/``, ``maps/``) and the rest. The whole run's wall time and the CPU time of every process it
 started are measured around ``snakemake``. ``--logs-only`` reads the logs of clones a previous run kept
-(``--keep``) without running again. The machine may be shared: say what else ran (``uptime``, ``ps``).
+(``--keep``) without running again. ``--repeat N`` runs the pair N times, in alternating order and
+each time from fresh clones, prints each pair's ratios and then the medians: the CPU time of one
+version's study moves by a few per cent from run to run. The machine may be shared: say what else ran
+(``uptime``, ``ps``).
 Prints the figures and asserts nothing; the results folders are left for
 ``.ci/slurm/compare_results.py`` when ``--keep`` is given.
 """
@@ -20,6 +23,7 @@ import os
 import re
 import resource
 import shutil
+import statistics
 import subprocess
 import sys
 import time
@@ -92,6 +96,15 @@ def report(label: dict, totals: dict, families: dict) -> None:
     print(f"{'jobs':>10} {x[0]:>20.1f} s {x[1]:>20.1f} s  {x[1] / x[0]:.2f}x CPU (the jobs' own logs)")
 
 
+def medians(rows: list) -> tuple[tuple[float, float], dict]:
+    """((wall, CPU), {family: [jobs, run time, CPU time]}), each the median over the runs ``rows`` of
+    (wall, CPU, :func:`job_times`). [s]"""
+    totals = (statistics.median(r[0] for r in rows), statistics.median(r[1] for r in rows))
+    families = {name: [rows[0][2][name][0]] + [statistics.median(r[2][name][i] for r in rows) for i in (1, 2)]
+                for name in rows[0][2]}
+    return totals, families
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--before", default="2d3e047", help="commit of the first side (default: release 0.2.0)")
@@ -100,7 +113,8 @@ def main(argv=None) -> int:
     ap.add_argument("--workdir", type=Path, default=Path("/tmp/study_speed"))
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--target", nargs="*", default=[], help="snakemake targets (default: the default study)")
-    ap.add_argument("--keep", action="store_true", help="keep the clones and their results")
+    ap.add_argument("--repeat", type=int, default=1, help="pairs run, in alternating order; medians printed")
+    ap.add_argument("--keep", action="store_true", help="keep the clones and their results (of the last pair)")
     ap.add_argument("--logs-only", action="store_true", help="read the logs of kept clones; run nothing")
     args = ap.parse_args(argv)
     repo = args.repo.resolve()
@@ -109,15 +123,28 @@ def main(argv=None) -> int:
         commit = subprocess.run(["git", "-C", str(repo), "rev-parse", "--short", getattr(args, side)],
                                 check=True, capture_output=True, text=True).stdout.strip()
         sides[side] = (commit, args.workdir / side)
-    totals = {}
-    if not args.logs_only:
-        for side, (commit, where) in sides.items():
+    if args.repeat < 1:
+        ap.error(f"--repeat must be 1 or more, got {args.repeat}")
+    labels = {side: f"{side} {commit}" for side, (commit, _) in sides.items()}
+    if args.logs_only:
+        report(labels, {}, {side: job_times(where / "results") for side, (_, where) in sides.items()})
+        return 0
+    runs: dict = {"before": [], "after": []}
+    for r in range(args.repeat):
+        for side in ("before", "after") if r % 2 == 0 else ("after", "before"):
+            commit, where = sides[side]
             clone(repo, commit, where)
             print(f"{side} ({commit}): running the study in {where}", flush=True)
-            totals[side] = run_study(where, args.jobs, args.target)
-            print(f"  {totals[side][0]:.1f} s wall, {totals[side][1]:.1f} s CPU", flush=True)
-    families = {side: job_times(where / "results") for side, (_, where) in sides.items()}
-    report({side: f"{side} {commit}" for side, (commit, _) in sides.items()}, totals, families)
+            wall, cpu = run_study(where, args.jobs, args.target)
+            runs[side].append((wall, cpu, job_times(where / "results")))
+            print(f"  {wall:.1f} s wall, {cpu:.1f} s CPU", flush=True)
+        if args.repeat > 1:
+            (wa, ca, _), (wb, cb, _) = runs["before"][-1], runs["after"][-1]
+            print(f"pair {r + 1}: study CPU {cb / ca:.2f}x, wall {wb / wa:.2f}x", flush=True)
+    if args.repeat > 1:
+        print(f"medians of {args.repeat} pairs:")
+    report(labels, {side: medians(rows)[0] for side, rows in runs.items()},
+           {side: medians(rows)[1] for side, rows in runs.items()})
     if not args.keep and not args.logs_only:
         for _, where in sides.values():
             shutil.rmtree(where, ignore_errors=True)
