@@ -143,9 +143,9 @@ def main(argv=None) -> int:
             print(f"pair {r + 1}: study CPU {cb / ca:.2f}x, wall {wb / wa:.2f}x", flush=True)
     if args.repeat > 1:
         print(f"medians of {args.repeat} pairs:")
-    report(labels, {side: medians(rows)[0] for side, rows in runs.items()},
-           {side: medians(rows)[1] for side, rows in runs.items()})
-    if not args.keep and not args.logs_only:
+    middle = {side: medians(rows) for side, rows in runs.items()}
+    report(labels, {side: m[0] for side, m in middle.items()}, {side: m[1] for side, m in middle.items()})
+    if not args.keep:
         for _, where in sides.values():
             shutil.rmtree(where, ignore_errors=True)
     return 0

@@ -70,7 +70,7 @@ B_SCALE = 1      # p/(√2·g): the impulse J per unit of ∫|Ẍg| dt [s/m]
 B_PUMP = 2       # p/√2·κ_max·sin θ_a(level): the device's largest pumping of √V₀ per second (switching control) [1/s]
 B_UPLIFT = 3     # g·tanα: the |Ẍg| above which a resting block uplifts [m/s^2]
 B_RATCHET = 4    # switching device: 12 slots, six pairs (Q̄, c) of the bound without the time left (maps.ratchet_levels)
-B_TAIL = 16       # records: from here n slots, ∫ from knot k to the end of the excitation of |record| (upper bound)
+B_TAIL = 16      # records: from here n slots, ∫ from knot k to the end of the excitation of |record| (upper bound)
                  # [s]; then n slots, the largest |record| from knot k on [-]
 
 # ---- the run's state record: every quantity the driving loop changes (engine.py) ------------

@@ -170,6 +170,12 @@ def peak_rotation(v, alpha):
 
 
 @njit(cache=True)
+def _psi(v, alpha, kappa_high):
+    """Ψ(v) = v + κ·S(θ_a(v)): V₀ plus the spring energy (stiffness κ = ``kappa_high``) at the peak V₀ reaches. [-]"""
+    return v + 2.0 * kappa_high * math.sin(0.5 * peak_rotation(v, alpha)) ** 2
+
+
+@njit(cache=True)
 def _free_level_holds(v, alpha, e, kappa_high, kappa_low, sampled):
     """True when a block free of excitation with V₀ <= ``v`` (|θ| <= θ_a(v)) provably never reaches
     |θ| = α again: under any stiffness history in [0, κ_hi] (``sampled``, the half-cycle bound of
@@ -179,11 +185,11 @@ def _free_level_holds(v, alpha, e, kappa_high, kappa_low, sampled):
     if not v <= gap:
         return False
     if not sampled:
-        return v + 2.0 * kappa_low * math.sin(0.5 * peak_rotation(v, alpha)) ** 2 <= gap
-    u = e * e * (v + 2.0 * kappa_high * math.sin(0.5 * peak_rotation(v, alpha)) ** 2)
+        return _psi(v, alpha, kappa_low) <= gap
+    u = e * e * _psi(v, alpha, kappa_high)
     if not u <= gap:
         return False
-    return e * e * (u + 2.0 * kappa_high * math.sin(0.5 * peak_rotation(u, alpha)) ** 2) <= u * (1.0 - DRIVEN_MARGIN)
+    return e * e * _psi(u, alpha, kappa_high) <= u * (1.0 - DRIVEN_MARGIN)
 
 
 @njit(cache=True)
@@ -250,8 +256,8 @@ def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, p
     x = math.sqrt(max(v, 0.0)) + impulse + pump
     if x * x < level:
         return True
-    # Q: V₀ + κ_hi·S(θ) returning (θ·θ̇ < 0), else Ψ(V₀) = V₀ + κ_hi·S(θ_a(V₀)) (docs/engine.md)
-    q = v + 2.0 * kappa_high * math.sin(0.5 * (th if th * thd < 0.0 else peak_rotation(v, alpha))) ** 2
+    # Q: V₀ + κ_hi·S(θ) returning (θ·θ̇ < 0), else Ψ(V₀) (docs/engine.md)
+    q = v + 2.0 * kappa_high * math.sin(0.5 * th) ** 2 if th * thd < 0.0 else _psi(v, alpha, kappa_high)
     rq = math.sqrt(max(q, 0.0))
     for i in range(first, first + 2 * RATCHET_FRACTIONS.shape[0], 2):
         x = rq + ratchet[i + 1] * impulse
@@ -262,12 +268,6 @@ def cannot_overturn_driven(th, thd, p, alpha, impulse, kind, kappa_low, level, p
 
 RATCHET_FRACTIONS = np.array([0.25, 0.4, 0.55, 0.7, 0.85, 1.0])
 """The levels Q̄ of :func:`ratchet_levels`, as fractions of the largest one. [-]"""
-
-
-@njit(cache=True)
-def _psi(v, alpha, kappa_high):
-    """Ψ(v) = v + κ_hi·S(θ_a(v)): V₀ plus the spring energy at the peak V₀ reaches. [-]"""
-    return v + 2.0 * kappa_high * math.sin(0.5 * peak_rotation(v, alpha)) ** 2
 
 
 @njit(cache=True)
