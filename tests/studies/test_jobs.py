@@ -41,6 +41,38 @@ def test_a_job_log_ends_with_the_jobs_resources(tmp_path):
     assert cpu >= 0.4 and mb >= 300 and wall >= 0.4
 
 
+
+@pytest.mark.parametrize("fails", [False, True])
+def test_run_ends_a_finished_job_at_once_and_a_failed_one_as_usual(tmp_path, fails):
+    """jobs.run: a script whose main returns leaves its output, its flushed standard output and one
+    resources line, and exits 0 before the interpreter's teardown (an exit handler never runs); one
+    whose main raises ends the ordinary way, with its traceback, the resources line and status 1."""
+    import os
+    import subprocess
+    import sys
+
+    log, out, mark = tmp_path / "job.log", tmp_path / "out.txt", tmp_path / "teardown.txt"
+    code = ("import atexit, logging\n"
+            "from rockstudy.studies import jobs\n"
+            f"atexit.register(lambda: open({str(mark)!r}, 'w').close())\n"
+            f"class Job:\n    log = [{str(log)!r}]\n    threads = 1\n    params = None\n"
+            "def main(snakemake):\n"
+            "    jobs.open_job(snakemake)\n"
+            "    logging.getLogger('rockstudy').info('computed')\n"
+            f"    with open({str(out)!r}, 'w') as f:\n        f.write('written')\n"
+            "    print('kept', end='')\n"
+            f"    if {fails}:\n        raise ValueError('a job that fails')\n"
+            "jobs.run(main, Job())\n")
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONUNBUFFERED"}  # stdout buffered, as in a job
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    lines = log.read_text().strip().splitlines()
+    assert [line.split("rockstudy: ")[1] for line in lines][0] == "computed"
+    assert sum("resources:" in line for line in lines) == 1 and "resources:" in lines[-1]
+    assert out.read_text() == "written" and res.stdout == "kept"
+    assert res.returncode == (1 if fails else 0), res.stderr
+    assert ("ValueError: a job that fails" in res.stderr) == fails
+    assert mark.exists() == fails
+
 # --- the checked reader ------------------------------------------------------------------------------
 class StandIn:
     """What a job reads of Snakemake's object: log, params (with ``expect``), threads."""

@@ -24,4 +24,4 @@ def main(snakemake):
 
 
 if "snakemake" in globals():
-    main(snakemake)
+    jobs.run(main, snakemake)

@@ -43,4 +43,4 @@ def main(snakemake):
 
 
 if "snakemake" in globals():
-    main(snakemake)
+    jobs.run(main, snakemake)

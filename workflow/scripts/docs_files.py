@@ -14,4 +14,4 @@ def main(snakemake):
 
 
 if "snakemake" in globals():
-    main(snakemake)
+    jobs.run(main, snakemake)

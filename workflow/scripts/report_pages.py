@@ -22,4 +22,4 @@ def main(snakemake):
 
 
 if "snakemake" in globals():
-    main(snakemake)
+    jobs.run(main, snakemake)

@@ -12,4 +12,4 @@ def main(snakemake):
 
 
 if "snakemake" in globals():
-    main(snakemake)
+    jobs.run(main, snakemake)
