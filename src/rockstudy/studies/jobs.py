@@ -55,7 +55,8 @@ def run(main, snakemake) -> None:
     :func:`rockstudy.core.io.atomic_write`): the job's log gets its resources line, the logs and the standard
     streams are flushed and the process exits with status 0 without the interpreter's teardown, which
     takes 0.1–0.3 s of CPU with numba, xarray and matplotlib loaded, in every job. If ``main`` raises, the
-    process ends the ordinary way: the traceback, the resources line and a non-zero exit status.
+    process ends the ordinary way: the traceback, the resources line and a non-zero exit status. So does a
+    process that a profiler or tracer watches (cProfile, coverage), which writes its results at the exit.
 
     Parameters
     ----------
@@ -65,6 +66,8 @@ def run(main, snakemake) -> None:
         The object Snakemake gives the script.
     """
     main(snakemake)
+    if sys.getprofile() is not None or sys.gettrace() is not None:
+        return
     if _JOB_LOGGER is not None:
         atexit.unregister(_log_resources)
         _log_resources(_JOB_LOGGER)
