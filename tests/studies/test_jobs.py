@@ -53,7 +53,8 @@ def test_run_ends_a_finished_job_at_once_and_a_failed_one_as_usual(tmp_path, fai
     import sys
 
     log, out, mark = tmp_path / "job.log", tmp_path / "out.txt", tmp_path / "teardown.txt"
-    code = ("import atexit, logging\n"
+    code = ("import atexit, logging, sys\n"
+            f"if {watched}:\n    sys.setprofile(lambda *args: None)\n"
             "from rockstudy.studies import jobs\n"
             f"atexit.register(lambda: open({str(mark)!r}, 'w').close())\n"
             f"class Job:\n    log = [{str(log)!r}]\n    threads = 1\n    params = None\n"
