@@ -132,6 +132,29 @@ def test_table1_sign_pattern_is_reachable(blc06):
     assert j_cs01 > j_cs02 > 0
 
 
+def test_small_maps_by_calls_equal_the_compiled_batch(blc06, monkeypatch):
+    """A small map on one thread is run point by point (outcome_kernel per call), a large one by the
+    compiled batch (outcome_serial): the same outcomes, bit for bit, with and without noise."""
+    import numba
+
+    from rockstudy.analysis import spectra
+
+    grid = AmplitudeGrid(0.9, 5.0, 0.1, 0.05)  # up to where each record overturns
+    before = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        for sc in (Scenario(blc06, control=Control("CS02")),
+                   Scenario(blc06, control=Control("CS01", sampling_time=0.02), noise_level=0.05, seed=5)):
+            maps = []
+            for small_map_runs in (10**9, 0):
+                monkeypatch.setattr(spectra, "SMALL_MAP_RUNS", small_map_runs)
+                maps.append(spectrum(sc, [0.9, 2.1, 3.3], realisations=[0, 1, 2], grid=grid, with_map=True))
+            np.testing.assert_array_equal(maps[0]["outcome"].values, maps[1]["outcome"].values)
+            assert len(np.unique(maps[0]["outcome"].values)) >= 3  # not uplifted, safe and overturned
+    finally:
+        numba.set_num_threads(before)
+
+
 def test_one_thread_and_two_threads_give_the_same_spectrum(blc06):
     """One numba thread runs the serial batches, more the parallel ones: the same thresholds,
     simulation counts and map, bit for bit (the results do not depend on the threads)."""

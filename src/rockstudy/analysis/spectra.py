@@ -306,6 +306,23 @@ def _cases(scenario: Scenario, frequency_ratios, realisations, energy_bound: boo
     return (np.array(rows), flat, offsets, lengths, np.array(peaks), np.array(e_ratio), np.array(p_ratio))
 
 
+SMALL_MAP_RUNS = 20_000
+"""A map of at most this many runs (cases × amplitudes) on one thread is run by one call of the compiled
+``outcome_kernel`` per grid point (:func:`_outcome_calls`), the function the record scans call: the batch
+loop ``outcome_serial`` then need not be compiled (2 s), for a few microseconds a call. The same code runs
+either way, so the outcomes are the same."""
+
+
+def _outcome_calls(Pm, recs, rec_off, rec_len, vert, grid, peaks):
+    """``kernel.outcome_serial``'s outcomes, one call of ``kernel.outcome_kernel`` per case and amplitude."""
+    out = np.zeros((len(Pm), len(grid)), dtype=np.int8)
+    for i in range(len(Pm)):
+        rec = recs[rec_off[i]:rec_off[i] + rec_len[i]]
+        for j in range(len(grid)):
+            out[i, j] = kernel.outcome_kernel(Pm[i], rec, vert, grid[j], peaks[i])
+    return out
+
+
 PROGRESS_BATCHES = 100
 """Batches of a run that reports to a progress bar (``progress=``): the bar moves in steps of about 1 %."""
 
@@ -397,7 +414,9 @@ def spectrum(scenario: Scenario, frequency_ratios, *, realisations=(0,), grid: A
     # one thread (a workflow job, --threads 1): the serial batches, without numba's parallel machinery
     serial = numba.get_num_threads() == 1
     thresholds = kernel.threshold_serial if serial else kernel.threshold_batch
-    outcomes = kernel.outcome_serial if serial else kernel.outcome_batch
+    outcomes = kernel.outcome_batch
+    if serial:
+        outcomes = _outcome_calls if n * len(values) <= SMALL_MAP_RUNS else kernel.outcome_serial
 
     def run(sl):
         return thresholds(Pm[sl], recs, off[sl], lens[sl], np.zeros(0), values, grid.resolution, peaks[sl])
