@@ -25,7 +25,10 @@ where A did not overturn either; it prints which fields the earlier stops change
 The cases cover every strategy, sampling time, delay, anchorage and overturn criterion, on noisy
 records, the analytic excitations and (``--vertical``) vertical records, with histories and logs
 switched on and off, and (``--sensor``) the controller's sensor. The same seed gives the same
-cases, so two fingerprints of the same code are identical.
+cases, so two fingerprints of the same code are identical. Few of those runs reach the early stops
+(which only outcome runs take); ``save --stops`` makes every run an outcome run as the threshold scans
+make it (no history, no log, the stops on), at amplitudes where most runs are safe, and prints how the
+runs ended: a change to the stops or to what they read is checked there.
 """
 from __future__ import annotations
 
@@ -45,10 +48,12 @@ from rockstudy.model.noise import noisy_record, record_motion
 BLC06 = BLOCK_PRESETS["BLC06"]
 
 
-def cases(n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None = None, sampled: bool = False):
+def cases(n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None = None, sampled: bool = False,
+          stops: bool = False):
     """(P, record, vertical record, want_history, want_log) of ``n`` random runs; with ``sampled`` every run
     has sampled control (T_s from the record step up, a T_s that is no multiple of it, delays from none to
-    several samples) and two in three runs a noisy record."""
+    several samples) and two in three runs a noisy record; with ``stops`` every run is an outcome run with
+    the early stops on (no history, no log), at 1 to 2.5 times the uplift acceleration."""
     rng = np.random.default_rng(seed)
     records = [(noisy_record("modulated", fr * BLC06.p, 0.05, k, 7), fr * BLC06.p)
                for k, fr in enumerate((0.7, 1.5, 3.0, 4.5))]
@@ -67,7 +72,7 @@ def cases(n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None =
                               damping_ratio=float(rng.uniform(0, 0.1)),
                               spring_ultimate_rotation=float(rng.uniform(0.3, 1.2) * BLC06.alpha),
                               damper_ultimate_rotation=float(rng.uniform(0.3, 1.2) * BLC06.alpha))
-        amplitude = float(rng.uniform(1.0, 4.0)) * BLC06.uplift_acceleration
+        amplitude = float(rng.uniform(1.0, 2.5 if stops else 4.0)) * BLC06.uplift_acceleration
         if (i % 3 != 2) if sampled else (i % 3 == 0):
             rec, omega = records[int(rng.integers(len(records)))]
             motion = record_motion(rec, amplitude, omega)
@@ -82,21 +87,30 @@ def cases(n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None =
             motion = dataclasses.replace(motion, vertical_dt=0.005, vertical=vert)
         th0 = float(rng.uniform(-0.5, 0.5) * BLC06.alpha) if i % 11 == 0 else 0.0
         P = pack_parameters(BLC06, anchorage, control, motion, overturn_criterion="alpha" if i % 5 == 0 else "flat",
-                            free_time=10.0, energy_bound=bool(i % 2), initial_rotation=th0,
+                            free_time=10.0, energy_bound=stops or bool(i % 2), initial_rotation=th0,
                             **({} if stepper is None else {"stepper": stepper}))
-        want_history, want_log = bool((i // 2) % 2), bool((i // 3) % 2)
+        want_history, want_log = (False, False) if stops else (bool((i // 2) % 2), bool((i // 3) % 2))
         yield P, kn.writable(kernel_record(control, motion)), kn.writable(motion.vertical), want_history, want_log
 
 
+STATUS_NAMES = {kn.ST_OVER: "overturned", kn.ST_BOUND: "ended as safe by an early stop", kn.ST_REST: "at rest",
+                kn.ST_ELIMIT: "undetermined"}
+"""How a run ended, by its ``status`` (the others: the run's end)."""
+
+
 def save(path: str, n: int, seed: int, sensor: bool, vertical: bool, stepper: str | None = None,
-         sampled: bool = False) -> None:
-    fields = {}
-    for i, (P, rec, vert, want_history, want_log) in enumerate(cases(n, seed, sensor, vertical, stepper, sampled)):
+         sampled: bool = False, stops: bool = False) -> None:
+    fields, ended = {}, {}
+    for i, (P, rec, vert, want_history, want_log) in enumerate(cases(n, seed, sensor, vertical, stepper, sampled,
+                                                                     stops)):
         result = kn.simulate_kernel(P, rec, vert, want_history, want_log)
         for name, value in zip(kn.KernelResult._fields, result):
             fields[f"{i}/{name}"] = np.array(value, copy=True)
+        how = STATUS_NAMES.get(int(result.status), "at the end of the run")
+        ended[how] = ended.get(how, 0) + 1
     np.savez_compressed(path, **fields)
-    print(f"{n} runs saved to {path}")
+    counts = sorted(ended.items(), key=lambda kv: -kv[1])
+    print(f"{n} runs saved to {path}: " + ", ".join(f"{v} {k}" for k, v in counts))
 
 
 TOLERANCE_FIELDS = ("overturn_time", "end_time", "max_abs_theta", "fracture_times")
@@ -191,6 +205,8 @@ def main(argv=None) -> int:
     s.add_argument("--vertical", action="store_true", help="add vertical records to every other run")
     s.add_argument("--sampled", action="store_true",
                    help="sampled control in every run (T_s 2.5 ms to 0.2 s, delays), mostly on noisy records")
+    s.add_argument("--stops", action="store_true",
+                   help="outcome runs only, the early stops on, mostly safe: the runs the stops end")
     s.add_argument("--stepper", choices=("taylor", "dopri"), default=None,
                    help="how the engine steps between record knots (default: the engine's default; code from "
                         "before the Taylor step has no such choice and always uses Dormand-Prince)")
@@ -203,7 +219,7 @@ def main(argv=None) -> int:
                    help="allow runs that B ends earlier as safe (ST_BOUND) where A did not overturn; else bit for bit")
     args = ap.parse_args(argv)
     if args.command == "save":
-        save(args.path, args.n, args.seed, args.sensor, args.vertical, args.stepper, args.sampled)
+        save(args.path, args.n, args.seed, args.sensor, args.vertical, args.stepper, args.sampled, args.stops)
         return 0
     return compare(args.a, args.b, args.tolerance, args.early_stop)
 
