@@ -36,7 +36,18 @@ def test_the_declaration_sits_on_the_definition():
             assert getattr(rockstudy, head).__qualname__ == head
 
 
-def test_declares_returns_the_object_and_fills_the_registry():
+@pytest.fixture
+def registries():
+    """The registries as they were before the test: what a test declares does not outlive it (a later test
+    in the same process compares the registries with the library's own declarations)."""
+    saved = [(registry, dict(registry)) for registry in (ARGUMENTS, SIZES)]
+    yield
+    for registry, items in saved:
+        registry.clear()
+        registry.update(items)
+
+
+def test_declares_returns_the_object_and_fills_the_registry(registries):
     @declares(sizes={"xs": 3}, x="kappa", xs="frequency_ratio")
     def probe_function(x, xs=()):
         return x
@@ -47,7 +58,7 @@ def test_declares_returns_the_object_and_fills_the_registry():
     assert SIZES["test_declares_returns_the_object_and_fills_the_registry.<locals>.probe_function", "xs"] == 3
 
 
-def test_an_unknown_quantity_or_a_second_different_declaration_is_refused():
+def test_an_unknown_quantity_or_a_second_different_declaration_is_refused(registries):
     with pytest.raises(KeyError, match="not a declared quantity"):
         declare("probe_unknown", x="no_such_quantity")
     declare("probe_twice", x="kappa")
