@@ -94,6 +94,9 @@ def report(label: dict, totals: dict, families: dict) -> None:
                   f"{y[2] / x[2]:.2f}x CPU, {y[1] / x[1]:.2f}x run time")
     x = [sum(v[2] for v in families[k].values()) for k in ("before", "after")]
     print(f"{'jobs':>10} {x[0]:>20.1f} s {x[1]:>20.1f} s  {x[1] / x[0]:.2f}x CPU (the jobs' own logs)")
+    if totals:  # Snakemake itself, and each job's process before and after its own account (start, exit)
+        y = [totals[k][1] - x[i] for i, k in enumerate(("before", "after"))]
+        print(f"{'outside':>10} {y[0]:>20.1f} s {y[1]:>20.1f} s  CPU outside the jobs' logs (Snakemake, exits)")
 
 
 def medians(rows: list) -> tuple[tuple[float, float], dict]:
