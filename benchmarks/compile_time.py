@@ -1,15 +1,18 @@
 """The engine's compilation, measured: what the workflow's rules ``compile_engine_parts`` (the threshold
 scans' parts besides the step loop, which the workflow runs beside the next), ``compile_engine`` (the step
 loop and the threshold scans, loading those parts) and ``compile_engine_more`` (the rest, after it) compile —
-their script, called with a stand-in for Snakemake's object and one numba thread, as the rules run it, one
-after the other here — into an empty numba cache, with the CPU time of each compiled function.
+their script, called with a stand-in for Snakemake's object and one numba thread, as the rules run it (with
+room on Python's frame stack, ``rockstudy.core.frames``), one after the other here — into an empty numba cache,
+with the CPU time of each compiled function.
 
-    python benchmarks/compile_time.py [--config config.yaml] [--top 15] [--cache DIR]
+    python benchmarks/compile_time.py [--config config.yaml] [--top 15] [--cache DIR] [--no-frame-room]
 
-Prints the CPU and wall time of each part and, for the ``--top`` most expensive compiled
+Prints the CPU (its system part apart) and wall time of each part and, for the ``--top`` most expensive compiled
 functions, the CPU time spent compiling each one alone (``own``: without the functions it calls, which are
 compiled first) and with them (``with callees``). ``--cache`` keeps the cache in ``DIR`` (emptied
-first) instead of a temporary folder. The machine is shared: compare two versions back to back (another
+first) instead of a temporary folder. ``--no-frame-room`` calls the scripts without that room, as a plain
+call does: numba's compiler then takes and gives back a chunk of the frame stack wherever its calls cross a
+chunk's end, which shows as system time. The machine is shared: compare two versions back to back (another
 version's ``src`` first on ``PYTHONPATH``), not with figures from another session.
 """
 from __future__ import annotations
@@ -33,6 +36,8 @@ def parse(argv=None):
     ap.add_argument("--top", type=int, default=15, help="compiled functions listed (default 15)")
     ap.add_argument("--cache", type=Path, default=None,
                     help="numba cache folder, emptied first (default: a temporary one)")
+    ap.add_argument("--no-frame-room", action="store_true",
+                    help="call the scripts without room on the frame stack (rockstudy.core.frames)")
     return ap.parse_args(argv)
 
 
@@ -67,6 +72,7 @@ def main(argv=None) -> int:
     import yaml
     from numba.core import event
 
+    from rockstudy.core.frames import with_frame_room
     from rockstudy.studies import expectations, parameters
 
     config = yaml.safe_load(args.config.read_text(encoding="utf-8"))
@@ -83,10 +89,14 @@ def main(argv=None) -> int:
         for part, rule in rules:
             stand_in = SimpleNamespace(log=[f"{tmp}/{part}.log"], output=[f"{tmp}/{part}.done"], threads=1,
                                        params=SimpleNamespace(scenario=scenario, library="benchmark", part=part))
-            cpu, wall = time.process_time(), time.perf_counter()
-            script.main(stand_in)
+            cpu, system, wall = time.process_time(), os.times().system, time.perf_counter()
+            if args.no_frame_room:
+                script.main(stand_in)
+            else:
+                with_frame_room(script.main, stand_in)
             print(f"{rule} ({part}) on {'an empty' if part == 'parts' else 'that'} cache: "
-                  f"{time.process_time() - cpu:.1f} s CPU, {time.perf_counter() - wall:.1f} s wall", flush=True)
+                  f"{time.process_time() - cpu:.1f} s CPU (system {os.times().system - system:.1f} s), "
+                  f"{time.perf_counter() - wall:.1f} s wall", flush=True)
     n_files = len(list(cache.rglob("*.nbc")))
     if args.cache is None:
         shutil.rmtree(cache, ignore_errors=True)

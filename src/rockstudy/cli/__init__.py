@@ -132,9 +132,11 @@ def main(argv=None):
     argv : sequence of str or None, default None
         The arguments after the program's name, e.g. ``["spectrum", "--help"]``; None: ``sys.argv[1:]``.
     """
+    from rockstudy.core.frames import with_frame_room
+
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        return _main(argv)
+        return with_frame_room(_main, argv)  # room for numba's calls when it compiles (core.frames)
     except ImportError as exc:  # a dependency that fails to load (a broken compiled library): one line naming it
         return _dependency_failed(exc)
 

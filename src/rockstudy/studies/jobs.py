@@ -17,6 +17,8 @@ import os
 import sys
 import time
 
+from rockstudy.core.frames import with_frame_room
+
 try:
     import resource
 except ImportError:  # not on Windows: the resources line then gives the run time only
@@ -57,6 +59,8 @@ def run(main, snakemake) -> None:
     takes 0.1–0.3 s of CPU with numba, xarray and matplotlib loaded, in every job. If ``main`` raises, the
     process ends the ordinary way: the traceback, the resources line and a non-zero exit status. So does a
     process that a profiler or tracer watches (cProfile, coverage), which writes its results at the exit.
+    ``main`` runs with room on Python's frame stack (:func:`rockstudy.core.frames.with_frame_room`), so that
+    numba, compiling, does not take and give back a chunk of it at every call.
 
     Parameters
     ----------
@@ -65,7 +69,7 @@ def run(main, snakemake) -> None:
     snakemake : snakemake.script.Snakemake
         The object Snakemake gives the script.
     """
-    main(snakemake)
+    with_frame_room(main, snakemake)
     if sys.getprofile() is not None or sys.gettrace() is not None:
         return
     if _JOB_LOGGER is not None:
