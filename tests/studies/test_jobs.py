@@ -153,3 +153,20 @@ def test_invariants_of_a_probability_surface_and_a_record_set():
     datasets.check_invariants(surface, "p.nc")
     with pytest.raises(datasets.InconsistentDataset, match="probability is not n_overturned"):
         datasets.check_invariants(surface.assign(probability=("f", [0.0, 1.0])), "p.nc")
+
+
+def test_write_bytecode_writes_what_a_later_import_loads():
+    """The byte-code of a module whose cached copy is gone is written again, where the import system looks
+    for it."""
+    import importlib.util
+    import os
+
+    from rockstudy.core import frames
+
+    cached = importlib.util.cache_from_source(frames.__file__)
+    if os.path.exists(cached):
+        os.remove(cached)
+    assert jobs.write_bytecode()
+    assert os.path.getmtime(cached) >= os.path.getmtime(frames.__file__)
+    spec = importlib.util.spec_from_file_location("frames_again", frames.__file__)
+    assert spec.cached == cached

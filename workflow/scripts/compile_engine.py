@@ -1,7 +1,8 @@
 """Compile the engine once for the whole run, on a tiny case, into numba's on-disk cache, in three parts
 (``params.part``): ``scan``, the step loop and then the threshold scan on a noisy record and on an analytic
 excitation (what the spectra call); ``parts``, beside it, the scan's other parts, which ``scan`` then loads
-from the cache (``rockstudy.engine._kernel.parts``); ``more``, the rest the simulation jobs call (the
+from the cache (``rockstudy.engine._kernel.parts``), and writes rockstudy's byte-code for the jobs that
+follow (``jobs.write_bytecode``); ``more``, the rest the simulation jobs call (the
 outcome map, a time history, and a scaled earthquake record's outcome and threshold scan called from
 Python, as the fragility and design jobs do), which loads the scan's shared parts from the cache and runs
 beside the first spectra. The jobs that follow load the compiled kernels instead of each compiling them."""
@@ -30,6 +31,7 @@ def main(snakemake):
         spectrum(free, [1.0], grid=grid)
     elif part == "parts":
         parts.compile_driver_parts()
+        jobs.write_bytecode()  # for the jobs that follow, should Python be told not to write it
     elif part == "more":
         spectrum(free, [1.0], grid=grid, with_map=True)
         datasets.time_history(noisy, 1.0, 1.1, 0)

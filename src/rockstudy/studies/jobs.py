@@ -81,6 +81,17 @@ def run(main, snakemake) -> None:
     os._exit(0)
 
 
+def write_bytecode() -> bool:
+    """Write the byte-code of rockstudy's modules next to their sources (``__pycache__``) where it is missing or
+    older than its source, so that the jobs that follow load it instead of compiling each module again. Python
+    writes it at the first import anyway, unless told not to (``PYTHONDONTWRITEBYTECODE``, usual in
+    containers): then every job compiled the modules it imports, about 0.04 s of CPU each. Returns False when
+    some could not be written (an installation the user cannot write to), which changes nothing else."""
+    import compileall
+
+    return bool(compileall.compile_dir(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), quiet=2))
+
+
 def resources() -> dict:
     """What this process has used so far, from the operating system's own accounts (nothing sampled):
     ``wall_s`` since it started, ``cpu_s`` (user + system; ``user_s``, ``system_s``) and ``max_rss_mb``,
