@@ -32,6 +32,10 @@ def with_frame_room(function, *args, **kwargs):
     function : callable
         What to call; every workflow job's ``main`` and the command line run this way
         (:func:`rockstudy.studies.jobs.run`, :func:`rockstudy.cli.main`).
+    *args : tuple
+        Its positional arguments.
+    **kwargs : dict
+        Its keyword arguments.
     """
     return function(*args, **kwargs)
 
