@@ -7,7 +7,7 @@ and returns again and again right at a chunk's end pays two system calls and fre
 call. numba's compiler, whose calls run 30 to 130 frames deep, does so for hundreds of thousands of
 calls wherever its depth happens to fall on a chunk's end: compiling the engine's driver took 12–14 s
 of CPU there instead of 5.5 s, 1.2 million ``mmap``/``munmap`` pairs in all
-(``benchmarks/frame_room.py`` measures it).
+(``benchmarks/compile_time.py --no-frame-room`` shows it).
 
 :func:`with_frame_room` calls a function from a frame that takes a chunk of 2 MiB to itself, with about
 1 MiB left over: every frame the function's calls push goes into that room, so no chunk is taken or
