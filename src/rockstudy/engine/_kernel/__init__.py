@@ -49,7 +49,6 @@ from rockstudy.engine._kernel.scan import (
                    scan_update,
                    threshold_batch,
                    threshold_kernel,
-                   threshold_serial,
                    uplift_floor,
 )
 from rockstudy.model.control import CS01, CS02, FS, PASSIVE, stiffness_on
@@ -61,5 +60,5 @@ from rockstudy.model.excitation import RECTANGULAR as KIND_RECTANGULAR
 __all__ = ["MAX_EVENTS", "MAX_STEPS", "NEGLIGIBLE_STEP", "CS01", "CS02", "FS", "PASSIVE", "stiffness_on",
            "KIND_MODULATED", "KIND_ONE_SINE", "KIND_RECORD", "KIND_RECTANGULAR", "ground_acceleration",
            "vertical_acceleration", "simulate_kernel", "outcome_batch", "outcome_kernel", "scan_amplitude",
-           "scan_start", "scan_update", "S_HI", "S_LO", "threshold_batch", "threshold_kernel", "threshold_serial",
+           "scan_start", "scan_update", "S_HI", "S_LO", "threshold_batch", "threshold_kernel",
            "outcome_serial", "uplift_floor"]

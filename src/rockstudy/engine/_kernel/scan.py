@@ -191,17 +191,6 @@ def threshold_batch(Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks):
     return out, low, nsim, nund
 
 
-@njit(cache=True)
-def threshold_serial(Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks):
-    """:func:`threshold_batch` on one thread: the same results, without numba's parallel machinery
-    (a third of its compile time, none of its start-up; what a one-thread job calls)."""
-    n = Pm.shape[0]
-    out, low, nsim, nund = np.empty(n), np.empty(n), np.zeros(n, dtype=np.int64), np.zeros(n, dtype=np.int64)
-    for i in range(n):
-        _threshold_case(i, Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks, out, low, nsim, nund)
-    return out, low, nsim, nund
-
-
 @njit(cache=True, parallel=True)
 def outcome_batch(Pm, recs, rec_off, rec_len, vert, grid, peaks):
     """outcome_kernel on the full (case × amplitude) grid, in parallel over cases."""
@@ -213,7 +202,8 @@ def outcome_batch(Pm, recs, rec_off, rec_len, vert, grid, peaks):
 
 @njit(cache=True)
 def outcome_serial(Pm, recs, rec_off, rec_len, vert, grid, peaks):
-    """:func:`outcome_batch` on one thread (as :func:`threshold_serial`)."""
+    """:func:`outcome_batch` on one thread: the same results, without numba's parallel machinery (what a
+    one-thread job calls for a large map)."""
     out = np.zeros((Pm.shape[0], grid.shape[0]), dtype=np.int8)
     for i in range(Pm.shape[0]):
         _outcome_case(i, Pm, recs, rec_off, rec_len, vert, grid, peaks, out)
