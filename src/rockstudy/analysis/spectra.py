@@ -317,7 +317,7 @@ the same."""
 def _threshold_calls(Pm, recs, rec_off, rec_len, vert, grid, resolution, peaks):
     """``kernel.threshold_batch``'s results on one thread: one call of the compiled ``kernel.threshold_kernel``
     per case, the function the record scans call, so that no batch loop is compiled for it (1 s of CPU on an
-    empty cache) for about 5 µs a case. The same code runs either way, so the thresholds are the same."""
+    empty cache) for about 1 µs a case. The same code runs either way, so the thresholds are the same."""
     n = len(Pm)
     out, low = np.empty(n), np.empty(n)
     nsim, nund = np.zeros(n, dtype=np.int64), np.zeros(n, dtype=np.int64)
