@@ -7,10 +7,9 @@
 # when nothing was started.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-trap 'bash .ci/slurm/down.sh' EXIT
+LOCAL="$(mktemp -d /tmp/rockstudy-ci-local.XXXXXX)"   # this run's own: two runs on one machine do not share it
+trap 'bash .ci/slurm/down.sh; rm -rf "$LOCAL"' EXIT
 bash .ci/slurm/up.sh
-LOCAL=/tmp/rockstudy-ci-local
-rm -rf "$LOCAL"
 snakemake -j2 --configfile .test/config.yaml --replace-workflow-config --config results_dir="$LOCAL"
 COMPARE_ARGS="--only-nc --ignore-attr compute_time_s" \
   bash .ci/slurm/check.sh . .test/config.yaml "$LOCAL" -- --replace-workflow-config

@@ -3,22 +3,29 @@
 #
 # Usage:  bash .ci/slurm/fresh.sh            (as root, from anywhere in the repository)
 #
-# Creates a NEW virtual environment (default /tmp/venv-rockstudy-fresh, wiped first), installs
+# Creates a NEW virtual environment (a new folder under /tmp, removed at the end), installs
 # the package with the README's command (pip install -c constraints.txt -e ".[all]"), checks that the SLURM
 # executor plugin is NOT installed (so up.sh must install it, as on a new machine), then runs
 # .ci/slurm/ci.sh inside that environment. A green run on a machine that has run the check
 # before can hide a missing install step; this one cannot.
 #
 # Environment:
-#   FRESH_VENV   where the virtual environment is created (wiped first) [/tmp/venv-rockstudy-fresh]
+#   FRESH_VENV   where the virtual environment is created (wiped first, kept at the end)
+#                [a new /tmp/venv-rockstudy-fresh.XXXXXX, removed at the end: two runs on one
+#                machine do not share it]
 #   PYTHON_BASE  interpreter the venv is made from                       [python3]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-VENV="${FRESH_VENV:-/tmp/venv-rockstudy-fresh}"
+if [ -n "${FRESH_VENV:-}" ]; then
+    VENV="$FRESH_VENV"
+    rm -rf "$VENV"
+else
+    VENV="$(mktemp -d /tmp/venv-rockstudy-fresh.XXXXXX)"
+    trap 'rm -rf "$VENV"' EXIT
+fi
 T0=$(date +%s)
 say() { printf '[fresh %4ss] %s\n' "$(( $(date +%s) - T0 ))" "$*"; }
 
-rm -rf "$VENV"
 "${PYTHON_BASE:-python3}" -m venv "$VENV"
 # shellcheck disable=SC1091
 . "$VENV/bin/activate"
