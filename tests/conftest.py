@@ -3,6 +3,7 @@ import os
 import pytest
 
 from rockstudy import BLOCK_PRESETS, Anchorage
+from rockstudy.core.frames import with_frame_room
 
 
 @pytest.fixture(scope="session")
@@ -63,3 +64,15 @@ def pytest_collection_modifyitems(items):
         if item.nodeid.startswith(SLOW):
             item.add_marker(pytest.mark.slow)
     items.sort(key=lambda item: item.get_closest_marker("long_chain") is None)
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_protocol(item, nextitem):
+    """Run each test (set-up, call, teardown) with room on Python's frame stack (``core.frames``), as the
+    workflow's jobs run: numba compiles the engine on a cold cache tens of frames deep, and where that depth
+    falls on the boundary of CPython's 16 KiB frame chunks, its compile maps and unmaps a chunk at every
+    other call (seconds of system time per compile). Tests marked ``plain_frames`` run as pytest runs them."""
+    from _pytest.runner import pytest_runtest_protocol as run
+    if item.get_closest_marker("plain_frames"):
+        return None
+    return with_frame_room(run, item, nextitem)

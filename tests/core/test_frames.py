@@ -43,6 +43,7 @@ def _worst(calls):
 @pytest.mark.skipif(sys.implementation.name != "cpython" or sys.version_info < (3, 11) or
                     not sys.platform.startswith("linux"),
                     reason="CPython keeps frames in chunks from 3.11 on; page faults counted as Linux counts them")
+@pytest.mark.plain_frames  # its plain calls must run outside the room tests/conftest.py gives the others
 def test_calls_inside_the_room_take_no_new_chunk_of_the_frame_stack():
     calls = 1000
     assert _worst(calls) >= calls  # a plain call: at a chunk's end, a fresh chunk (a page fault) per call
