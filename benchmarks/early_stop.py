@@ -62,16 +62,20 @@ def scan_all(Pm, recs, off, lens, vert, grid, resolution, peaks, stop):
     return out
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def add_case_options(ap: argparse.ArgumentParser) -> None:
+    """The options that choose one spectrum's cases (the study's config, a strategy, noise level, number of
+    realisations, sampling time and delay)."""
     ap.add_argument("--config", type=Path, default=Path("config.yaml"))
     ap.add_argument("--strategy", default="CS01")
     ap.add_argument("--noise-level", type=float, default=0.05)
     ap.add_argument("--realisations", type=int, default=10)
     ap.add_argument("--sampling-time", type=float, default=0.0)
     ap.add_argument("--delay", type=float, default=0.0)
-    ap.add_argument("--rounds", type=int, default=3)
-    args = ap.parse_args(argv)
+
+
+def spectrum_cases(args):
+    """The cases of the spectrum :func:`add_case_options` chose, packed as the study's scans pack them:
+    (parameters, records, offsets, lengths, unit peaks, amplitude grid values, resolution)."""
     config = yaml.safe_load(args.config.read_text(encoding="utf-8"))
     base = parameters.scenario_from_dict({k: config[k] for k in SCENARIO_KEYS if k in config})
     control = dataclasses.replace(base.control, strategy=args.strategy, sampling_time=args.sampling_time,
@@ -80,7 +84,16 @@ def main(argv=None) -> int:
     freqs = parameters.frequency_ratios(config["frequency_grid"])
     grid = parameters.amplitude_grid(config["amplitude_grid"])
     Pm, recs, off, lens, peaks, _, _ = _cases(scenario, freqs, range(args.realisations))
-    values, vert, res = grid.values(), np.zeros(0), float(grid.resolution)
+    return Pm, recs, off, lens, peaks, grid.values(), float(grid.resolution)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    add_case_options(ap)
+    ap.add_argument("--rounds", type=int, default=3)
+    args = ap.parse_args(argv)
+    Pm, recs, off, lens, peaks, values, res = spectrum_cases(args)
+    vert = np.zeros(0)
     print(f"{args.strategy}, T_s {args.sampling_time:g} s, delay {args.delay:g} s, noise level "
           f"{args.noise_level:g}: {len(Pm)} thresholds; {args.rounds} rounds, interleaved")
     for stop in (True, False):  # compile (or load from the cache) outside the timed rounds

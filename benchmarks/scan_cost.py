@@ -15,18 +15,14 @@ safe), ``over`` (overturned), ``rest`` (at rest after the excitation), ``time`` 
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import sys
 import time
 from collections import defaultdict
-from pathlib import Path
 
 import numpy as np
-import yaml
-from converged_thresholds import SCENARIO_KEYS
+from early_stop import add_case_options, spectrum_cases
 from numba import njit
 
-from rockstudy.analysis.spectra import _cases
 from rockstudy.engine._kernel.engine import driven_bound_data, run_kernel
 from rockstudy.engine._kernel.layout import I_ALPHA, I_AMP, I_DUR, I_G
 from rockstudy.engine._kernel.scan import (
@@ -40,7 +36,6 @@ from rockstudy.engine._kernel.scan import (
     threshold_kernel,
     uplift_floor,
 )
-from rockstudy.studies import parameters
 
 ENDINGS = ("rest", "over", "time", "cap", "bound")
 """How a run ended, by its status code (``layout.ST_REST`` ... ``layout.ST_BOUND``)."""
@@ -78,22 +73,10 @@ def scan_timed(P, rec, vert, grid, resolution, unit_peak, table):
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--config", type=Path, default=Path("config.yaml"))
-    ap.add_argument("--strategy", default="CS01")
-    ap.add_argument("--noise-level", type=float, default=0.05)
-    ap.add_argument("--realisations", type=int, default=10)
-    ap.add_argument("--sampling-time", type=float, default=0.0)
-    ap.add_argument("--delay", type=float, default=0.0)
+    add_case_options(ap)
     args = ap.parse_args(argv)
-    config = yaml.safe_load(args.config.read_text(encoding="utf-8"))
-    base = parameters.scenario_from_dict({k: config[k] for k in SCENARIO_KEYS if k in config})
-    control = dataclasses.replace(base.control, strategy=args.strategy, sampling_time=args.sampling_time,
-                                  delay=args.delay)
-    scenario = dataclasses.replace(base, control=control, noise_level=args.noise_level)
-    freqs = parameters.frequency_ratios(config["frequency_grid"])
-    grid = parameters.amplitude_grid(config["amplitude_grid"])
-    Pm, recs, off, lens, peaks, _, _ = _cases(scenario, freqs, range(args.realisations))
-    values, vert, res = grid.values(), np.zeros(0), float(grid.resolution)
+    Pm, recs, off, lens, peaks, values, res = spectrum_cases(args)
+    vert = np.zeros(0)
     cases = [(Pm[i], recs[off[i]:off[i] + lens[i]], peaks[i]) for i in range(len(Pm))]
     print(f"{args.strategy}, T_s {args.sampling_time:g} s, delay {args.delay:g} s, noise level "
           f"{args.noise_level:g}: {len(Pm)} thresholds", flush=True)
