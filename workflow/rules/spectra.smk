@@ -3,8 +3,8 @@
 
 
 # The engine compiled into numba's cache in three parts: the threshold scans (the spectra wait for them
-# alone) and, beside them, the scans' parts outside the step loop, which the scans then load; then the
-# rest of what the simulation jobs call, beside the first spectra.
+# alone) and, beside them, what the step loop, the driver and the scan call, which the scans then load;
+# then the rest of what the simulation jobs call, beside the first spectra.
 COMPILE_PARAMS = dict(scenario=scenario("CS01", (NOISY or [FREE])[0]), library=LIBRARY)
 """What every compile job runs on (its part is its own): the first noisy level's CS01 scenario."""
 

@@ -1,8 +1,8 @@
 """Compile the engine once for the whole run, on a tiny case, into numba's on-disk cache, in three parts
 (``params.part``): ``scan``, the step loop and then the threshold scan on a noisy record and on an analytic
-excitation (what the spectra call); ``parts``, beside it, the scan's other parts, which ``scan`` then loads
-from the cache (``rockstudy.engine._kernel.parts``), and writes rockstudy's byte-code for the jobs that
-follow (``jobs.write_bytecode``); ``more``, the rest the simulation jobs call (the
+excitation (what the spectra call); ``parts``, beside it, what the step loop, the driver and the scan call,
+which ``scan`` then loads from the cache (``rockstudy.engine._kernel.parts``), and writes rockstudy's byte-code
+for the jobs that follow (``jobs.write_bytecode``); ``more``, the rest the simulation jobs call (the
 outcome map, a time history, and a scaled earthquake record's outcome and threshold scan called from
 Python, as the fragility and design jobs do), which loads the scan's shared parts from the cache and runs
 beside the first spectra. The jobs that follow load the compiled kernels instead of each compiling them."""

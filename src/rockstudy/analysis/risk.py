@@ -55,8 +55,8 @@ from scipy import optimize, special
 
 from rockstudy.analysis.hazard import EXTENSIONS, HazardCurve
 from rockstudy.core import validation
+from rockstudy.core.constants import STANDARD_GRAVITY_UNITS as G_N  # PGA in units of standard gravity
 from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, GMMS, RISK_INPUTS
-from rockstudy.model.records import STANDARD_GRAVITY_UNITS as G_N  # PGA in units of standard gravity
 
 if TYPE_CHECKING:
     import xarray as xr

@@ -32,8 +32,8 @@ from rockstudy.analysis.risk import (
     threshold_fit,
 )
 from rockstudy.core import validation
+from rockstudy.core.constants import STANDARD_GRAVITY_UNITS as G_N
 from rockstudy.core.risk_inputs import DEFAULT_GMM, DEFAULT_YEARS, RISK_INPUTS
-from rockstudy.model.records import STANDARD_GRAVITY_UNITS as G_N
 
 BAND_EDGES_G = (0.05, 0.1, 0.2, 0.4, 0.8, 1.6)
 """Inner PGA band edges of the study's disaggregation (0 and inf added). [g]"""

@@ -14,6 +14,14 @@ REST_VELOCITY_FACTOR = 1e-6
 One millionth of the velocity scale p·α: negligible motion, and it ends the infinite impact
 sequence of chattering in finite time."""
 
+STANDARD_GRAVITY = 9.80665
+"""Standard gravity g_n, the unit "g" of record files. [m/s^2]"""
+
+STANDARD_GRAVITY_UNITS = "9.80665 m s-2"
+"""The ``units`` attribute of an acceleration given in units of standard gravity g_n (a PGA "in g"): UDUNITS
+and cf-units read ``"g"`` as gram, so netCDF files write g_n itself. The block's model uses its own
+``Block.gravity`` (9.81 m/s^2 by default), stated as the ``block_gravity`` attribute where it enters."""
+
 NOISE_DT = 0.0025
 """Sampling step of the noisy records (paper §5). [s]"""
 

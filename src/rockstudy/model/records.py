@@ -39,18 +39,11 @@ from pathlib import Path
 import numpy as np
 
 from rockstudy.core import limits
+from rockstudy.core.constants import STANDARD_GRAVITY, STANDARD_GRAVITY_UNITS  # noqa: F401  (re-exported)
 from rockstudy.core.io import write_text
 from rockstudy.core.quantities import SIZES, check_arguments, declares
 from rockstudy.core.validation import MAX_RECORD_BYTES, MAX_RECORD_SAMPLES, InputError, check_input_file
 from rockstudy.model.excitation import GroundMotion
-
-STANDARD_GRAVITY = 9.80665
-"""Standard gravity g_n, the unit "g" of record files. [m/s^2]"""
-
-STANDARD_GRAVITY_UNITS = "9.80665 m s-2"
-"""The ``units`` attribute of an acceleration given in units of standard gravity g_n (a PGA "in g"): UDUNITS
-and cf-units read ``"g"`` as gram, so netCDF files write g_n itself. The block's model uses its own
-``Block.gravity`` (9.81 m/s^2 by default), stated as the ``block_gravity`` attribute where it enters."""
 
 
 def unit_label(units: str) -> str:

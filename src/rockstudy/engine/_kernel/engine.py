@@ -427,7 +427,7 @@ def next_known_time(S, C, P, vert, queue_times):
     return t_next
 
 
-@njit(cache=True, inline=inline_into("drive"))
+@njit(cache=True, **NO_REFCOUNT)
 def ground_phase(S, C, P, rec, vert, t_next):
     """REST or HOLD up to ``t_next``: find the exit (uplift; leaving the CS01 sliding surface) and
     apply it. Returns NOTHING (still there at ``t_next``), UPLIFTED or LEFT_HOLD."""
@@ -466,7 +466,7 @@ def ground_phase(S, C, P, rec, vert, t_next):
     return LEFT_HOLD
 
 
-@njit(cache=True, inline=inline_into("drive"))
+@njit(cache=True, **NO_REFCOUNT)
 def pass_quiet_knots(S, C, P, rec, vert, B, queue_times, queue_values, t_next):
     """REST under a record without vertical motion: pass the known-time events before the end of the
     excitation at which the block is still at rest in one loop. Each gets what the driver's loop would
@@ -497,7 +497,7 @@ def pass_quiet_knots(S, C, P, rec, vert, B, queue_times, queue_values, t_next):
     return t_next
 
 
-@njit(cache=True, inline=inline_into("drive", "integrate"), **NO_REFCOUNT)
+@njit(cache=True, inline=inline_into("drive", "integrate", "pass_quiet_knots"), **NO_REFCOUNT)
 def known_time_events(S, C, P, rec, queue_times, queue_values):
     """Apply what happens at a known-time event: the end of the excitation, controller samples due
     (decision k taken at k·T_s acts from k·T_s + Δτ), decisions that act now. A record knot
@@ -531,7 +531,7 @@ def known_time_events(S, C, P, rec, queue_times, queue_values):
         S[R_F0_OK] = 0.0
 
 
-@njit(cache=True, inline=inline_into("drive"))
+@njit(cache=True, **NO_REFCOUNT)
 def below_overturning_energy(S, C, P):
     """True when the block, free of excitation, provably cannot overturn any more (docs/model.md)."""
     if C[C_BOUND_SWITCHING] != 0.0:
