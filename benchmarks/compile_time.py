@@ -1,11 +1,17 @@
-"""The engine's compilation, measured: what the workflow's rules ``compile_engine_parts`` (the threshold
-scans' parts besides the step loop, which the workflow runs beside the next), ``compile_engine`` (the step
-loop and the threshold scans, loading those parts) and ``compile_engine_more`` (the rest, after it) compile —
+"""The engine's compilation, measured: what the workflow's rules ``compile_engine_parts`` (what the step
+loop, the driver and the scan call, which the workflow runs beside the next), ``compile_engine`` (the step loop
+and the threshold scans, loading those parts) and ``compile_engine_more`` (the rest, after it) compile —
 their script, called with a stand-in for Snakemake's object and one numba thread, as the rules run it (with
-room on Python's frame stack, ``rockstudy.core.frames``), one after the other here — into an empty numba cache,
-with the CPU time of each compiled function.
+room on Python's frame stack, ``rockstudy.core.frames``) — into an empty numba cache, with the CPU time of
+each compiled function.
 
     python benchmarks/compile_time.py [--config config.yaml] [--top 15] [--cache DIR] [--no-frame-room]
+                                      [--side-by-side]
+
+By default the three parts run one after the other in this process. ``--side-by-side`` runs them as the
+workflow does on two cores: ``compile_engine_parts`` in a second process at the same time as
+``compile_engine`` in this one, then ``compile_engine_more``; the wall time of ``compile_engine`` is then
+what the spectra wait for (the functions listed are this process's).
 
 Prints the CPU (its system part apart) and wall time of each part and, for the ``--top`` most expensive compiled
 functions, the CPU time spent compiling each one alone (``own``: without the functions it calls, which are
@@ -21,6 +27,7 @@ import argparse
 import importlib.util
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 import time
@@ -28,6 +35,8 @@ from pathlib import Path
 from types import SimpleNamespace
 
 ROOT = Path(__file__).resolve().parents[1]
+PARTS = {"parts": "compile_engine_parts", "scan": "compile_engine", "more": "compile_engine_more"}
+"""The parts of the compile (``params.part``) and the workflow's rules that compile them."""
 
 
 def parse(argv=None):
@@ -38,6 +47,9 @@ def parse(argv=None):
                     help="numba cache folder, emptied first (default: a temporary one)")
     ap.add_argument("--no-frame-room", action="store_true",
                     help="call the scripts without room on the frame stack (rockstudy.core.frames)")
+    ap.add_argument("--side-by-side", action="store_true",
+                    help="compile_engine_parts in a second process beside compile_engine, as the workflow runs them")
+    ap.add_argument("--part", choices=PARTS, help=argparse.SUPPRESS)  # one part into the given cache (side by side)
     return ap.parse_args(argv)
 
 
@@ -66,8 +78,9 @@ def compile_times():
 def main(argv=None) -> int:
     args = parse(argv)
     cache = args.cache or Path(tempfile.mkdtemp(prefix="rockstudy-numba-"))
-    shutil.rmtree(cache, ignore_errors=True)
-    cache.mkdir(parents=True)
+    if args.part is None:
+        shutil.rmtree(cache, ignore_errors=True)
+        cache.mkdir(parents=True)
     os.environ["NUMBA_CACHE_DIR"] = str(cache)  # before numba is imported
     import yaml
     from numba.core import event
@@ -85,8 +98,22 @@ def main(argv=None) -> int:
     scenario = expectations.scenario_spec(config, "CS01", level, 0.0, 0.0)
     listener = compile_times()
     with tempfile.TemporaryDirectory() as tmp, event.install_listener("numba:compile", listener):
-        rules = (("parts", "compile_engine_parts"), ("scan", "compile_engine"), ("more", "compile_engine_more"))
-        for part, rule in rules:
+        beside = None
+        if args.part:
+            order = [args.part]
+        elif args.side_by_side:  # the parts in a second process, started now, beside the scans here
+            command = [sys.executable, __file__, "--config", str(args.config), "--cache", str(cache), "--part", "parts"]
+            beside = subprocess.Popen(command + (["--no-frame-room"] if args.no_frame_room else []),
+                                      stdout=subprocess.PIPE, text=True)
+            order = ["scan", "more"]
+        else:
+            order = ["parts", "scan", "more"]
+        for part in order:
+            rule = PARTS[part]
+            if part == "more" and beside is not None:
+                print(beside.communicate()[0].splitlines()[0], flush=True)
+                if beside.returncode:
+                    raise SystemExit(f"compile_engine_parts failed (exit status {beside.returncode})")
             stand_in = SimpleNamespace(log=[f"{tmp}/{part}.log"], output=[f"{tmp}/{part}.done"], threads=1,
                                        params=SimpleNamespace(scenario=scenario, library="benchmark", part=part))
             cpu, system, wall = time.process_time(), os.times().system, time.perf_counter()
@@ -94,7 +121,13 @@ def main(argv=None) -> int:
                 script.main(stand_in)
             else:
                 with_frame_room(script.main, stand_in)
-            print(f"{rule} ({part}) on {'an empty' if part == 'parts' else 'that'} cache: "
+            if args.part:
+                where = "beside it"
+            elif part == "scan" and beside is not None:
+                where = "on an empty cache, compile_engine_parts beside it"
+            else:
+                where = "on an empty cache" if part == "parts" else "on that cache"
+            print(f"{rule} ({part}) {where}: "
                   f"{time.process_time() - cpu:.1f} s CPU (system {os.times().system - system:.1f} s), "
                   f"{time.perf_counter() - wall:.1f} s wall", flush=True)
     n_files = len(list(cache.rglob("*.nbc")))
