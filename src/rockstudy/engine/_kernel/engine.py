@@ -577,7 +577,7 @@ def remaining_input(t, P, B):
     return dur - t  # one-sine pulse and rectangular pulse: |Ẍg| <= a_p
 
 
-@njit(cache=True, inline=inline_into("drive"))
+@njit(cache=True, inline=inline_into("drive", "pass_quiet_knots"))
 def below_driven_bound(S, C, P, B):
     """True when the block, still under excitation, provably cannot overturn whatever the rest of
     the excitation does within its impulse (docs/engine.md, "Early stops"). The impulse bound is tested
