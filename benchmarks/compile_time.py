@@ -15,7 +15,10 @@ what the spectra wait for (the functions listed are this process's).
 
 Prints the CPU (its system part apart) and wall time of each part and, for the ``--top`` most expensive compiled
 functions, the CPU time spent compiling each one alone (``own``: without the functions it calls, which are
-compiled first) and with them (``with callees``). ``--cache`` keeps the cache in ``DIR`` (emptied
+compiled first) and with them (``with callees``); then where this process's compile went: LLVM (optimising and
+emitting machine code, numba's ``numba:llvm_lock`` events), numba's inlining of the functions compiled
+``inline=`` into their callers (each call site translates the callee's byte code again and copies its IR) and
+the rest of numba's own front end (typing, lowering). ``--cache`` keeps the cache in ``DIR`` (emptied
 first) instead of a temporary folder. ``--no-frame-room`` calls the scripts without that room, as a plain
 call does: numba's compiler then takes and gives back a chunk of the frame stack wherever its calls cross a
 chunk's end, which shows as system time. The machine is shared: compare two versions back to back (another
@@ -75,6 +78,53 @@ def compile_times():
     return CompileTimes()
 
 
+def outermost_cpu(totals: dict, key: str):
+    """A context manager's pair of callbacks adding the CPU time of the outermost of nested calls to
+    ``totals[key]`` and counting the calls in ``totals[key + " calls"]``."""
+    depth = [0, 0.0]
+
+    def enter():
+        if depth[0] == 0:
+            depth[1] = time.process_time()
+        depth[0] += 1
+        totals[key + " calls"] = totals.get(key + " calls", 0) + 1
+
+    def leave():
+        depth[0] -= 1
+        if depth[0] == 0:
+            totals[key] = totals.get(key, 0.0) + time.process_time() - depth[1]
+
+    return enter, leave
+
+
+def watch_llvm_and_inlining(totals: dict):
+    """Record into ``totals`` the CPU time of LLVM's work (numba's "numba:llvm_lock" events) and of numba's
+    inlining of ``inline=`` functions (``InlineWorker.inline_function``, wrapped for this process)."""
+    from numba.core import event, inline_closurecall
+
+    llvm_enter, llvm_leave = outermost_cpu(totals, "llvm")
+
+    class LLVM(event.Listener):
+        def on_start(self, event):
+            llvm_enter()
+
+        def on_end(self, event):
+            llvm_leave()
+
+    event.register("numba:llvm_lock", LLVM())
+    inline_enter, inline_leave = outermost_cpu(totals, "inlining")
+    inline_function = inline_closurecall.InlineWorker.inline_function
+
+    def timed(self, *args, **kwargs):
+        inline_enter()
+        try:
+            return inline_function(self, *args, **kwargs)
+        finally:
+            inline_leave()
+
+    inline_closurecall.InlineWorker.inline_function = timed
+
+
 def main(argv=None) -> int:
     args = parse(argv)
     cache = args.cache or Path(tempfile.mkdtemp(prefix="rockstudy-numba-"))
@@ -97,6 +147,8 @@ def main(argv=None) -> int:
     spec.loader.exec_module(script)
     scenario = expectations.scenario_spec(config, "CS01", level, 0.0, 0.0)
     listener = compile_times()
+    totals: dict = {}
+    watch_llvm_and_inlining(totals)
     with tempfile.TemporaryDirectory() as tmp, event.install_listener("numba:compile", listener):
         beside = None
         if args.part:
@@ -137,6 +189,11 @@ def main(argv=None) -> int:
     print(f"{'function':32s} {'own':>7s} {'with callees':>13s}  [s CPU]")
     for name in sorted(listener.own, key=listener.own.get, reverse=True)[:args.top]:
         print(f"{name:32s} {listener.own[name]:7.2f} {listener.inclusive[name]:13.2f}")
+    compiled = sum(listener.own.values())
+    llvm, inlining = totals.get("llvm", 0.0), totals.get("inlining", 0.0)
+    print(f"this process compiled for {compiled:.1f} s CPU: LLVM {llvm:.1f} s, numba's inlining "
+          f"{inlining:.1f} s ({totals.get('inlining calls', 0)} call sites, nested ones counted), "
+          f"the rest of numba's front end {compiled - llvm - inlining:.1f} s")
     return 0
 
 
