@@ -6,7 +6,7 @@ room on Python's frame stack, ``rockstudy.core.frames``) — into an empty numba
 each compiled function.
 
     python benchmarks/compile_time.py [--config config.yaml] [--top 15] [--cache DIR] [--no-frame-room]
-                                      [--side-by-side]
+                                      [--side-by-side | --part parts|scan|more]
 
 By default the three parts run one after the other in this process. ``--side-by-side`` runs them as the
 workflow does on two cores: ``compile_engine_parts`` in a second process at the same time as
@@ -19,9 +19,11 @@ compiled first) and with them (``with callees``); then where this process's comp
 emitting machine code, numba's ``numba:llvm_lock`` events), numba's inlining of the functions compiled
 ``inline=`` into their callers (each call site translates the callee's byte code again and copies its IR) and
 the rest of numba's own front end (typing, lowering). ``--cache`` keeps the cache in ``DIR`` (emptied
-first) instead of a temporary folder. ``--no-frame-room`` calls the scripts without that room, as a plain
-call does: numba's compiler then takes and gives back a chunk of the frame stack wherever its calls cross a
-chunk's end, which shows as system time. The machine is shared: compare two versions back to back (another
+first) instead of a temporary folder. ``--part parts|scan|more`` compiles that part alone into ``--cache`` as
+it finds it (not emptied: ``--side-by-side`` runs its second process so), e.g. the scans alone on an empty
+cache. ``--no-frame-room`` calls the scripts without that room, as a plain call does: numba's compiler then
+takes and gives back a chunk of the frame stack wherever its calls cross a chunk's end, which shows as system
+time. The machine is shared: compare two versions back to back (another
 version's ``src`` first on ``PYTHONPATH``), not with figures from another session.
 """
 from __future__ import annotations
@@ -52,7 +54,8 @@ def parse(argv=None):
                     help="call the scripts without room on the frame stack (rockstudy.core.frames)")
     ap.add_argument("--side-by-side", action="store_true",
                     help="compile_engine_parts in a second process beside compile_engine, as the workflow runs them")
-    ap.add_argument("--part", choices=PARTS, help=argparse.SUPPRESS)  # one part into the given cache (side by side)
+    ap.add_argument("--part", choices=PARTS,
+                    help="compile this part alone, into --cache as it is (empty it first to measure a part alone)")
     return ap.parse_args(argv)
 
 
