@@ -23,8 +23,8 @@ first) instead of a temporary folder. ``--part parts|scan|more`` compiles that p
 it finds it (not emptied: ``--side-by-side`` runs its second process so), e.g. the scans alone on an empty
 cache. ``--no-frame-room`` calls the scripts without that room, as a plain call does: numba's compiler then
 takes and gives back a chunk of the frame stack wherever its calls cross a chunk's end, which shows as system
-time. The machine is shared: compare two versions back to back (another
-version's ``src`` first on ``PYTHONPATH``), not with figures from another session.
+time. The machine is shared: compare two versions back to back (another version's ``src`` first on
+``PYTHONPATH``), not with figures from another session.
 """
 from __future__ import annotations
 
@@ -81,51 +81,50 @@ def compile_times():
     return CompileTimes()
 
 
-def outermost_cpu(totals: dict, key: str):
-    """A context manager's pair of callbacks adding the CPU time of the outermost of nested calls to
-    ``totals[key]`` and counting the calls in ``totals[key + " calls"]``."""
-    depth = [0, 0.0]
+class OutermostCPU:
+    """The CPU time spent in the outermost of nested calls (``enter`` ... ``leave``) and the number of calls."""
 
-    def enter():
-        if depth[0] == 0:
-            depth[1] = time.process_time()
-        depth[0] += 1
-        totals[key + " calls"] = totals.get(key + " calls", 0) + 1
+    def __init__(self):
+        self.depth, self.start, self.cpu, self.calls = 0, 0.0, 0.0, 0
 
-    def leave():
-        depth[0] -= 1
-        if depth[0] == 0:
-            totals[key] = totals.get(key, 0.0) + time.process_time() - depth[1]
+    def enter(self):
+        if self.depth == 0:
+            self.start = time.process_time()
+        self.depth += 1
+        self.calls += 1
 
-    return enter, leave
+    def leave(self):
+        self.depth -= 1
+        if self.depth == 0:
+            self.cpu += time.process_time() - self.start
 
 
-def watch_llvm_and_inlining(totals: dict):
-    """Record into ``totals`` the CPU time of LLVM's work (numba's "numba:llvm_lock" events) and of numba's
-    inlining of ``inline=`` functions (``InlineWorker.inline_function``, wrapped for this process)."""
+def watch_llvm_and_inlining():
+    """(LLVM, inlining): the CPU time of LLVM's work (numba's "numba:llvm_lock" events) and of numba's inlining
+    of ``inline=`` functions (``InlineWorker.inline_function``, wrapped for this process), from now on."""
     from numba.core import event, inline_closurecall
 
-    llvm_enter, llvm_leave = outermost_cpu(totals, "llvm")
+    llvm, inlining = OutermostCPU(), OutermostCPU()
 
     class LLVM(event.Listener):
         def on_start(self, event):
-            llvm_enter()
+            llvm.enter()
 
         def on_end(self, event):
-            llvm_leave()
+            llvm.leave()
 
     event.register("numba:llvm_lock", LLVM())
-    inline_enter, inline_leave = outermost_cpu(totals, "inlining")
     inline_function = inline_closurecall.InlineWorker.inline_function
 
     def timed(self, *args, **kwargs):
-        inline_enter()
+        inlining.enter()
         try:
             return inline_function(self, *args, **kwargs)
         finally:
-            inline_leave()
+            inlining.leave()
 
     inline_closurecall.InlineWorker.inline_function = timed
+    return llvm, inlining
 
 
 def main(argv=None) -> int:
@@ -150,8 +149,7 @@ def main(argv=None) -> int:
     spec.loader.exec_module(script)
     scenario = expectations.scenario_spec(config, "CS01", level, 0.0, 0.0)
     listener = compile_times()
-    totals: dict = {}
-    watch_llvm_and_inlining(totals)
+    llvm, inlining = watch_llvm_and_inlining()
     with tempfile.TemporaryDirectory() as tmp, event.install_listener("numba:compile", listener):
         beside = None
         if args.part:
@@ -177,7 +175,7 @@ def main(argv=None) -> int:
             else:
                 with_frame_room(script.main, stand_in)
             if args.part:
-                where = "beside it"
+                where = "in its own process, on the given cache"
             elif part == "scan" and beside is not None:
                 where = "on an empty cache, compile_engine_parts beside it"
             else:
@@ -193,10 +191,9 @@ def main(argv=None) -> int:
     for name in sorted(listener.own, key=listener.own.get, reverse=True)[:args.top]:
         print(f"{name:32s} {listener.own[name]:7.2f} {listener.inclusive[name]:13.2f}")
     compiled = sum(listener.own.values())
-    llvm, inlining = totals.get("llvm", 0.0), totals.get("inlining", 0.0)
-    print(f"this process compiled for {compiled:.1f} s CPU: LLVM {llvm:.1f} s, numba's inlining "
-          f"{inlining:.1f} s ({totals.get('inlining calls', 0)} call sites, nested ones counted), "
-          f"the rest of numba's front end {compiled - llvm - inlining:.1f} s")
+    print(f"this process compiled for {compiled:.1f} s CPU: LLVM {llvm.cpu:.1f} s, numba's inlining "
+          f"{inlining.cpu:.1f} s ({inlining.calls} call sites, nested ones counted), "
+          f"the rest of numba's front end {compiled - llvm.cpu - inlining.cpu:.1f} s")
     return 0
 
 
